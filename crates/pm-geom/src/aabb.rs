@@ -1,0 +1,72 @@
+//! Axis-aligned bounding boxes: the cube of the geometry estimator and the bounds of everything.
+
+use glam::Vec3;
+
+/// An axis-aligned box `[min, max]`. Empty when any `min > max` component.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// The empty box (`min = +inf`, `max = -inf`); the identity of [`Aabb::union`].
+    pub const EMPTY: Aabb = Aabb { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
+
+    /// A box from its corners.
+    pub const fn new(min: Vec3, max: Vec3) -> Self {
+        Aabb { min, max }
+    }
+
+    /// The cube of half-size `half` centred at `center`.
+    pub fn cube(center: Vec3, half: f32) -> Self {
+        Aabb { min: center - Vec3::splat(half), max: center + Vec3::splat(half) }
+    }
+
+    /// The smallest box holding all `points` ([`Aabb::EMPTY`] for none).
+    pub fn from_points(points: &[Vec3]) -> Self {
+        points.iter().fold(Self::EMPTY, |b, &p| b.grow(p))
+    }
+
+    /// This box grown to hold `p`.
+    pub fn grow(self, p: Vec3) -> Self {
+        Aabb { min: self.min.min(p), max: self.max.max(p) }
+    }
+
+    /// The smallest box holding both.
+    pub fn union(self, other: Aabb) -> Self {
+        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
+    }
+
+    /// True when the closed boxes share at least one point.
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        self.min.cmple(other.max).all() && other.min.cmple(self.max).all()
+    }
+
+    /// True when `p` lies in the closed box.
+    pub fn contains_point(&self, p: Vec3) -> bool {
+        self.min.cmple(p).all() && p.cmple(self.max).all()
+    }
+
+    /// True when the box holds no point.
+    pub fn is_empty(&self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    /// Centre point.
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Edge lengths (`max - min`).
+    pub fn size(&self) -> Vec3 {
+        self.max - self.min
+    }
+
+    /// Length of the diagonal (0 for an empty box).
+    pub fn diagonal(&self) -> f32 {
+        if self.is_empty() { 0.0 } else { self.size().length() }
+    }
+}

@@ -1,0 +1,17 @@
+//! Errors from building a photon tree.
+
+use thiserror::Error;
+
+/// Why a [`crate::PhotonTree`] could not be built.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum BuildError {
+    /// A photon position with a NaN or infinite coordinate.
+    #[error("photon {index}: non-finite position {position:?}")]
+    NonFinitePosition {
+        /// Index in the input.
+        index: usize,
+        /// The position.
+        position: [f32; 3],
+    },
+}

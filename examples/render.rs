@@ -1,0 +1,3 @@
+//! The render example (filled in by the pm-render issue).
+
+fn main() {}
