@@ -2,3 +2,6 @@
 //! of surfaces into photon maps.
 //!
 //! (Crate docs to be completed by the pm-trace issue.)
+
+#[cfg(feature = "gltf")]
+pub mod gltf;
