@@ -1,13 +1,14 @@
 //! Robustness over the shared glTF corpus (445 valid and malformed files from the Khronos
 //! validator suite, tinygltf, assimp, cgltf and others): every file loads or returns an
-//! error, no panic escapes the loader, and memory stays bounded. Prints the counts.
+//! error, no panic escapes the loader or the scene builder, and memory stays bounded. Prints
+//! the counts.
 
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use pm_trace::gltf::{GltfOptions, read_content};
+use pm_trace::gltf::{GltfOptions, build_scene, read_content};
 
 const CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/gltf-corpus");
 
@@ -59,14 +60,21 @@ fn every_corpus_file_loads_or_errors_without_panic() {
 
     let start = Instant::now();
     let mut loaded = 0usize;
-    let mut triangles = 0usize;
+    let mut parts = 0usize;
+    let mut read = 0usize;
     let mut kinds: BTreeMap<&'static str, usize> = BTreeMap::new();
     let mut escaped = Vec::new();
     for file in &files {
-        match catch_unwind(AssertUnwindSafe(|| read_content(file, &GltfOptions::default()))) {
-            Ok(Ok(content)) => {
+        let options = GltfOptions::default();
+        let load = || {
+            let content = read_content(file, &options)?;
+            read += 1;
+            build_scene(file, &content, &options)
+        };
+        match catch_unwind(AssertUnwindSafe(load)) {
+            Ok(Ok(scene)) => {
                 loaded += 1;
-                triangles += content.triangle_count();
+                parts += scene.part_count();
             }
             Ok(Err(e)) => {
                 *kinds.entry(e.kind()).or_default() += 1;
@@ -79,7 +87,7 @@ fn every_corpus_file_loads_or_errors_without_panic() {
     }
     let errors: usize = kinds.values().sum();
     println!(
-        "glTF corpus: {} files, {loaded} loaded ({triangles} triangles), {errors} errors, in {:.2?}",
+        "glTF corpus: {} files, {read} read, {loaded} built into scenes ({parts} parts), {errors} errors, in {:.2?}",
         files.len(),
         start.elapsed()
     );

@@ -75,13 +75,14 @@ pub(super) fn place_camera(
     }))
 }
 
-/// A camera on the +z side of the bounds `(min, max)`, looking along −z at their centre, far
-/// enough that the bounding sphere fits the vertical field of view [`DEFAULT_VFOV`].
+/// A camera on the +z side of the bounds `(min, max)`, looking along −z (glTF's viewing
+/// direction) at their centre, far enough back that the face towards it fits the vertical
+/// field of view [`DEFAULT_VFOV`], with a 10 % margin.
 pub fn frame_bounds(min: Vec3, max: Vec3) -> GltfCamera {
     let center = (min + max) * 0.5;
-    let radius = ((max - min).length() * 0.5).max(1e-3);
-    let distance = radius / (DEFAULT_VFOV * 0.5).sin();
-    let position = center + Vec3::new(0.0, 0.0, distance);
+    let size = (max - min).max(Vec3::splat(1e-3));
+    let back = 0.5 * size.x.max(size.y) / (DEFAULT_VFOV * 0.5).tan() + 0.5 * size.z;
+    let position = center + Vec3::Z * back * 1.1;
     GltfCamera {
         position,
         look_at: center,

@@ -92,7 +92,16 @@ pub enum GltfError {
         /// What was wrong.
         reason: String,
     },
-    /// The file names a scene that does not exist, or holds no usable geometry.
+    /// The scene builder refused the content (see [`SceneError`](crate::SceneError)).
+    #[error("{file}: {source}")]
+    Build {
+        /// The scene file.
+        file: PathBuf,
+        /// The builder's reason.
+        source: crate::SceneError,
+    },
+    /// The file names a scene that does not exist, holds no triangles, or has no light
+    /// while [`GltfOptions::default_light`](super::GltfOptions) is off.
     #[error("{file}: {reason}")]
     Scene {
         /// The scene file.
@@ -116,6 +125,7 @@ impl GltfError {
             Self::Accessor { .. } => "accessor",
             Self::Primitive { .. } => "primitive",
             Self::Node { .. } => "node",
+            Self::Build { .. } => "build",
             Self::Scene { .. } => "scene",
         }
     }

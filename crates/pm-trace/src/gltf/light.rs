@@ -84,22 +84,17 @@ pub(super) fn place_light(
     let Checked::Valid(ty) = l.type_ else {
         return Err(error(format!("light {light}: invalid type")));
     };
-    let need_direction =
-        || direction.ok_or_else(|| error(format!("light {light}: the node's −Z axis is degenerate")));
+    let need_direction = || {
+        let reason = format!("light {light}: the node's −Z axis is degenerate");
+        direction.ok_or_else(|| error(reason))
+    };
     Ok(match ty {
         Type::Point => GltfLight::Point {
             position,
             intensity: power,
         },
         Type::Spot => {
-            let (inner, outer) = l.spot.as_ref().map_or((0.0, std::f32::consts::FRAC_PI_4), |s| {
-                (s.inner_cone_angle, s.outer_cone_angle)
-            });
-            if !(0.0..=std::f32::consts::FRAC_PI_2).contains(&outer) || !(0.0..=outer).contains(&inner) {
-                return Err(error(format!(
-                    "light {light}: cone angles inner {inner}, outer {outer} need 0 ≤ inner ≤ outer ≤ π/2"
-                )));
-            }
+            let (inner, outer) = spot_cone(l).map_err(|r| error(format!("light {light}: {r}")))?;
             GltfLight::Spot {
                 position,
                 direction: need_direction()?,
@@ -113,4 +108,19 @@ pub(super) fn place_light(
             irradiance: power,
         },
     })
+}
+
+/// The spot's inner and outer cone angles (glTF defaults 0 and π/4), checked.
+fn spot_cone(l: &Light) -> Result<(f32, f32), String> {
+    let (inner, outer) = l.spot.as_ref().map_or((0.0, std::f32::consts::FRAC_PI_4), |s| {
+        (s.inner_cone_angle, s.outer_cone_angle)
+    });
+    let valid = outer > 0.0 && outer <= std::f32::consts::FRAC_PI_2 && (0.0..=outer).contains(&inner);
+    if valid {
+        Ok((inner, outer))
+    } else {
+        Err(format!(
+            "cone angles inner {inner}, outer {outer} need 0 ≤ inner ≤ outer, 0 < outer ≤ π/2"
+        ))
+    }
 }
