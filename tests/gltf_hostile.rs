@@ -407,3 +407,40 @@ fn known_scene_maps_transforms_materials_lights_and_camera() {
     assert!(close(camera.up, Vec3::Y));
     assert_eq!(camera.vfov, 0.8);
 }
+
+fn sparse_gltf(sparse_index: u8) -> (Scratch, PathBuf) {
+    let scratch = Scratch::new(&format!("sparse{sparse_index}"));
+    let mut bin = std::fs::read(SENTINEL).unwrap(); // (0,0,0), (1,0,0), (0,1,0)
+    bin.extend_from_slice(&[sparse_index, 0, 0, 0]);
+    for c in [5.0f32, 6.0, 7.0] {
+        bin.extend_from_slice(&c.to_le_bytes());
+    }
+    std::fs::write(scratch.0.join("s.bin"), &bin).unwrap();
+    let json = r#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":52,"uri":"s.bin"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":1},
+                       {"buffer":0,"byteOffset":40,"byteLength":12}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[5,6,7],
+          "sparse":{"count":1,"indices":{"bufferView":1,"componentType":5121},"values":{"bufferView":2}}}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]}"#;
+    let file = scratch.0.join("s.gltf");
+    std::fs::write(&file, json).unwrap();
+    (scratch, file)
+}
+
+#[test]
+fn sparse_accessor_replaces_the_listed_element() {
+    let (_scratch, file) = sparse_gltf(1);
+    let content = read_content(&file, &GltfOptions::default()).unwrap();
+    assert_eq!(
+        content.meshes[0].positions,
+        vec![Vec3::ZERO, Vec3::new(5.0, 6.0, 7.0), Vec3::Y]
+    );
+    let (_scratch, file) = sparse_gltf(3);
+    let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("sparse index 3 out of range for 3 elements"),
+        "{err}"
+    );
+}

@@ -112,3 +112,68 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
         double_sided: m.double_sided,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kind_of(json: &str) -> SurfaceKind {
+        let m: json::Material = material_from(json);
+        map_material(Some(&m), &GltfOptions::default()).kind
+    }
+
+    fn material_from(text: &str) -> json::Material {
+        json::deserialize::from_str(text).expect("test material parses")
+    }
+
+    #[test]
+    fn thresholds_split_mirror_glass_and_diffuse() {
+        let pbr = |m: f32, r: f32| {
+            format!(r#"{{"pbrMetallicRoughness":{{"metallicFactor":{m},"roughnessFactor":{r}}}}}"#)
+        };
+        assert!(matches!(kind_of(&pbr(0.9, 0.1)), SurfaceKind::Mirror { .. }));
+        assert!(matches!(kind_of(&pbr(0.89, 0.1)), SurfaceKind::Lambertian { .. }));
+        assert!(matches!(kind_of(&pbr(1.0, 0.11)), SurfaceKind::Lambertian { .. }));
+        // The glTF defaults are metallic 1, roughness 1: diffuse, white.
+        assert_eq!(kind_of("{}"), SurfaceKind::Lambertian { albedo: Vec3::ONE });
+        let glass = |t: f32, ior: &str| {
+            format!(r#"{{"extensions":{{"KHR_materials_transmission":{{"transmissionFactor":{t}}}{ior}}}}}"#)
+        };
+        assert_eq!(kind_of(&glass(0.5, "")), SurfaceKind::Glass { ior: 1.5 });
+        assert_eq!(
+            kind_of(&glass(1.0, r#","KHR_materials_ior":{"ior":2.4}"#)),
+            SurfaceKind::Glass { ior: 2.4 }
+        );
+        assert!(matches!(
+            kind_of(&glass(0.49, "")),
+            SurfaceKind::Lambertian { .. }
+        ));
+    }
+
+    #[test]
+    fn emission_is_factor_times_strength_times_scale() {
+        let m = material_from(
+            r#"{"emissiveFactor":[1,0.5,0],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}}}"#,
+        );
+        let options = GltfOptions {
+            emission_scale: 0.5,
+            ..GltfOptions::default()
+        };
+        assert_eq!(
+            map_material(Some(&m), &options).emission,
+            Vec3::new(2.0, 1.0, 0.0)
+        );
+        // Without the extension the strength is 1; colours above 1 are clamped for albedo.
+        let m = material_from(
+            r#"{"emissiveFactor":[0.25,0.25,0.25],"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,1],"metallicFactor":0}}"#,
+        );
+        let mapped = map_material(Some(&m), &GltfOptions::default());
+        assert_eq!(mapped.emission, Vec3::splat(0.25));
+        assert_eq!(
+            mapped.kind,
+            SurfaceKind::Lambertian {
+                albedo: Vec3::new(1.0, 0.5, 0.0)
+            }
+        );
+    }
+}
