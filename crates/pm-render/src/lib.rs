@@ -1,3 +1,14 @@
 //! Radiance estimators, render modes, a deterministic tiled renderer, and images.
 //!
-//! (Crate docs to be completed by the pm-render issue.)
+//! (Crate docs completed below once the renderer lands.)
+
+pub mod error;
+pub mod estimator;
+pub mod image;
+
+pub use error::RenderError;
+pub use estimator::{
+    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
+    GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
+};
+pub use image::Image;
