@@ -13,7 +13,10 @@ pub struct Aabb {
 
 impl Aabb {
     /// The empty box (`min = +inf`, `max = -inf`); the identity of [`Aabb::union`].
-    pub const EMPTY: Aabb = Aabb { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::INFINITY,
+        max: Vec3::NEG_INFINITY,
+    };
 
     /// A box from its corners.
     pub const fn new(min: Vec3, max: Vec3) -> Self {
@@ -22,7 +25,10 @@ impl Aabb {
 
     /// The cube of half-size `half` centred at `center`.
     pub fn cube(center: Vec3, half: f32) -> Self {
-        Aabb { min: center - Vec3::splat(half), max: center + Vec3::splat(half) }
+        Aabb {
+            min: center - Vec3::splat(half),
+            max: center + Vec3::splat(half),
+        }
     }
 
     /// The smallest box holding all `points` ([`Aabb::EMPTY`] for none).
@@ -32,12 +38,18 @@ impl Aabb {
 
     /// This box grown to hold `p`.
     pub fn grow(self, p: Vec3) -> Self {
-        Aabb { min: self.min.min(p), max: self.max.max(p) }
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
     }
 
     /// The smallest box holding both.
     pub fn union(self, other: Aabb) -> Self {
-        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
     }
 
     /// True when the closed boxes share at least one point.
@@ -67,6 +79,10 @@ impl Aabb {
 
     /// Length of the diagonal (0 for an empty box).
     pub fn diagonal(&self) -> f32 {
-        if self.is_empty() { 0.0 } else { self.size().length() }
+        if self.is_empty() {
+            0.0
+        } else {
+            self.size().length()
+        }
     }
 }

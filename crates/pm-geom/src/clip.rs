@@ -1,14 +1,15 @@
-//! Sutherland–Hodgman clipping of a convex polygon against an axis-aligned box, into a
-//! caller-owned scratch buffer so that the hot path allocates nothing once warm.
+//! Sutherland–Hodgman clipping of a convex polygon against an axis-aligned box or a plane,
+//! into caller-owned buffers so that the hot path allocates nothing once warm.
 
-use crate::Aabb;
-use glam::Vec3;
+use crate::{Aabb, Plane, polygon_vector_area};
+use glam::{DVec2, Vec3};
 
 /// Reusable buffers for clipping; keep one per thread.
 #[derive(Clone, Debug, Default)]
 pub struct ClipScratch {
     a: Vec<Vec3>,
     b: Vec<Vec3>,
+    plane2d: Vec<DVec2>,
 }
 
 impl ClipScratch {
@@ -16,11 +17,131 @@ impl ClipScratch {
     pub fn new() -> Self {
         Self::default()
     }
+
+    /// The buffer of in-plane coordinates used by the ball area.
+    pub(crate) fn plane2d_mut(&mut self) -> &mut Vec<DVec2> {
+        &mut self.plane2d
+    }
 }
 
 /// Clips the convex `polygon` to the closed `aabb` and returns the clipped polygon, which
-/// borrows `scratch`. Degenerate results (fewer than 3 vertices) are empty.
+/// borrows `scratch`. Degenerate results (fewer than 3 vertices, or zero area as when the
+/// polygon only touches the box along an edge) are empty.
+///
+/// Each of the six planes is applied in turn (Sutherland–Hodgman). Points created on a box
+/// face get that face's coordinate exactly, so clipped polygons tile a box split into
+/// sub-boxes without gaps. Non-finite input gives an empty result or non-finite vertices,
+/// never a panic.
 pub fn clip_polygon_to_aabb<'s>(polygon: &[Vec3], aabb: &Aabb, scratch: &'s mut ClipScratch) -> &'s [Vec3] {
-    let _ = (polygon, aabb, &mut scratch.b);
-    todo!("pm-geom issue")
+    clip_into_scratch(polygon, aabb, scratch);
+    if polygon_vector_area(&scratch.a) == Vec3::ZERO {
+        scratch.a.clear();
+    }
+    &scratch.a[..]
+}
+
+/// Sutherland–Hodgman into `scratch.a`, without the zero-area check (callers that compute
+/// the area anyway skip it).
+pub(crate) fn clip_into_scratch<'s>(
+    polygon: &[Vec3],
+    aabb: &Aabb,
+    scratch: &'s mut ClipScratch,
+) -> &'s [Vec3] {
+    let ClipScratch { a, b, .. } = scratch;
+    a.clear();
+    if polygon.len() < 3 || aabb.is_empty() {
+        return &a[..];
+    }
+    a.extend_from_slice(polygon);
+    for axis in 0..3 {
+        clip_axis(a, b, axis, aabb.min[axis], true);
+        clip_axis(b, a, axis, aabb.max[axis], false);
+        if a.len() < 3 {
+            a.clear();
+            break;
+        }
+    }
+    &a[..]
+}
+
+/// Keeps the part of `src` with `p[axis] >= bound` (`keep_above`) or `p[axis] <= bound`,
+/// writing it to `dst`.
+fn clip_axis(src: &[Vec3], dst: &mut Vec<Vec3>, axis: usize, bound: f32, keep_above: bool) {
+    dst.clear();
+    let Some(&last) = src.last() else {
+        return;
+    };
+    let sign = if keep_above { 1.0 } else { -1.0 };
+    let mut prev = last;
+    let mut prev_d = sign * (prev[axis] - bound);
+    for &cur in src {
+        let cur_d = sign * (cur[axis] - bound);
+        if (prev_d > 0.0 && cur_d < 0.0) || (prev_d < 0.0 && cur_d > 0.0) {
+            let mut hit = intersect(prev, prev_d, cur, cur_d);
+            hit[axis] = bound;
+            dst.push(hit);
+        }
+        if cur_d >= 0.0 {
+            dst.push(cur);
+        }
+        prev = cur;
+        prev_d = cur_d;
+    }
+}
+
+/// The point where the segment from `p` (signed distance `dp`) to `q` (`dq`, opposite sign)
+/// crosses the plane. Interpolates from the inside end so the result stays on the segment.
+fn intersect(p: Vec3, dp: f32, q: Vec3, dq: f32) -> Vec3 {
+    let t = dp / (dp - dq);
+    if t.is_finite() {
+        p + (q - p) * t.clamp(0.0, 1.0)
+    } else {
+        p
+    }
+}
+
+/// Splits the convex `polygon` by `plane` into the part on the positive side (`front`,
+/// `signed_distance >= 0`) and the part on the negative side (`back`). Both buffers are
+/// cleared first; a side that gets fewer than 3 vertices is left empty. Vertices on the
+/// plane go to both sides, so the two parts share the cut edge exactly.
+///
+/// This is the tool for cutting a face along a contact line before rebuilding a mesh.
+pub fn split_convex_polygon_by_plane(
+    polygon: &[Vec3],
+    plane: &Plane,
+    front: &mut Vec<Vec3>,
+    back: &mut Vec<Vec3>,
+) {
+    front.clear();
+    back.clear();
+    let Some(&last) = polygon.last() else {
+        return;
+    };
+    if polygon.len() < 3 {
+        return;
+    }
+    let mut prev = last;
+    let mut prev_d = plane.signed_distance(prev);
+    for &cur in polygon {
+        let cur_d = plane.signed_distance(cur);
+        if (prev_d > 0.0 && cur_d < 0.0) || (prev_d < 0.0 && cur_d > 0.0) {
+            let hit = intersect(prev, prev_d, cur, cur_d);
+            front.push(hit);
+            back.push(hit);
+        }
+        if cur_d >= 0.0 {
+            front.push(cur);
+        }
+        if cur_d <= 0.0 {
+            back.push(cur);
+        }
+        prev = cur;
+        prev_d = cur_d;
+    }
+    if front.len() < 3 {
+        front.clear();
+    }
+    if back.len() < 3 {
+        back.clear();
+    }
 }

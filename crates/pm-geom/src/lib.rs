@@ -1,10 +1,49 @@
 //! Geometry for photon mapping: convex polygons, their clipping to a cube and a ball, exact
 //! areas, polygon sets with an overlap index, and a half-edge mesh with crease angles.
 //!
-//! (Crate docs to be completed by the pm-geom issue: conventions, example.)
+//! The geometry-based radiance estimate spreads each photon's power over the surface area
+//! enclosed by a gather volume. This crate answers "how much of this polygon lies inside the
+//! volume" for a cube ([`Aabb`], Sutherland–Hodgman clipping) and a ball ([`Ball`], exact
+//! polygon ∩ disc area) through one trait, [`GatherVolume`]; finds the candidate polygons
+//! fast ([`PolygonSet`], with a bounding-volume hierarchy); and tells which faces may share
+//! a photon map ([`HalfEdgeMesh`]: twins, non-manifold edges, crease angles).
+//!
+//! # Conventions
+//!
+//! - `f32` and [`glam`] types throughout; units are metres, angles radians.
+//! - Right-handed coordinates, +y up. Polygons are `&[Vec3]` with vertices in order; a
+//!   polygon's normal points to where its vertices appear counter-clockwise.
+//! - Polygons handed to the clipping and area functions are convex and planar.
+//! - Hot paths (clipping, areas, overlap queries) allocate nothing once the caller-owned
+//!   [`ClipScratch`] has grown; they never panic on geometric input and return 0 rather
+//!   than NaN. Mesh construction returns a typed [`MeshError`].
+//!
+//! # Example
+//!
+//! ```
+//! use pm_geom::{Aabb, Ball, ClipScratch, GatherVolume, clip_polygon_to_aabb, polygon_area};
+//! use pm_geom::glam::{Vec3, vec3};
+//!
+//! // A 2 m × 2 m floor quad, facing up, and a cube of half-size 0.5 m centred on a corner.
+//! let quad = [vec3(0., 0., 0.), vec3(0., 0., 2.), vec3(2., 0., 2.), vec3(2., 0., 0.)];
+//! let cube = Aabb::cube(vec3(0., 0., 0.), 0.5);
+//! let mut scratch = ClipScratch::new();
+//!
+//! let clipped = clip_polygon_to_aabb(&quad, &cube, &mut scratch);
+//! println!("clipped to {} vertices, area {} m²", clipped.len(), polygon_area(clipped));
+//! assert!((polygon_area(clipped) - 0.25).abs() < 1e-6);
+//!
+//! // The same through the gather-volume trait, for the cube and for a ball.
+//! let area = cube.polygon_area_inside(&quad, Vec3::Y, &mut scratch);
+//! assert!((area - 0.25).abs() < 1e-6);
+//! let ball = Ball::new(vec3(1., 0.3, 1.), 0.5); // cuts the floor in a disc of radius 0.4
+//! let disc = ball.polygon_area_inside(&quad, Vec3::Y, &mut scratch);
+//! assert!((disc - std::f32::consts::PI * 0.16).abs() < 1e-5);
+//! ```
 
 pub mod aabb;
 pub mod ball;
+mod bounds_bvh;
 pub mod clip;
 pub mod error;
 pub mod mesh;
@@ -14,8 +53,8 @@ pub mod polygon_set;
 pub mod volume;
 
 pub use aabb::Aabb;
-pub use ball::Ball;
-pub use clip::{ClipScratch, clip_polygon_to_aabb};
+pub use ball::{Ball, polygon_area_in_ball};
+pub use clip::{ClipScratch, clip_polygon_to_aabb, split_convex_polygon_by_plane};
 pub use error::MeshError;
 pub use glam;
 pub use mesh::{FaceId, HalfEdgeId, HalfEdgeMesh, MeshOptions, VertexId};

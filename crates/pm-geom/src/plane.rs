@@ -14,7 +14,10 @@ pub struct Plane {
 impl Plane {
     /// The plane through `point` with unit `normal`.
     pub fn from_point_normal(point: Vec3, normal: Vec3) -> Self {
-        Plane { normal, offset: normal.dot(point) }
+        Plane {
+            normal,
+            offset: normal.dot(point),
+        }
     }
 
     /// Signed distance of `p` from the plane (positive on the normal's side).

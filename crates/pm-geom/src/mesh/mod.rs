@@ -1,8 +1,18 @@
 //! A half-edge mesh built from polygon index lists: welding, twins, boundary and non-manifold
 //! edges, crease angles, and `validate()`.
+//!
+//! Half-edges of a face are stored contiguously in vertex order, so `next` and `prev` are
+//! index arithmetic and a face is a range. Each half-edge runs from its origin vertex to the
+//! origin of the next half-edge of its face.
 
-use crate::MeshError;
+mod build;
+mod validate;
+mod weld;
+
 use glam::Vec3;
+
+/// "No twin" in the twin table.
+const NO_TWIN: u32 = u32::MAX;
 
 /// Index of a vertex (after welding).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -17,7 +27,8 @@ pub struct HalfEdgeId(pub u32);
 /// Build options.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshOptions {
-    /// Vertices closer than this (absolute, metres) are welded into one.
+    /// Vertices closer than this (absolute, metres) are welded into one. Zero welds only
+    /// identical positions.
     pub weld_tolerance: f32,
 }
 
@@ -28,26 +39,59 @@ impl Default for MeshOptions {
 }
 
 /// A polygon mesh with half-edge connectivity.
+///
+/// Ids are only meaningful for the mesh that issued them; passing an id out of range panics
+/// like slice indexing (ids never come from user data).
+///
+/// ```
+/// use pm_geom::{HalfEdgeMesh, MeshOptions, glam::vec3};
+/// // Two triangles folded 90° along their shared edge (0,0,0)–(1,0,0).
+/// let positions = [vec3(0., 0., 0.), vec3(1., 0., 0.), vec3(0., 0., -1.), vec3(0., 1., 0.)];
+/// let mesh = HalfEdgeMesh::build(&positions, &[[0u32, 1, 2], [1, 0, 3]], &MeshOptions::default())?;
+/// mesh.validate()?;
+/// let shared = mesh.face_half_edges(mesh.faces().next().unwrap()).next().unwrap();
+/// let angle = mesh.crease_angle(shared).unwrap();
+/// assert!((angle - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+/// assert_eq!(mesh.boundary_edge_count(), 4);
+/// # Ok::<(), pm_geom::MeshError>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct HalfEdgeMesh {
     positions: Vec<Vec3>,
+    /// Half-edges of face `f` are `face_starts[f]..face_starts[f + 1]`.
+    face_starts: Vec<u32>,
+    he_origin: Vec<u32>,
+    he_face: Vec<u32>,
+    he_twin: Vec<u32>,
+    he_non_manifold: Vec<bool>,
+    face_normals: Vec<Vec3>,
+    face_areas: Vec<f32>,
+    source_faces: Vec<usize>,
+    input_face_count: usize,
+    dropped_faces: usize,
+    boundary_edges: usize,
+    non_manifold_edges: usize,
 }
 
 impl HalfEdgeMesh {
-    /// Builds the mesh from `positions` and convex planar `faces` given as index lists.
-    pub fn build<F: AsRef<[u32]>>(positions: &[Vec3], faces: &[F], options: &MeshOptions) -> Result<Self, MeshError> {
-        let _ = (positions, faces, options);
-        todo!("pm-geom issue")
-    }
-
     /// Welded vertex positions.
     pub fn positions(&self) -> &[Vec3] {
         &self.positions
     }
 
+    /// Number of welded vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
     /// Number of faces kept.
     pub fn face_count(&self) -> usize {
-        todo!("pm-geom issue")
+        self.face_normals.len()
+    }
+
+    /// Number of half-edges.
+    pub fn half_edge_count(&self) -> usize {
+        self.he_origin.len()
     }
 
     /// All face ids in order.
@@ -57,62 +101,88 @@ impl HalfEdgeMesh {
 
     /// Index of `face` in the `faces` list given to [`HalfEdgeMesh::build`].
     pub fn source_face(&self, face: FaceId) -> usize {
-        let _ = face;
-        todo!("pm-geom issue")
+        self.source_faces[face.0 as usize]
     }
 
-    /// Number of input faces dropped for zero area.
+    /// Number of input faces dropped as degenerate: fewer than 3 distinct vertices or a
+    /// vertex repeated after welding, or zero area.
     pub fn dropped_face_count(&self) -> usize {
-        todo!("pm-geom issue")
+        self.dropped_faces
     }
 
     /// The face's vertex positions in order.
     pub fn face_polygon(&self, face: FaceId) -> impl Iterator<Item = Vec3> + '_ {
-        let _ = face;
-        self.positions.iter().copied().take(todo!("pm-geom issue"))
+        self.face_vertices(face).map(|v| self.positions[v.0 as usize])
+    }
+
+    /// The face's vertices in order.
+    pub fn face_vertices(&self, face: FaceId) -> impl ExactSizeIterator<Item = VertexId> + '_ {
+        self.he_origin[self.face_range(face)].iter().map(|&v| VertexId(v))
     }
 
     /// The face's unit normal (Newell).
     pub fn face_normal(&self, face: FaceId) -> Vec3 {
-        let _ = face;
-        todo!("pm-geom issue")
+        self.face_normals[face.0 as usize]
     }
 
     /// The face's area.
     pub fn face_area(&self, face: FaceId) -> f32 {
-        let _ = face;
-        todo!("pm-geom issue")
+        self.face_areas[face.0 as usize]
     }
 
     /// The half-edges around `face`, in vertex order.
     pub fn face_half_edges(&self, face: FaceId) -> impl Iterator<Item = HalfEdgeId> + '_ {
-        let _ = face;
-        (0..todo!("pm-geom issue")).map(HalfEdgeId)
+        let range = self.face_range(face);
+        (range.start as u32..range.end as u32).map(HalfEdgeId)
     }
 
     /// The face a half-edge belongs to.
     pub fn half_edge_face(&self, he: HalfEdgeId) -> FaceId {
-        let _ = he;
-        todo!("pm-geom issue")
+        FaceId(self.he_face[he.0 as usize])
+    }
+
+    /// The vertex a half-edge starts at.
+    pub fn origin(&self, he: HalfEdgeId) -> VertexId {
+        VertexId(self.he_origin[he.0 as usize])
+    }
+
+    /// The vertex a half-edge ends at (the origin of [`HalfEdgeMesh::next`]).
+    pub fn target(&self, he: HalfEdgeId) -> VertexId {
+        VertexId(self.he_origin[self.next_index(he.0) as usize])
+    }
+
+    /// The next half-edge around the same face.
+    pub fn next(&self, he: HalfEdgeId) -> HalfEdgeId {
+        HalfEdgeId(self.next_index(he.0))
+    }
+
+    /// The previous half-edge around the same face.
+    pub fn prev(&self, he: HalfEdgeId) -> HalfEdgeId {
+        let range = self.face_range(self.half_edge_face(he));
+        let i = he.0 as usize;
+        HalfEdgeId(if i == range.start { range.end - 1 } else { i - 1 } as u32)
     }
 
     /// The opposite half-edge, `None` on boundary and non-manifold edges.
     pub fn twin(&self, he: HalfEdgeId) -> Option<HalfEdgeId> {
-        let _ = he;
-        todo!("pm-geom issue")
+        let t = self.he_twin[he.0 as usize];
+        (t != NO_TWIN).then_some(HalfEdgeId(t))
     }
 
-    /// True when the edge is used by more than two faces (it never gets a twin).
+    /// True when the edge is non-manifold: used by more than two half-edges, or by two that
+    /// run the same direction (inconsistent winding). Such edges never get a twin, so they
+    /// never join photon maps.
     pub fn is_non_manifold(&self, he: HalfEdgeId) -> bool {
-        let _ = he;
-        todo!("pm-geom issue")
+        self.he_non_manifold[he.0 as usize]
     }
 
-    /// Angle in radians between the normals of the two faces on a twinned edge (0 = flat),
-    /// `None` without a twin.
+    /// Angle in radians between the normals of the two faces on a twinned edge (0 = flat
+    /// continuation, π/2 on a cube edge), `None` without a twin.
     pub fn crease_angle(&self, he: HalfEdgeId) -> Option<f32> {
-        let _ = he;
-        todo!("pm-geom issue")
+        let twin = self.twin(he)?;
+        let a = self.face_normal(self.half_edge_face(he));
+        let b = self.face_normal(self.half_edge_face(twin));
+        Some(a.cross(b).length().atan2(a.dot(b)))
     }
 
     /// Faces across the twinned edges of `face`, with the half-edge on `face`'s side.
@@ -123,16 +193,25 @@ impl HalfEdgeMesh {
 
     /// Number of edges with one face.
     pub fn boundary_edge_count(&self) -> usize {
-        todo!("pm-geom issue")
+        self.boundary_edges
     }
 
-    /// Number of edges with more than two faces.
+    /// Number of non-manifold edges (see [`HalfEdgeMesh::is_non_manifold`]).
     pub fn non_manifold_edge_count(&self) -> usize {
-        todo!("pm-geom issue")
+        self.non_manifold_edges
     }
 
-    /// Checks every invariant.
-    pub fn validate(&self) -> Result<(), MeshError> {
-        todo!("pm-geom issue")
+    fn face_range(&self, face: FaceId) -> std::ops::Range<usize> {
+        let f = face.0 as usize;
+        self.face_starts[f] as usize..self.face_starts[f + 1] as usize
+    }
+
+    fn next_index(&self, he: u32) -> u32 {
+        let range = self.face_range(FaceId(self.he_face[he as usize]));
+        if he as usize + 1 == range.end {
+            range.start as u32
+        } else {
+            he + 1
+        }
     }
 }

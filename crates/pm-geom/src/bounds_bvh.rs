@@ -1,0 +1,158 @@
+//! A small bounding-volume hierarchy over boxes, answering "which boxes overlap this box"
+//! without allocating: the overlap index of [`crate::PolygonSet`].
+
+use crate::Aabb;
+use glam::Vec3;
+
+/// Items per leaf; small leaves suit the few-polygons-per-query pattern of the estimator.
+const MAX_LEAF: usize = 4;
+/// Traversal stack depth. Median splits give depth ≤ log2(n / MAX_LEAF) + 1 < 32 for any
+/// `u32` item count, and at most one sibling per level waits on the stack.
+const STACK: usize = 64;
+
+/// A node: a leaf when `count > 0` (items `order[first..first + count]`), otherwise an
+/// inner node whose children are `self + 1` and `first`.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    min: Vec3,
+    max: Vec3,
+    first: u32,
+    count: u32,
+}
+
+/// Binary BVH over item boxes, built by median splits on the widest centroid axis.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct BoundsBvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl BoundsBvh {
+    /// Builds over `boxes` (item `i` has box `boxes[i]`; boxes must be non-empty and finite).
+    pub(crate) fn build(boxes: &[Aabb]) -> Self {
+        let mut bvh = BoundsBvh {
+            nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
+            order: Vec::new(),
+        };
+        if boxes.is_empty() {
+            return bvh;
+        }
+        let mut items: Vec<(u32, Vec3)> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (i as u32, b.center()))
+            .collect();
+        bvh.build_node(boxes, &mut items, 0);
+        bvh.order = items.into_iter().map(|(i, _)| i).collect();
+        bvh
+    }
+
+    /// Appends the subtree over `items` (which start at `offset` in the final order) and
+    /// returns its node index.
+    fn build_node(&mut self, boxes: &[Aabb], items: &mut [(u32, Vec3)], offset: usize) -> u32 {
+        let bounds = items
+            .iter()
+            .fold(Aabb::EMPTY, |b, &(i, _)| b.union(boxes[i as usize]));
+        let index = self.nodes.len();
+        self.nodes.push(Node {
+            min: bounds.min,
+            max: bounds.max,
+            first: offset as u32,
+            count: items.len() as u32,
+        });
+        if items.len() <= MAX_LEAF {
+            return index as u32;
+        }
+        let centroids = items.iter().fold(Aabb::EMPTY, |b, &(_, c)| b.grow(c));
+        let axis = centroids.size().max_position();
+        let mid = items.len() / 2;
+        items.select_nth_unstable_by(mid, |a, b| a.1[axis].total_cmp(&b.1[axis]));
+        let (left, right) = items.split_at_mut(mid);
+        self.build_node(boxes, left, offset);
+        let right_index = self.build_node(boxes, right, offset + mid);
+        self.nodes[index].first = right_index;
+        self.nodes[index].count = 0;
+        index as u32
+    }
+
+    /// Calls `f(item)` for every item whose node path overlaps `query`; the caller filters
+    /// by the item's own box. Allocates nothing.
+    pub(crate) fn for_each_candidate(&self, query: &Aabb, mut f: impl FnMut(u32)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = [0u32; STACK];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let index = stack[top];
+            let node = self.nodes[index as usize];
+            if !(node.min.cmple(query.max).all() && query.min.cmple(node.max).all()) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.first as usize;
+                for &item in &self.order[first..first + node.count as usize] {
+                    f(item);
+                }
+            } else if top + 2 <= STACK {
+                stack[top] = node.first;
+                stack[top + 1] = index + 1;
+                top += 2;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tiny deterministic generator, so the test needs no dependency.
+    fn lcg(state: &mut u64) -> f32 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    #[test]
+    fn candidates_match_brute_force_overlaps() {
+        let mut s = 7;
+        let mut r = || lcg(&mut s);
+        let boxes: Vec<Aabb> = (0..1000)
+            .map(|_| {
+                let c = Vec3::new(r(), r(), r()) * 10.0;
+                Aabb::new(c, c + Vec3::new(r(), r(), r()) * 0.5)
+            })
+            .collect();
+        let bvh = BoundsBvh::build(&boxes);
+        for _ in 0..200 {
+            let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
+            let mut got = Vec::new();
+            bvh.for_each_candidate(&q, |i| {
+                if boxes[i as usize].overlaps(&q) {
+                    got.push(i)
+                }
+            });
+            got.sort_unstable();
+            let want: Vec<u32> = (0..boxes.len() as u32)
+                .filter(|&i| boxes[i as usize].overlaps(&q))
+                .collect();
+            assert_eq!(got, want);
+        }
+    }
+
+    #[test]
+    fn identical_boxes_and_empty_input_work() {
+        let empty = BoundsBvh::build(&[]);
+        empty.for_each_candidate(&Aabb::cube(Vec3::ZERO, 1.0), |_| {
+            panic!("empty tree reported an item")
+        });
+        let boxes = vec![Aabb::cube(Vec3::ONE, 0.1); 100];
+        let bvh = BoundsBvh::build(&boxes);
+        let mut count = 0;
+        bvh.for_each_candidate(&Aabb::cube(Vec3::ONE, 0.01), |_| count += 1);
+        assert_eq!(count, 100);
+    }
+}

@@ -1,0 +1,185 @@
+//! Building a [`HalfEdgeMesh`] from index lists: input checks, welding, dropping degenerate
+//! faces, and linking twins through a hash map on each edge's vertex pair.
+
+use super::weld::weld;
+use super::{HalfEdgeMesh, MeshOptions, NO_TWIN};
+use crate::{MeshError, polygon_vector_area};
+use glam::Vec3;
+use std::cmp::Ordering::Greater;
+use std::collections::HashMap;
+
+/// The half-edges seen on one undirected edge: the first two, and how many in all.
+#[derive(Clone, Copy)]
+struct EdgeUse {
+    first: u32,
+    second: u32,
+    count: u32,
+}
+
+impl HalfEdgeMesh {
+    /// Builds the mesh from `positions` and convex planar `faces` given as index lists.
+    ///
+    /// Steps: every position must be finite and every face must have ≥ 3 in-range indices
+    /// (else an error naming the culprit); vertices within `options.weld_tolerance` are
+    /// welded; in each face, consecutive duplicate vertices are removed; faces left with
+    /// fewer than 3 vertices, a vertex used twice, or (near) zero area are dropped and
+    /// counted ([`HalfEdgeMesh::dropped_face_count`]). Two half-edges on the same vertex pair
+    /// with opposite directions become twins; an edge with more than two half-edges, or with
+    /// two of the same direction (inconsistent winding), links none and counts as
+    /// non-manifold.
+    pub fn build<F: AsRef<[u32]>>(
+        positions: &[Vec3],
+        faces: &[F],
+        options: &MeshOptions,
+    ) -> Result<Self, MeshError> {
+        check_input(positions, faces)?;
+        let (welded, remap) = weld(positions, options.weld_tolerance);
+        let mut mesh = HalfEdgeMesh {
+            positions: welded,
+            face_starts: vec![0],
+            he_origin: Vec::new(),
+            he_face: Vec::new(),
+            he_twin: Vec::new(),
+            he_non_manifold: Vec::new(),
+            face_normals: Vec::new(),
+            face_areas: Vec::new(),
+            source_faces: Vec::new(),
+            input_face_count: faces.len(),
+            dropped_faces: 0,
+            boundary_edges: 0,
+            non_manifold_edges: 0,
+        };
+        let mut ring: Vec<u32> = Vec::new();
+        let mut polygon: Vec<Vec3> = Vec::new();
+        // `seen[v] == stamp` when vertex v already occurs in the face being added.
+        let mut seen = vec![0usize; mesh.positions.len()];
+        for (source, face) in faces.iter().enumerate() {
+            ring.clear();
+            for &i in face.as_ref() {
+                let v = remap[i as usize];
+                if ring.last() != Some(&v) {
+                    ring.push(v);
+                }
+            }
+            while ring.len() > 1 && ring.first() == ring.last() {
+                ring.pop();
+            }
+            let stamp = source + 1;
+            let repeats = ring
+                .iter()
+                .any(|&v| std::mem::replace(&mut seen[v as usize], stamp) == stamp);
+            polygon.clear();
+            polygon.extend(ring.iter().map(|&v| mesh.positions[v as usize]));
+            match (ring.len() >= 3 && !repeats)
+                .then(|| face_normal_and_area(&polygon))
+                .flatten()
+            {
+                Some((normal, area)) => mesh.push_face(&ring, normal, area, source),
+                None => mesh.dropped_faces += 1,
+            }
+        }
+        mesh.link_twins();
+        Ok(mesh)
+    }
+
+    fn push_face(&mut self, ring: &[u32], normal: Vec3, area: f32, source: usize) {
+        let face = self.face_normals.len() as u32;
+        self.he_origin.extend_from_slice(ring);
+        self.he_face.extend(std::iter::repeat_n(face, ring.len()));
+        self.face_starts.push(self.he_origin.len() as u32);
+        self.face_normals.push(normal);
+        self.face_areas.push(area);
+        self.source_faces.push(source);
+    }
+
+    fn link_twins(&mut self) {
+        let count = self.he_origin.len();
+        self.he_twin = vec![NO_TWIN; count];
+        self.he_non_manifold = vec![false; count];
+        let mut edges: HashMap<(u32, u32), EdgeUse> = HashMap::with_capacity(count);
+        for he in 0..count as u32 {
+            let (a, b) = self.endpoints(he);
+            edges
+                .entry((a.min(b), a.max(b)))
+                .and_modify(|e| {
+                    if e.count == 1 {
+                        e.second = he;
+                    }
+                    e.count += 1;
+                })
+                .or_insert(EdgeUse {
+                    first: he,
+                    second: NO_TWIN,
+                    count: 1,
+                });
+        }
+        for edge in edges.values() {
+            match edge.count {
+                1 => self.boundary_edges += 1,
+                2 if self.he_origin[edge.first as usize] != self.he_origin[edge.second as usize] => {
+                    self.he_twin[edge.first as usize] = edge.second;
+                    self.he_twin[edge.second as usize] = edge.first;
+                }
+                _ => self.non_manifold_edges += 1,
+            }
+        }
+        if self.non_manifold_edges > 0 {
+            for he in 0..count as u32 {
+                let (a, b) = self.endpoints(he);
+                let edge = edges[&(a.min(b), a.max(b))];
+                let twinned = edge.count == 2 && self.he_twin[he as usize] != NO_TWIN;
+                self.he_non_manifold[he as usize] = edge.count >= 2 && !twinned;
+            }
+        }
+    }
+
+    /// Origin and target vertex of half-edge `he`.
+    pub(super) fn endpoints(&self, he: u32) -> (u32, u32) {
+        (
+            self.he_origin[he as usize],
+            self.he_origin[self.next_index(he) as usize],
+        )
+    }
+}
+
+/// The unit normal and area of a face polygon, `None` when its area is zero up to the
+/// rounding of the cross products (below `4 ε L²`, `L` its longest edge).
+pub(super) fn face_normal_and_area(polygon: &[Vec3]) -> Option<(Vec3, f32)> {
+    let vector_area = polygon_vector_area(polygon);
+    let area = vector_area.length();
+    let longest2 = polygon
+        .iter()
+        .zip(polygon.iter().cycle().skip(1))
+        .map(|(a, b)| a.distance_squared(*b))
+        .fold(0.0f32, f32::max);
+    if !area.is_finite() || area.partial_cmp(&(4.0 * f32::EPSILON * longest2)) != Some(Greater) {
+        return None;
+    }
+    Some((vector_area.try_normalize()?, area))
+}
+
+fn check_input<F: AsRef<[u32]>>(positions: &[Vec3], faces: &[F]) -> Result<(), MeshError> {
+    if let Some((vertex, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+        return Err(MeshError::NonFinitePosition {
+            vertex,
+            position: p.to_array(),
+        });
+    }
+    for (face, indices) in faces.iter().enumerate() {
+        let indices = indices.as_ref();
+        if indices.len() < 3 {
+            return Err(MeshError::TooFewVertices {
+                face,
+                count: indices.len(),
+            });
+        }
+        if let Some(&index) = indices.iter().find(|&&i| i as usize >= positions.len()) {
+            return Err(MeshError::IndexOutOfRange {
+                face,
+                index,
+                vertex_count: positions.len(),
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,82 @@
+//! Vertex welding through a spatial hash grid: exporters split vertices along seams, and
+//! twins can only be found once the copies are one vertex again.
+
+use glam::Vec3;
+use std::collections::HashMap;
+
+const NONE: u32 = u32::MAX;
+
+/// Welds `positions` (all finite): returns the welded positions and, for each input
+/// position, the index of its welded vertex.
+///
+/// Greedy: each position joins the first earlier representative within `tolerance`
+/// (Euclidean), or becomes a representative itself. With a positive tolerance the grid has
+/// cells of that size, so only the 27 cells around a point are searched (O(n) expected).
+/// A zero, negative or non-finite tolerance welds only bit-identical positions (`-0 = +0`).
+pub(crate) fn weld(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
+    if tolerance > 0.0 && tolerance.is_finite() {
+        weld_within(positions, tolerance)
+    } else {
+        weld_exact(positions)
+    }
+}
+
+fn weld_exact(positions: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
+    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut welded = Vec::new();
+    let remap = positions
+        .iter()
+        .map(|&p| {
+            let p = p + Vec3::ZERO; // -0.0 + 0.0 = +0.0
+            *ids.entry([p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+                .or_insert_with(|| {
+                    welded.push(p);
+                    (welded.len() - 1) as u32
+                })
+        })
+        .collect();
+    (welded, remap)
+}
+
+fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
+    let inv_cell = 1.0 / tolerance;
+    let tolerance2 = tolerance * tolerance;
+    // Head of each cell's chain of representatives; `next` links the chain.
+    let mut heads: HashMap<[i64; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut next: Vec<u32> = Vec::new();
+    let mut welded: Vec<Vec3> = Vec::new();
+    let mut remap = Vec::with_capacity(positions.len());
+    for &p in positions {
+        // `as` saturates, so huge coordinates land in the outermost cells: still correct,
+        // because the distance test decides.
+        let cell = (p * inv_cell).floor();
+        let key = [cell.x as i64, cell.y as i64, cell.z as i64];
+        let mut found = NONE;
+        'search: for dx in -1..=1i64 {
+            for dy in -1..=1i64 {
+                for dz in -1..=1i64 {
+                    let k = [
+                        key[0].wrapping_add(dx),
+                        key[1].wrapping_add(dy),
+                        key[2].wrapping_add(dz),
+                    ];
+                    let mut rep = heads.get(&k).copied().unwrap_or(NONE);
+                    while rep != NONE {
+                        if welded[rep as usize].distance_squared(p) <= tolerance2 {
+                            found = rep;
+                            break 'search;
+                        }
+                        rep = next[rep as usize];
+                    }
+                }
+            }
+        }
+        if found == NONE {
+            found = welded.len() as u32;
+            welded.push(p);
+            next.push(heads.insert(key, found).unwrap_or(NONE));
+        }
+        remap.push(found);
+    }
+    (welded, remap)
+}
