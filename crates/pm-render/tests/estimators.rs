@@ -80,9 +80,9 @@ fn tilted_plane_map(n: usize, seed: u64) -> (Vec<CompactPhoton>, PolygonSet) {
         })
         .collect();
     let mut polygons = PolygonSet::new();
-    let quad = [(-3.0, -3.0), (3.0, -3.0), (3.0, 3.0), (-3.0, 3.0)].map(|(a, b)| TILT_U * a + TILT_W * b);
-    // Counter-clockwise seen from +TILT_N: u × w = TILT_N.
-    assert!(TILT_U.cross(TILT_W).dot(TILT_N) > 0.99);
+    // Counter-clockwise seen from +TILT_N (w × u = TILT_N), so the polygon faces the photons.
+    assert!(TILT_W.cross(TILT_U).dot(TILT_N) > 0.99);
+    let quad = [(-3.0, -3.0), (-3.0, 3.0), (3.0, 3.0), (3.0, -3.0)].map(|(a, b)| TILT_U * a + TILT_W * b);
     polygons.push(&quad).unwrap();
     polygons.build_index();
     (photons, polygons)
@@ -325,7 +325,8 @@ fn geometry_spreading_conserves_energy_over_random_polygons() {
         let count = 1 + case % 6;
         for _ in 0..count {
             let c = Vec3::new(rng.range(-0.4, 0.4), rng.range(-0.4, 0.4), rng.range(-0.4, 0.4));
-            polygons.push(&random_convex(&mut rng, c, rng.range(0.2, 1.0)));
+            let radius = rng.range(0.2, 1.0);
+            polygons.push(&random_convex(&mut rng, c, radius));
         }
         polygons.build_index();
         let photons: Vec<GatheredPhoton> = (0..40)
