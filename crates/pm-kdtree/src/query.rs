@@ -43,9 +43,14 @@ impl Neighbours {
             ..Self::default()
         }
     }
-    /// The neighbours found, sorted by increasing distance (ties in no particular order).
+    /// The neighbours found, in no particular order (see [`Neighbours::sort_by_distance`]).
     pub fn as_slice(&self) -> &[Neighbour] {
         &self.found
+    }
+    /// Sorts the neighbours found by increasing distance (ties in no particular order).
+    pub fn sort_by_distance(&mut self) {
+        self.found
+            .sort_unstable_by(|a, b| a.distance.total_cmp(&b.distance));
     }
     /// Number of neighbours found.
     pub fn len(&self) -> usize {
@@ -67,7 +72,7 @@ impl Neighbours {
 
 impl PhotonTree {
     /// The `k` nearest photons to `query` under metric `M` within `max_distance` whose kind is
-    /// in `kinds`, written into `out` (sorted by distance; see [`Neighbours`]).
+    /// in `kinds`, written into `out` (in no particular order; see [`Neighbours`]).
     ///
     /// A photon at distance exactly `max_distance` counts as within. When fewer than `k`
     /// photons qualify, all of them are returned, [`Neighbours::extent`] is `max_distance` and
@@ -110,7 +115,8 @@ impl PhotonTree {
             n.distance = M::rank_to_distance(n.distance);
         }
         if out.found.len() == k {
-            out.extent = out.found[k - 1].distance;
+            // The heap's root is the k-th nearest.
+            out.extent = out.found[0].distance;
             out.partial = false;
         }
     }
@@ -141,19 +147,21 @@ impl PhotonTree {
         hi: usize,
         ranks: &mut [f32; LEAF_CAPACITY],
     ) -> usize {
-        let xs = &self.xs[lo..hi];
-        let ys = &self.ys[lo..hi];
-        let zs = &self.zs[lo..hi];
-        let len = xs.len().min(LEAF_CAPACITY);
-        for (i, r) in ranks[..len].iter_mut().enumerate() {
-            *r = M::rank(Vec3::new(xs[i] - query.x, ys[i] - query.y, zs[i] - query.z));
+        let len = (hi - lo).min(LEAF_CAPACITY);
+        let (xs, ys, zs) = (
+            &self.xs[lo..lo + len],
+            &self.ys[lo..lo + len],
+            &self.zs[lo..lo + len],
+        );
+        for (((r, &x), &y), &z) in ranks[..len].iter_mut().zip(xs).zip(ys).zip(zs) {
+            *r = M::rank(Vec3::new(x - query.x, y - query.y, z - query.z));
         }
         len
     }
 }
 
-/// State of one k-nearest search. `found` holds ranks (not distances) while searching,
-/// sorted increasing.
+/// State of one k-nearest search. `found` holds ranks (not distances) while searching, as a
+/// max-heap.
 struct Knn<'a, M> {
     tree: &'a PhotonTree,
     query: Vec3,
@@ -204,26 +212,57 @@ impl<M: Metric> Knn<'_, M> {
         }
     }
 
+    /// Keeps `found` a max-heap on rank (the worst at the root), at most `k` long.
     #[inline]
     fn insert(&mut self, index: u32, rank: f32) {
-        let full = self.found.len() == self.k;
-        if full {
-            if rank >= self.worst {
-                return;
+        let item = Neighbour {
+            index,
+            distance: rank,
+        };
+        let heap = &mut *self.found;
+        if heap.len() < self.k {
+            // Sift up: on average O(1) moves for random arrivals.
+            let mut at = heap.len();
+            heap.push(item);
+            while at > 0 {
+                let parent = (at - 1) / 2;
+                if heap[parent].distance >= rank {
+                    break;
+                }
+                heap[at] = heap[parent];
+                at = parent;
             }
-            self.found.pop();
+            heap[at] = item;
+            if heap.len() == self.k {
+                self.worst = heap[0].distance;
+            }
+            return;
         }
-        let at = self.found.partition_point(|n| n.distance <= rank);
-        self.found.insert(
-            at,
-            Neighbour {
-                index,
-                distance: rank,
-            },
-        );
-        if self.found.len() == self.k {
-            self.worst = self.found[self.k - 1].distance;
+        if rank >= self.worst {
+            return;
         }
+        // Replace the root and sift it down.
+        let len = heap.len();
+        let mut at = 0;
+        loop {
+            let left = 2 * at + 1;
+            if left >= len {
+                break;
+            }
+            let right = left + 1;
+            let child = if right < len && heap[right].distance > heap[left].distance {
+                right
+            } else {
+                left
+            };
+            if heap[child].distance <= rank {
+                break;
+            }
+            heap[at] = heap[child];
+            at = child;
+        }
+        heap[at] = item;
+        self.worst = heap[0].distance;
     }
 }
 
