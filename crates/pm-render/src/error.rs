@@ -21,6 +21,18 @@ pub enum RenderError {
         /// Height asked for.
         height: u32,
     },
+    /// Zero photons for a mode that reads photon maps.
+    #[error("photons must be at least 1")]
+    ZeroPhotons,
+    /// Tiles of zero pixels.
+    #[error("tile size must be at least 1")]
+    ZeroTileSize,
+    /// The worker pool could not be made.
+    #[error("thread pool: {0}")]
+    Threads(String),
+    /// An image size that is not `WIDTHxHEIGHT` with both sides at least 1.
+    #[error("image size '{0}': expected WIDTHxHEIGHT with both sides at least 1, e.g. 500x500")]
+    BadSize(String),
     /// Zero samples per pixel.
     #[error("samples per pixel must be at least 1")]
     ZeroSamples,

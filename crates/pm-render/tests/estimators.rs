@@ -109,10 +109,7 @@ fn cube_on_one_plane_is_power_over_area_in_cube() {
         polygons: &polygons,
     };
     let mut scratch = EstimatorScratch::new();
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: TILT_N,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, TILT_N);
     for k in [1, 7, 100, 555] {
         let (power, h) = brute_nearest(&photons, k, |p| p.abs().max_element());
         // The cube [-h, h]³ cuts the plane x + y = 0 in a rectangle 2√2h (along u) by 2h (along w).
@@ -135,10 +132,7 @@ fn ball_on_one_plane_is_power_over_disc_area() {
         polygons: &polygons,
     };
     let mut scratch = EstimatorScratch::new();
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: TILT_N,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, TILT_N);
     for k in [3, 100, 400] {
         let (power, r) = brute_nearest(&photons, k, |p| p.length());
         let options = EstimatorOptions {
@@ -159,10 +153,7 @@ fn fewer_than_k_photons_use_the_maximum_distance() {
         polygons: &polygons,
     };
     let mut scratch = EstimatorScratch::new();
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: TILT_N,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, TILT_N);
     let max = 1.5; // holds every photon in both metrics (they lie within |a|, |b| ≤ 1)
     let options = EstimatorOptions {
         k: 100,
@@ -218,10 +209,7 @@ fn disc_matches_the_poisson_expectation_on_uniform_photons() {
     let queries = 600;
     let mean: Vec3 = (0..queries)
         .map(|_| {
-            let at = SurfacePoint {
-                position: Vec3::new(rng.range(0.1, 0.9), 0.0, rng.range(0.1, 0.9)),
-                normal: Vec3::Y,
-            };
+            let at = SurfacePoint::front(Vec3::new(rng.range(0.1, 0.9), 0.0, rng.range(0.1, 0.9)), Vec3::Y);
             Disc.irradiance(at, map, &options, &mut scratch)
         })
         .sum::<Vec3>()
@@ -239,10 +227,7 @@ fn reject_behind_drops_photons_from_the_back() {
         tree: &tree,
         polygons: &polygons,
     };
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: Vec3::Y,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, Vec3::Y);
     let mut options = EstimatorOptions {
         k: 2,
         ..EstimatorOptions::with_max_distance(1.0)
@@ -287,10 +272,7 @@ fn kind_mask_selects_photons() {
         tree: &tree,
         polygons: &polygons,
     };
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: Vec3::Y,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, Vec3::Y);
     let options = EstimatorOptions {
         k: 1,
         kinds: KindMask::NOT_DIRECT,
@@ -393,10 +375,7 @@ fn empty_map_gives_zero() {
         tree: &tree,
         polygons: &polygons,
     };
-    let at = SurfacePoint {
-        position: Vec3::ZERO,
-        normal: Vec3::Y,
-    };
+    let at = SurfacePoint::front(Vec3::ZERO, Vec3::Y);
     let options = EstimatorOptions::with_max_distance(1.0);
     for kind in EstimatorKind::ALL {
         assert_eq!(

@@ -93,13 +93,16 @@ fn geometry_irradiance<M: VolumeMetric>(
         candidates,
         ..
     } = scratch;
-    collect_faces(&volume, map.polygons, clip, candidates, faces);
+    let orientation = if at.front_face { 1.0 } else { -1.0 };
+    collect_faces(&volume, map.polygons, orientation, clip, candidates, faces);
     spread_power(at.normal, photons, faces)
 }
 
 /// The geometry estimate for a given gather `volume` and `photons` (already gathered), over
 /// the polygons of `polygons` that overlap it, seen from a surface with unit normal `normal`:
 /// `E = Σ_p Φ_p · max(0, −n·ω_p) / S_p` with `S_p = Σ_f A_f · max(0, −n_f·ω_p)`.
+/// The cosine at x uses the enclosed face most aligned with `normal` (x's own face on a
+/// polygon mesh), which keeps curved surfaces seen through polygonal proxies consistent.
 ///
 /// This is the core of [`GeometryCube`] and [`GeometryBall`], public so that new gather volumes
 /// (anything implementing [`GatherVolume`]) can be used and tested directly.
@@ -116,14 +119,16 @@ pub fn irradiance_in_volume<V: GatherVolume>(
         candidates,
         ..
     } = scratch;
-    collect_faces(volume, polygons, clip, candidates, faces);
+    collect_faces(volume, polygons, 1.0, clip, candidates, faces);
     spread_power(normal, photons, faces)
 }
 
-/// Fills `faces` with (area inside `volume`, normal) of every polygon that has area inside it.
+/// Fills `faces` with (area inside `volume`, normal × `orientation`) of every polygon that has
+/// area inside it.
 fn collect_faces<V: GatherVolume>(
     volume: &V,
     polygons: &PolygonSet,
+    orientation: f32,
     clip: &mut ClipScratch,
     candidates: &mut Vec<u32>,
     faces: &mut Vec<(f32, Vec3)>,
@@ -138,12 +143,13 @@ fn collect_faces<V: GatherVolume>(
         let normal = polygons.normal(i);
         let area = volume.polygon_area_inside(polygons.polygon(i), normal, clip);
         if area > 0.0 {
-            faces.push((area, normal));
+            faces.push((area, normal * orientation));
         }
     }
 }
 
 fn spread_power(normal: Vec3, photons: &[GatheredPhoton], faces: &[(f32, Vec3)]) -> Vec3 {
+    let normal = snap_normal(normal, faces);
     let mut e = Vec3::ZERO;
     for p in photons {
         let cos_x = -normal.dot(p.direction);
@@ -159,4 +165,22 @@ fn spread_power(normal: Vec3, photons: &[GatheredPhoton], faces: &[(f32, Vec3)])
         }
     }
     e
+}
+
+/// The normal of the enclosed face most aligned with `normal` (the query point's own face on
+/// a polygon mesh, so nothing changes there), or `normal` itself when no face is within 60°.
+///
+/// On curved surfaces (a sphere seen through its polygonal proxy) the true normal at x and
+/// the proxy faces disagree by a few degrees. A grazing photon can then face x but none of
+/// the proxy faces except a sliver that barely touches the volume, making `S_p` vanish and
+/// the estimate explode. With the cosine taken on a proxy face, `cos_x ≤ S_p / A_face`.
+fn snap_normal(normal: Vec3, faces: &[(f32, Vec3)]) -> Vec3 {
+    let mut best = (0.5, normal);
+    for &(_, n) in faces {
+        let alignment = n.dot(normal);
+        if alignment > best.0 {
+            best = (alignment, n);
+        }
+    }
+    best.1
 }

@@ -22,6 +22,21 @@ pub struct SurfacePoint {
     pub position: Vec3,
     /// Unit geometric normal on the viewed side.
     pub normal: Vec3,
+    /// True when the viewed side is the side the surface's own (polygon) normal points to.
+    /// When false — a closed surface seen from inside its outward normals, such as a sphere —
+    /// the geometry estimators flip the map's polygon normals so that they face its photons.
+    pub front_face: bool,
+}
+
+impl SurfacePoint {
+    /// A point seen from the side its polygons' normals point to.
+    pub const fn front(position: Vec3, normal: Vec3) -> Self {
+        SurfacePoint {
+            position,
+            normal,
+            front_face: true,
+        }
+    }
 }
 
 /// One photon map as the estimators see it: its photons and the area geometry of its surfaces.
