@@ -13,6 +13,8 @@ use glam::Vec3;
 
 /// Most photons in a leaf.
 pub const LEAF_CAPACITY: usize = 32;
+// Leaf scans mark candidates in a u64.
+const _: () = assert!(LEAF_CAPACITY <= 64);
 /// Below this many photons a subtree is built on one thread.
 const PARALLEL_MIN: usize = 32 * 1024;
 

@@ -431,7 +431,7 @@ impl Scene {
     pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
         let d = to - from;
         let dist = d.length();
-        if !(dist > 2.0 * self.epsilon) || !dist.is_finite() {
+        if !dist.is_finite() || dist <= 2.0 * self.epsilon {
             return false;
         }
         let ray = Ray {

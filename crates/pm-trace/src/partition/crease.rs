@@ -49,13 +49,13 @@ impl Partitioner for CreaseAngle {
                 next += 1;
             }
         }
-        for p in 0..scene.part_count() {
-            if map_of_part[p] == UNSET {
+        for (p, slot) in map_of_part.iter_mut().enumerate() {
+            if *slot == UNSET {
                 debug_assert!(!matches!(
                     scene.part_source(PartId(p as u32)),
                     PartSource::MeshFace { .. }
                 ));
-                map_of_part[p] = next;
+                *slot = next;
                 next += 1;
             }
         }

@@ -107,7 +107,7 @@ impl LightPicker {
             total += p.element_sum();
             cumulative.push(total);
         }
-        if !(total > 0.0) {
+        if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return Err(TraceError::InvalidPower {
                 light: scene.lights().len(),
                 power: [0.0; 3],
@@ -225,7 +225,7 @@ fn trace_path(
                 ));
                 // Russian roulette on albedo: survive with q, scale by albedo / q (unbiased).
                 let q = albedo.max_element().min(1.0);
-                if !(rng.next_f32() < q) {
+                if rng.next_f32() >= q {
                     break;
                 }
                 power *= albedo / q;
