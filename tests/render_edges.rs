@@ -21,7 +21,7 @@ const QUERIES: usize = 1200;
 /// Facet `i`: its rising-edge x, its unit normal (up).
 fn facet(i: u32) -> (f32, Vec3) {
     let step = 0.25 * std::f32::consts::FRAC_1_SQRT_2;
-    let n = if i % 2 == 0 {
+    let n = if i.is_multiple_of(2) {
         Vec3::new(-1.0, 1.0, 0.0)
     } else {
         Vec3::new(1.0, 1.0, 0.0)
@@ -34,7 +34,11 @@ fn facet(i: u32) -> (f32, Vec3) {
 fn point_near_crease(i: u32, towards_next: bool, d: f32, z: f32) -> Vec3 {
     let step = 0.25 * std::f32::consts::FRAC_1_SQRT_2;
     let (x0, _) = facet(i);
-    let (y0, y1) = if i % 2 == 0 { (0.0, step) } else { (step, 0.0) };
+    let (y0, y1) = if i.is_multiple_of(2) {
+        (0.0, step)
+    } else {
+        (step, 0.0)
+    };
     let a = Vec3::new(x0, y0, z);
     let b = Vec3::new(x0 + step, y1, z);
     let along = (b - a).normalize();
