@@ -50,8 +50,8 @@ struct Args {
     /// Seed of all random streams.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Exposure of the PNG preview, in stops.
-    #[arg(long, default_value_t = 0.0)]
+    /// Exposure of the PNG preview, in stops (negative darkens).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     exposure: f32,
     /// Output path; its .exr and .png siblings are written (default out/<scene>.exr).
     #[arg(long)]
