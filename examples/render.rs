@@ -241,15 +241,9 @@ fn load_scene(arg: &str) -> Result<(Scene, String), String> {
     load_gltf(path).map(|s| (s, name))
 }
 
-/// glTF loading through pm-trace. `pm_trace::gltf::load_scene(path)` is not on this branch
-/// yet; until it is, the file is checked by `read_content` and then refused.
+/// A glTF scene through pm-trace's safe loader.
 fn load_gltf(path: &Path) -> Result<Scene, String> {
-    use photon_maps::trace::gltf::{GltfOptions, read_content};
-    read_content(path, &GltfOptions::default()).map_err(|e| format!("{}: {e}", path.display()))?;
-    Err(format!(
-        "{}: turning glTF content into a scene is not available yet",
-        path.display()
-    ))
+    photon_maps::trace::gltf::load_scene(path).map_err(|e| e.to_string())
 }
 
 /// Creates the parent folder and checks the file can be created, so a bad path fails early.
