@@ -67,6 +67,7 @@ pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, Poi
 pub use material::{Material, Surface};
 pub use partition::{CreaseAngle, MapAssignment, Partitioner, SingleMap};
 pub use photons::{PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons};
+pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{Hit, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};
