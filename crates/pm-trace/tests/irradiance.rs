@@ -145,3 +145,25 @@ fn shadow_ray_samples_give_the_closed_form_irradiance() {
     // cos⁴-shaped integrand over a small light: relative spread well under 10 %.
     assert!((got / expected - 1.0).abs() < 0.002, "{got} vs {expected}");
 }
+
+#[test]
+fn spot_light_photons_stay_in_the_cone_and_shadow_samples_give_its_intensity() {
+    use pm_trace::SpotLight;
+    let cone = 30f32.to_radians();
+    let h = 1.0f32;
+    let spot = SpotLight::new(Vec3::new(0.0, h, 0.0), Vec3::NEG_Y, cone, Vec3::splat(20.0));
+    let scene = floor_scene(spot);
+    let n = 100_000;
+    let reach = h * cone.tan() * 1.0001;
+    let (count, _) = count_direct(&scene, n, |p| p.x * p.x + p.z * p.z <= reach * reach);
+    assert_eq!(count, n as u64, "every photon lands inside the cone's footprint");
+    // Intensity Φ / (2π (1 − cos θ)) inside, nothing outside.
+    let intensity = 20.0 / (2.0 * PI * (1.0 - (cone as f64).cos()));
+    let mut rng = Rng::new(0, 0);
+    let s = spot.sample_incident(Vec3::ZERO, Vec3::Y, &mut rng).unwrap();
+    assert!((s.radiance_over_pdf.x as f64 / intensity - 1.0).abs() < 1e-5);
+    assert!(
+        spot.sample_incident(Vec3::new(1.0, 0.0, 0.0), Vec3::Y, &mut rng)
+            .is_none()
+    );
+}

@@ -132,3 +132,45 @@ fn cornell_box_photons_share_the_light_power() {
         );
     }
 }
+
+#[test]
+fn lossless_glass_and_mirror_spheres_pass_all_power_on_as_caustics() {
+    // Black closed box: every path ends at its first diffuse hit, so the stored power is the
+    // light's power exactly, whatever the specular bounces on the way.
+    let power = Vec3::splat(6.0);
+    let (corners, faces) = scenes_box();
+    for sphere in [Surface::glass(1.5), Surface::mirror(Vec3::ONE)] {
+        let scene = Scene::builder()
+            .mesh(&corners, &faces, Surface::diffuse(Vec3::ZERO))
+            .sphere(Vec3::new(0.5, 0.35, 0.5), 0.2, sphere)
+            .light(PointLight::new(Vec3::new(0.5, 0.8, 0.5), power))
+            .build()
+            .unwrap();
+        let maps = SingleMap.partition(&scene);
+        let n = 50_000;
+        let traced = trace_photons(
+            &scene,
+            &maps,
+            &TraceOptions {
+                photons: n,
+                seed: 2,
+                max_bounces: 64,
+            },
+        )
+        .unwrap();
+        let stats = traced.stats();
+        assert_eq!(stats.stored[0][PhotonKind::Indirect as usize], 0);
+        // The sphere subtends (1 − cos asin(0.2/0.45))/2 ≈ 5.2 % of the light's directions.
+        let caustic = stats.stored[0][PhotonKind::Caustic as usize] as f64 / n as f64;
+        let expected = (1.0 - (1.0f64 - (0.2f64 / 0.45).powi(2)).sqrt()) / 2.0;
+        let se = (expected * (1.0 - expected) / n as f64).sqrt();
+        // Paths that never leave the glass (trapped by total internal reflection) are cut at
+        // max_bounces; they are rare.
+        assert!(
+            (caustic - expected).abs() < 4.0 * se + 1e-3,
+            "{sphere:?}: {caustic} vs {expected}"
+        );
+        let stored = common::stored_power(&traced, None);
+        assert!(((stored.x - 6.0) / 6.0).abs() < 1e-3, "{sphere:?}: {stored}");
+    }
+}
