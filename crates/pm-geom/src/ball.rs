@@ -4,7 +4,8 @@
 //! polygon ∩ disc is the sum over the polygon's edges of the *signed* area of the triangle
 //! (disc centre, edge) intersected with the disc; each term is a triangle, a circular sector,
 //! or a sector–triangle–sector chain where the edge crosses the circle. The terms are summed
-//! in f64, which keeps the sum exact to f32 precision even when large sectors cancel.
+//! in f64, which keeps the sum exact to f32 precision even when large sectors cancel or
+//! the ball is nearly tangent to the plane.
 
 use crate::ClipScratch;
 use crate::polygon_normal;
@@ -40,8 +41,10 @@ pub fn polygon_area_in_ball(polygon: &[Vec3], normal: Vec3, ball: &Ball, scratch
     let Some(n) = normal.try_normalize().or_else(|| polygon_normal(polygon)) else {
         return 0.0;
     };
-    let to_center = ball.center - polygon[0];
-    let distance = f64::from(n.dot(to_center));
+    // f64 from here on: near-tangent balls subtract nearly equal squares.
+    let n = n.as_dvec3();
+    let center = ball.center.as_dvec3();
+    let distance = n.dot(center - polygon[0].as_dvec3());
     let radius = f64::from(ball.radius);
     let rho2 = radius * radius - distance * distance;
     if rho2.partial_cmp(&0.0) != Some(Greater) {
@@ -54,8 +57,8 @@ pub fn polygon_area_in_ball(polygon: &[Vec3], normal: Vec3, ball: &Ball, scratch
     let mut min = DVec2::INFINITY;
     let mut max = DVec2::NEG_INFINITY;
     for &p in polygon {
-        let w = p - ball.center;
-        let q = DVec2::new(f64::from(w.dot(u)), f64::from(w.dot(v)));
+        let w = p.as_dvec3() - center;
+        let q = DVec2::new(w.dot(u), w.dot(v));
         min = min.min(q);
         max = max.max(q);
         points.push(q);
@@ -65,8 +68,14 @@ pub fn polygon_area_in_ball(polygon: &[Vec3], normal: Vec3, ball: &Ball, scratch
     if nearest.length_squared().partial_cmp(&rho2) != Some(Less) {
         return 0.0;
     }
-    let area = polygon_disc_area(points, rho2).abs();
-    if area.is_finite() { area as f32 } else { 0.0 }
+    // The intersection never exceeds the polygon or the disc; the clamp also bounds the
+    // rounding residue of huge, degenerate input.
+    let polygon_area = polygon_disc_area(points, f64::INFINITY).abs();
+    let area = polygon_disc_area(points, rho2)
+        .abs()
+        .min(polygon_area)
+        .min(std::f64::consts::PI * rho2) as f32;
+    if area.is_finite() { area } else { 0.0 }
 }
 
 /// Signed area of the simple 2-D `polygon` intersected with the disc of squared radius

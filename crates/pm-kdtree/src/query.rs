@@ -202,12 +202,19 @@ impl<M: Metric> Knn<'_, M> {
     fn scan_leaf(&mut self, lo: usize, hi: usize) {
         let mut ranks = [0.0f32; LEAF_CAPACITY];
         let len = self.tree.leaf_ranks::<M>(self.query, lo, hi, &mut ranks);
-        for (i, &rank) in ranks[..len].iter().enumerate() {
-            if rank <= self.worst {
-                let index = lo + i;
-                if self.all_kinds || self.kinds & kind_bit_of_bits(self.tree.payload[index]) != 0 {
-                    self.insert(index as u32, rank);
-                }
+        // A bit per candidate, computed without branches; `insert` re-checks against the
+        // threshold, which tightens as candidates go in.
+        let worst = self.worst;
+        let mut candidates = ranks[..len]
+            .iter()
+            .enumerate()
+            .fold(0u64, |bits, (i, &rank)| bits | u64::from(rank <= worst) << i);
+        while candidates != 0 {
+            let i = candidates.trailing_zeros() as usize;
+            candidates &= candidates - 1;
+            let index = lo + i;
+            if self.all_kinds || self.kinds & kind_bit_of_bits(self.tree.payload[index]) != 0 {
+                self.insert(index as u32, ranks[i]);
             }
         }
     }
@@ -241,19 +248,18 @@ impl<M: Metric> Knn<'_, M> {
         if rank >= self.worst {
             return;
         }
-        // Replace the root and sift it down.
+        // Replace the root and sift it down; the larger child is picked without a branch.
+        let heap = heap.as_mut_slice();
         let len = heap.len();
         let mut at = 0;
         loop {
             let left = 2 * at + 1;
-            if left >= len {
-                break;
-            }
-            let right = left + 1;
-            let child = if right < len && heap[right].distance > heap[left].distance {
-                right
-            } else {
+            let child = if left + 1 < len {
+                left + usize::from(heap[left + 1].distance > heap[left].distance)
+            } else if left < len {
                 left
+            } else {
+                break;
             };
             if heap[child].distance <= rank {
                 break;

@@ -7,12 +7,14 @@
 //! order with the root at 1. Positions are kept apart from the 8-byte payloads, one array
 //! per axis, so leaf scans read only coordinates and vectorise.
 
-use crate::photon::{CompactPhoton, kind_of_bits};
+use crate::photon::{CompactPhoton, kind_code_of_bits};
 use crate::{BuildError, Photon};
 use glam::Vec3;
 
 /// Most photons in a leaf.
 pub const LEAF_CAPACITY: usize = 32;
+// Leaf scans mark candidates in a u64.
+const _: () = assert!(LEAF_CAPACITY <= 64);
 /// Below this many photons a subtree is built on one thread.
 const PARALLEL_MIN: usize = 32 * 1024;
 
@@ -146,11 +148,8 @@ impl PhotonTree {
             if !(self.xs[i].is_finite() && self.ys[i].is_finite() && self.zs[i].is_finite()) {
                 return whole(format!("photon {i} has a non-finite position"));
             }
-            if self.payload[i] >> 60 & 0b11 == 3 {
-                return whole(format!(
-                    "photon {i} has kind code 3 (read as {:?})",
-                    kind_of_bits(self.payload[i])
-                ));
+            if kind_code_of_bits(self.payload[i]) == 3 {
+                return whole(format!("photon {i} has the unused kind code 3"));
             }
         }
         self.validate_node(1, 0, n, 0)
