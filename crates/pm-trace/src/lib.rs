@@ -20,6 +20,10 @@
 //! - Tracing is deterministic: photon path `i` draws from `Rng::new(seed, i)`, so results are
 //!   bit-identical for any number of threads.
 //!
+//! # Features
+//!
+//! - `gltf` (default): the [`gltf`] module loads `.gltf`/`.glb` scenes safely.
+//!
 //! # Example
 //!
 //! ```
