@@ -102,13 +102,15 @@ fn clip_axis(src: &[Vec3], dst: &mut Vec<Vec3>, axis: usize, bound: f32, keep_ab
 }
 
 /// The point where the segment from `p` (signed distance `dp`) to `q` (`dq`, opposite sign)
-/// crosses the plane. Interpolates from the inside end so the result stays on the segment.
+/// crosses the plane. Interpolates from the end on the kept side (`d ≥ 0`), so an edge
+/// shared by two polygons, walked in opposite directions, is cut at the same point in both.
 fn intersect(p: Vec3, dp: f32, q: Vec3, dq: f32) -> Vec3 {
-    let t = dp / (dp - dq);
+    let (from, d_from, to, d_to) = if dp >= 0.0 { (p, dp, q, dq) } else { (q, dq, p, dp) };
+    let t = d_from / (d_from - d_to);
     if t.is_finite() {
-        p + (q - p) * t.clamp(0.0, 1.0)
+        from + (to - from) * t.clamp(0.0, 1.0)
     } else {
-        p
+        from
     }
 }
 
