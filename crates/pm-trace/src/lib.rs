@@ -22,7 +22,7 @@
 //!
 //! # Features
 //!
-//! - `gltf` (default): the [`gltf`] module loads `.gltf`/`.glb` scenes safely.
+//! - `gltf` (default): the `gltf` module loads `.gltf`/`.glb` scenes safely.
 //!
 //! # Example
 //!
