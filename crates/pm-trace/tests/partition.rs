@@ -96,3 +96,46 @@ fn cornell_box_walls_light_sphere_and_ring_get_their_own_maps() {
     assert_eq!(scene.part_count(), 11);
     assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 11);
 }
+
+#[test]
+fn photons_land_in_the_map_of_the_surface_they_hit_in_every_built_in_scene() {
+    use pm_trace::{PhotonMaps, TraceOptions, trace_photons};
+    for name in scenes::NAMES {
+        let scene = scenes::build(name).unwrap();
+        for maps in [
+            CreaseAngle::default().partition(&scene),
+            SingleMap.partition(&scene),
+        ] {
+            let traced = trace_photons(
+                &scene,
+                &maps,
+                &TraceOptions {
+                    photons: 20_000,
+                    seed: 3,
+                    max_bounces: 32,
+                },
+            )
+            .unwrap();
+            let stored = traced.stats().total_stored();
+            let built = PhotonMaps::build(&scene, &maps, traced).unwrap();
+            built.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(built.len(), maps.map_count() as usize);
+            assert_eq!(
+                built.maps().iter().map(|m| m.tree().len() as u64).sum::<u64>(),
+                stored
+            );
+            // Every map holds its parts' polygons: the geometry estimator needs them.
+            for (m, parts) in maps.parts_per_map().iter().enumerate() {
+                let mut area = 0.0;
+                for &p in parts {
+                    scene.for_each_part_polygon(p, |poly| area += pm_geom::polygon_area(poly));
+                }
+                let got = built.map(m as u32).geometry().total_area();
+                assert!(
+                    (got - area).abs() <= 1e-4 * area.max(1.0),
+                    "{name} map {m}: {got} vs {area}"
+                );
+            }
+        }
+    }
+}

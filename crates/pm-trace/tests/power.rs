@@ -61,6 +61,7 @@ fn black_box_stores_exactly_the_light_power_as_direct_photons() {
     );
     // After the 20-byte encoding, within its precision (0.5 % per photon, so also in sum).
     let built = PhotonMaps::build(&scene, &maps, traced).unwrap();
+    built.validate().unwrap();
     let tree = built.map(0).tree();
     let decoded: DVec3 = (0..tree.len() as u32)
         .map(|i| tree.get(i).power().as_dvec3())
