@@ -86,3 +86,31 @@ impl Aabb {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::vec3;
+
+    #[test]
+    fn closed_boxes_overlap_when_touching_and_empty_overlaps_nothing() {
+        let a = Aabb::new(Vec3::ZERO, Vec3::ONE);
+        assert!(a.overlaps(&Aabb::new(Vec3::ONE, Vec3::splat(2.0))));
+        assert!(!a.overlaps(&Aabb::new(vec3(1.01, 0., 0.), Vec3::splat(2.0))));
+        assert!(!a.overlaps(&Aabb::EMPTY) && !Aabb::EMPTY.overlaps(&a));
+        assert!(Aabb::EMPTY.is_empty() && Aabb::EMPTY.diagonal() == 0.0);
+        assert!(a.contains_point(Vec3::ONE) && !a.contains_point(Vec3::splat(1.0001)));
+    }
+
+    #[test]
+    fn cube_and_points_give_expected_extent() {
+        let c = Aabb::cube(vec3(1., 2., 3.), 0.5);
+        assert_eq!(c.size(), Vec3::ONE);
+        assert_eq!(c.center(), vec3(1., 2., 3.));
+        assert!((c.diagonal() - 3f32.sqrt()).abs() < 1e-6);
+        let b = Aabb::from_points(&[vec3(1., -1., 0.), vec3(-2., 3., 0.5)]);
+        assert_eq!(b, Aabb::new(vec3(-2., -1., 0.), vec3(1., 3., 0.5)));
+        assert_eq!(Aabb::from_points(&[]), Aabb::EMPTY);
+        assert_eq!(b.union(Aabb::EMPTY), b);
+    }
+}

@@ -33,7 +33,7 @@ impl ClipScratch {
 /// sub-boxes without gaps. Non-finite input gives an empty result or non-finite vertices,
 /// never a panic.
 pub fn clip_polygon_to_aabb<'s>(polygon: &[Vec3], aabb: &Aabb, scratch: &'s mut ClipScratch) -> &'s [Vec3] {
-    clip_into_scratch(polygon, aabb, scratch);
+    clip_into_scratch(polygon, &Aabb::from_points(polygon), aabb, scratch);
     if polygon_vector_area(&scratch.a) == Vec3::ZERO {
         scratch.a.clear();
     }
@@ -41,9 +41,11 @@ pub fn clip_polygon_to_aabb<'s>(polygon: &[Vec3], aabb: &Aabb, scratch: &'s mut 
 }
 
 /// Sutherland–Hodgman into `scratch.a`, without the zero-area check (callers that compute
-/// the area anyway skip it).
+/// the area anyway skip it). `bounds` are the polygon's bounds: planes that no vertex lies
+/// beyond are skipped (clipping by one plane never moves vertices out through another).
 pub(crate) fn clip_into_scratch<'s>(
     polygon: &[Vec3],
+    bounds: &Aabb,
     aabb: &Aabb,
     scratch: &'s mut ClipScratch,
 ) -> &'s [Vec3] {
@@ -54,11 +56,21 @@ pub(crate) fn clip_into_scratch<'s>(
     }
     a.extend_from_slice(polygon);
     for axis in 0..3 {
-        clip_axis(a, b, axis, aabb.min[axis], true);
-        clip_axis(b, a, axis, aabb.max[axis], false);
-        if a.len() < 3 {
-            a.clear();
-            break;
+        for keep_above in [true, false] {
+            let (bound, all_inside) = if keep_above {
+                (aabb.min[axis], bounds.min[axis] >= aabb.min[axis])
+            } else {
+                (aabb.max[axis], bounds.max[axis] <= aabb.max[axis])
+            };
+            if all_inside {
+                continue;
+            }
+            clip_axis(a, b, axis, bound, keep_above);
+            std::mem::swap(a, b);
+            if a.len() < 3 {
+                a.clear();
+                return &a[..];
+            }
         }
     }
     &a[..]
@@ -90,13 +102,15 @@ fn clip_axis(src: &[Vec3], dst: &mut Vec<Vec3>, axis: usize, bound: f32, keep_ab
 }
 
 /// The point where the segment from `p` (signed distance `dp`) to `q` (`dq`, opposite sign)
-/// crosses the plane. Interpolates from the inside end so the result stays on the segment.
+/// crosses the plane. Interpolates from the end on the kept side (`d ≥ 0`), so an edge
+/// shared by two polygons, walked in opposite directions, is cut at the same point in both.
 fn intersect(p: Vec3, dp: f32, q: Vec3, dq: f32) -> Vec3 {
-    let t = dp / (dp - dq);
+    let (from, d_from, to, d_to) = if dp >= 0.0 { (p, dp, q, dq) } else { (q, dq, p, dp) };
+    let t = d_from / (d_from - d_to);
     if t.is_finite() {
-        p + (q - p) * t.clamp(0.0, 1.0)
+        from + (to - from) * t.clamp(0.0, 1.0)
     } else {
-        p
+        from
     }
 }
 

@@ -40,7 +40,7 @@ impl GatherVolume for Aabb {
             if plane_misses_box(polygon[0], normal, self) {
                 return 0.0;
             }
-            polygon_vector_area(clip_into_scratch(polygon, self, scratch)).length()
+            polygon_vector_area(clip_into_scratch(polygon, &bounds, self, scratch)).length()
         };
         if area.is_finite() { area } else { 0.0 }
     }

@@ -181,6 +181,25 @@ proptest! {
         prop_assert!(back.iter().all(|&p| plane.signed_distance(p) <= 1e-5));
     }
 
+    /// Two triangles sharing an edge, walked in opposite directions, are cut at bitwise
+    /// identical points on that edge, so clipped meshes stay watertight.
+    #[test]
+    fn shared_edge_is_cut_at_identical_points(poly in arb_polygon(), aabb in arb_box()) {
+        let v = &poly.vertices;
+        prop_assume!(v.len() >= 4);
+        let (a, b, c, d) = (v[0], v[1], v[2], v[3]);
+        let mut scratch = ClipScratch::new();
+        let first = clip_polygon_to_aabb(&[a, b, c], &aabb, &mut scratch).to_vec();
+        let second = clip_polygon_to_aabb(&[c, d, a], &aabb, &mut scratch).to_vec();
+        let on_shared_edge = |p: Vec3| {
+            let t = (p - a).dot(c - a) / (c - a).length_squared();
+            (a + (c - a) * t).distance(p) < 1e-6 && p.distance(a) > 1e-3 && p.distance(c) > 1e-3
+        };
+        for p in first.iter().copied().filter(|&p| on_shared_edge(p)) {
+            prop_assert!(second.contains(&p), "{p:?} missing from {second:?}");
+        }
+    }
+
     /// Garbage in (any floats, any boxes) never panics and never yields NaN areas.
     #[test]
     fn arbitrary_input_never_panics_or_gives_nan(

@@ -260,3 +260,58 @@ proptest! {
         }
     }
 }
+
+/// An `n × n` grid of unit quads written as a split-vertex soup (4 corners per quad).
+fn split_grid(n: u32) -> (Vec<Vec3>, Vec<[u32; 4]>) {
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (x, z) = (i as f32, j as f32);
+            let s = positions.len() as u32;
+            positions.extend([
+                vec3(x, 0., z),
+                vec3(x, 0., z + 1.),
+                vec3(x + 1., 0., z + 1.),
+                vec3(x + 1., 0., z),
+            ]);
+            faces.push([s, s + 1, s + 2, s + 3]);
+        }
+    }
+    (positions, faces)
+}
+
+#[test]
+fn split_grid_welds_to_the_grid_topology() {
+    let n = 60;
+    let (positions, faces) = split_grid(n);
+    let mesh = build(&positions, &faces);
+    let n = n as usize;
+    assert_eq!(mesh.vertex_count(), (n + 1) * (n + 1));
+    assert_eq!(mesh.boundary_edge_count(), 4 * n);
+    let twinned = (0..mesh.half_edge_count() as u32)
+        .filter(|&h| mesh.twin(HalfEdgeId(h)).is_some())
+        .count();
+    assert_eq!(twinned, 2 * 2 * n * (n - 1), "two half-edges per interior edge");
+    assert!((mesh.faces().map(|f| mesh.face_area(f)).sum::<f32>() - (n * n) as f32).abs() < 1e-2);
+    for face in mesh.faces() {
+        assert!((mesh.face_normal(face) - Vec3::Y).length() < 1e-6);
+    }
+}
+
+proptest! {
+    /// Two unit squares hinged on the x axis, the second turned by `fold` about it: the
+    /// crease angle is `fold` (0 = flat continuation).
+    #[test]
+    fn hinge_crease_angle_equals_fold_angle(fold in 0.0f32..3.0) {
+        let (s, c) = fold.sin_cos();
+        // Square A in z <= 0 of the plane y = 0; square B turned from z >= 0 by `fold`.
+        let positions = [vec3(0., 0., 0.), vec3(1., 0., 0.), vec3(1., 0., -1.), vec3(0., 0., -1.),
+            vec3(1., s, c), vec3(0., s, c)];
+        let mesh = build(&positions, &[[0u32, 1, 2, 3], [1, 0, 5, 4]]);
+        let hinge = mesh.face_half_edges(FaceId(0)).find(|&he| mesh.twin(he).is_some()).unwrap();
+        let angle = mesh.crease_angle(hinge).unwrap();
+        prop_assert!((angle - fold).abs() < 1e-5, "angle {angle}, fold {fold}");
+        prop_assert_eq!(mesh.crease_angle(mesh.twin(hinge).unwrap()), Some(angle));
+    }
+}

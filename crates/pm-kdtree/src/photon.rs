@@ -2,7 +2,10 @@
 //!
 //! The 8 bytes after the position hold, from the lowest bit of a little-endian `u64`:
 //! red, green, blue power as 12-bit logarithmic codes (bits 0–35), the travel direction as
-//! a 2 × 12-bit octahedral code (bits 36–59), the kind (bits 60–61) and 2 spare bits.
+//! a 2 × 12-bit octahedral code (bits 36–59), the kind (bits 60–61) and 2 spare bits. The
+//! direction code is the best of the four grid points around the exact projection, chosen by
+//! squared distance (an f32 dot product near 1 cannot rank directions 0.02° apart); the
+//! worst error measured over 300,000 random directions is 0.040°.
 //!
 //! Power is stored per channel on a log scale rather than with a shared exponent (as Ward's
 //! RGBE and Jensen's 4-byte power do): a shared exponent gives the largest channel 0.4 %
@@ -80,7 +83,8 @@ const MIN_LOG2: i32 = -20;
 const POWER_BITS: u32 = 12;
 const POWER_MAX_CODE: u32 = (1 << POWER_BITS) - 1;
 const DIRECTION_BITS: u32 = 12;
-const DIRECTION_MAX_CODE: u32 = (1 << DIRECTION_BITS) - 1;
+/// Even, so the middle code decodes to exactly 0 and the six axis directions are exact.
+const DIRECTION_MAX_CODE: u32 = (1 << DIRECTION_BITS) - 2;
 const DIRECTION_SHIFT: u32 = 3 * POWER_BITS;
 const KIND_SHIFT: u32 = DIRECTION_SHIFT + 2 * DIRECTION_BITS;
 
@@ -130,9 +134,10 @@ fn encode_channel(watts: f32) -> u64 {
 }
 
 fn decode_direction(u: u32, v: u32) -> Vec3 {
-    let scale = 2.0 / DIRECTION_MAX_CODE as f32;
-    let x = u as f32 * scale - 1.0;
-    let y = v as f32 * scale - 1.0;
+    // (2u − M) / M is exact at u = M/2 and at both ends.
+    let m = DIRECTION_MAX_CODE as i32;
+    let x = (2 * u as i32 - m) as f32 / m as f32;
+    let y = (2 * v as i32 - m) as f32 / m as f32;
     let z = 1.0 - x.abs() - y.abs();
     let (x, y) = if z < 0.0 {
         ((1.0 - y.abs()).copysign(x), (1.0 - x.abs()).copysign(y))
@@ -157,14 +162,16 @@ fn encode_direction(direction: Vec3) -> (u32, u32) {
     let grid = (p + 1.0) * (0.5 * DIRECTION_MAX_CODE as f32);
     let unit = direction.normalize();
     let mut best = (0, 0);
-    let mut best_dot = f32::NEG_INFINITY;
+    // Compared by squared distance, not by dot product: near 1 an f32 dot product cannot
+    // tell apart directions 0.02° apart.
+    let mut best_error = f32::INFINITY;
     for du in 0..2 {
         for dv in 0..2 {
             let u = (grid.x.floor() + du as f32).clamp(0.0, DIRECTION_MAX_CODE as f32) as u32;
             let v = (grid.y.floor() + dv as f32).clamp(0.0, DIRECTION_MAX_CODE as f32) as u32;
-            let dot = decode_direction(u, v).dot(unit);
-            if dot > best_dot {
-                best_dot = dot;
+            let error = (decode_direction(u, v) - unit).length_squared();
+            if error < best_error {
+                best_error = error;
                 best = (u, v);
             }
         }
@@ -234,7 +241,7 @@ impl CompactPhoton {
     /// Decoded unit direction of travel.
     pub fn direction(&self) -> Vec3 {
         let bits = self.bits();
-        let mask = DIRECTION_MAX_CODE as u64;
+        let mask = (1u64 << DIRECTION_BITS) - 1;
         decode_direction(
             (bits >> DIRECTION_SHIFT & mask) as u32,
             (bits >> (DIRECTION_SHIFT + DIRECTION_BITS) & mask) as u32,
@@ -254,6 +261,12 @@ pub(crate) fn kind_of_bits(bits: u64) -> PhotonKind {
         2 => PhotonKind::Caustic,
         _ => PhotonKind::Indirect,
     }
+}
+
+/// The raw 2-bit kind code of packed bits (3 is never written).
+#[inline]
+pub(crate) fn kind_code_of_bits(bits: u64) -> u8 {
+    (bits >> KIND_SHIFT & 0b11) as u8
 }
 
 /// The kind-mask bit of packed bits, for filtering without decoding.

@@ -7,7 +7,7 @@
 //! order with the root at 1. Positions are kept apart from the 8-byte payloads, one array
 //! per axis, so leaf scans read only coordinates and vectorise.
 
-use crate::photon::{CompactPhoton, kind_of_bits};
+use crate::photon::{CompactPhoton, kind_code_of_bits};
 use crate::{BuildError, Photon};
 use glam::Vec3;
 
@@ -148,11 +148,8 @@ impl PhotonTree {
             if !(self.xs[i].is_finite() && self.ys[i].is_finite() && self.zs[i].is_finite()) {
                 return whole(format!("photon {i} has a non-finite position"));
             }
-            if self.payload[i] >> 60 & 0b11 == 3 {
-                return whole(format!(
-                    "photon {i} has kind code 3 (read as {:?})",
-                    kind_of_bits(self.payload[i])
-                ));
+            if kind_code_of_bits(self.payload[i]) == 3 {
+                return whole(format!("photon {i} has the unused kind code 3"));
             }
         }
         self.validate_node(1, 0, n, 0)

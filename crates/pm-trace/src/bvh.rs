@@ -160,6 +160,15 @@ impl std::fmt::Debug for SceneBvh {
     }
 }
 
+/// The obvhs ray. Its node test picks slab sides by `direction < 0` but inverts −0.0 to a
+/// large *negative* number, so an axis-aligned ray with a −0.0 component missed every node
+/// (found by the watertightness test); adding +0.0 turns −0.0 into +0.0.
+#[inline]
+fn obvhs_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
+    let direction = ray.direction + Vec3::ZERO;
+    obvhs::ray::Ray::new(Vec3A::from(ray.origin), Vec3A::from(direction), t_min, t_max)
+}
+
 fn to_obvhs(b: pm_geom::Aabb) -> obvhs::aabb::Aabb {
     obvhs::aabb::Aabb::new(Vec3A::from(b.min), Vec3A::from(b.max))
 }
@@ -192,7 +201,7 @@ impl SceneBvh {
         accept: impl Fn(PartId) -> bool,
     ) -> Option<(f32, u32)> {
         let w = WatertightRay::new(ray.origin, ray.direction);
-        let oray = obvhs::ray::Ray::new(Vec3A::from(ray.origin), Vec3A::from(ray.direction), t_min, t_max);
+        let oray = obvhs_ray(ray, t_min, t_max);
         let mut hit = RayHit::none();
         let found = self.bvh.ray_traverse(oray, &mut hit, |r, i| {
             let p = &self.prims[i];
@@ -208,7 +217,7 @@ impl SceneBvh {
     #[inline]
     pub(crate) fn any_hit(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let w = WatertightRay::new(ray.origin, ray.direction);
-        let oray = obvhs::ray::Ray::new(Vec3A::from(ray.origin), Vec3A::from(ray.direction), t_min, t_max);
+        let oray = obvhs_ray(ray, t_min, t_max);
         !self
             .bvh
             .ray_traverse_miss(oray, |r, i| self.prims[i].intersect(&w, r.tmin, r.tmax))

@@ -90,6 +90,14 @@ pub enum MapError {
     /// The photons or the assignment do not match the scene.
     #[error(transparent)]
     Mismatch(#[from] TraceError),
+    /// `PhotonMaps::validate` found a broken invariant.
+    #[error("map {map}: {what}")]
+    Invalid {
+        /// The map.
+        map: u32,
+        /// What is wrong.
+        what: String,
+    },
     /// A photon tree could not be built.
     #[error("map {map}: {source}")]
     Tree {

@@ -20,6 +20,10 @@
 //! - Tracing is deterministic: photon path `i` draws from `Rng::new(seed, i)`, so results are
 //!   bit-identical for any number of threads.
 //!
+//! # Features
+//!
+//! - `gltf` (default): the `gltf` module loads `.gltf`/`.glb` scenes safely.
+//!
 //! # Example
 //!
 //! ```
@@ -67,6 +71,7 @@ pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, Poi
 pub use material::{Material, Surface};
 pub use partition::{CreaseAngle, MapAssignment, Partitioner, SingleMap};
 pub use photons::{PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons};
+pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{Hit, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};

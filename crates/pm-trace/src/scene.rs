@@ -312,6 +312,7 @@ impl SceneBuilder {
             camera,
             bounds,
             epsilon,
+            mesh_options: self.mesh_options,
             bvh: SceneBvh::build(prims),
         })
     }
@@ -388,6 +389,7 @@ pub struct Scene {
     camera: Camera,
     bounds: Aabb,
     epsilon: f32,
+    mesh_options: MeshOptions,
     bvh: SceneBvh,
 }
 
@@ -521,6 +523,32 @@ impl Scene {
     /// The analytic shapes, in the order they were added.
     pub fn shapes(&self) -> &[Shape] {
         &self.shapes
+    }
+
+    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
+    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
+    /// along contact lines). Add every mesh again, including those of area-light quads.
+    pub fn into_builder_without_meshes(self) -> SceneBuilder {
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (p, source) in self.parts.iter().enumerate() {
+            match *source {
+                PartSource::Sphere { shape } => {
+                    shapes.push((self.shapes[shape as usize], self.part_surfaces[p]))
+                }
+                PartSource::Ring {
+                    shape,
+                    side: RingSide::Top,
+                } => shapes.push((self.shapes[shape as usize], self.part_surfaces[p])),
+                _ => {}
+            }
+        }
+        SceneBuilder {
+            meshes: Vec::new(),
+            shapes,
+            lights: self.lights,
+            camera: Some(self.camera),
+            mesh_options: self.mesh_options,
+        }
     }
 
     /// Calls `f` with each polygon of `part`: a mesh face as it is, analytic parts as a fine

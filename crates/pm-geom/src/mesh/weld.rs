@@ -80,3 +80,53 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     }
     (welded, remap)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Every point lies within the tolerance of its vertex, and no two vertices are that
+        /// close (checked by brute force over all pairs). Points are drawn on a coarse lattice
+        /// plus jitter so that many fall near cell borders and near each other.
+        #[test]
+        fn welded_vertices_cover_points_and_stay_apart(
+            points in prop::collection::vec(
+                (prop::array::uniform3(-3i32..3), prop::array::uniform3(-1.0f32..1.0)), 0..200),
+            tolerance in prop_oneof![Just(0.0f32), 0.01f32..0.5],
+        ) {
+            let positions: Vec<Vec3> = points
+                .iter()
+                .map(|&(l, j)| Vec3::new(l[0] as f32, l[1] as f32, l[2] as f32) * 0.25 + Vec3::from_array(j) * 0.1)
+                .collect();
+            let (welded, remap) = weld(&positions, tolerance);
+            prop_assert_eq!(remap.len(), positions.len());
+            for (p, &v) in positions.iter().zip(&remap) {
+                prop_assert!(welded[v as usize].distance(*p) <= tolerance);
+            }
+            for i in 0..welded.len() {
+                for j in 0..i {
+                    prop_assert!(welded[i].distance(welded[j]) > tolerance);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn points_across_a_cell_border_weld() {
+        let t = 1e-3;
+        let (welded, remap) = weld(
+            &[
+                Vec3::splat(t * 0.9999),
+                Vec3::splat(t * 1.0001),
+                Vec3::splat(-0.0),
+            ],
+            t,
+        );
+        assert_eq!(welded.len(), 2);
+        assert_eq!(remap, [0, 0, 1]);
+        let (welded, remap) = weld(&[Vec3::ZERO, Vec3::splat(-0.0), Vec3::X], 0.0);
+        assert_eq!((welded.len(), remap), (2, vec![0, 0, 1]));
+    }
+}

@@ -3,6 +3,7 @@
 
 use super::TracedPhotons;
 use crate::{MapAssignment, MapError, PartId, Scene, TraceError};
+use glam::Vec3;
 use pm_geom::{Aabb, PolygonSet};
 use pm_kdtree::{CompactPhoton, PhotonTree};
 use rayon::prelude::*;
@@ -95,6 +96,44 @@ impl PhotonMaps {
     /// True when there are no maps.
     pub fn is_empty(&self) -> bool {
         self.maps.is_empty()
+    }
+
+    /// Checks every map: its kd-tree's invariants, and that every photon lies within the
+    /// map's geometry bounds (grown by 1 % of their diagonal for the proxies of analytic
+    /// parts), i.e. photons were stored in the map of the surface they hit.
+    pub fn validate(&self) -> Result<(), MapError> {
+        if self.maps.len() != self.assignment.map_count() as usize {
+            return Err(MapError::Invalid {
+                map: self.maps.len() as u32,
+                what: format!(
+                    "{} maps for an assignment of {}",
+                    self.maps.len(),
+                    self.assignment.map_count()
+                ),
+            });
+        }
+        for (m, map) in self.maps.iter().enumerate() {
+            let m = m as u32;
+            map.tree.validate().map_err(|e| MapError::Invalid {
+                map: m,
+                what: e.to_string(),
+            })?;
+            if map.tree.is_empty() {
+                continue;
+            }
+            let grow = Vec3::splat(0.01 * map.bounds.diagonal() + 1e-4);
+            let bounds = Aabb::new(map.bounds.min - grow, map.bounds.max + grow);
+            for i in 0..map.tree.len() as u32 {
+                let p = map.tree.get(i).position();
+                if !bounds.contains_point(p) {
+                    return Err(MapError::Invalid {
+                        map: m,
+                        what: format!("photon {i} at {p} outside the map's bounds"),
+                    });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The assignment the maps were built with.
