@@ -63,10 +63,9 @@ pub fn split_polygons_at_contacts<P: AsRef<[Vec3]>>(polygons: &[P], tolerance: f
     let mut contact_count = 0;
     for (a, b) in overlapping_pairs(&frames) {
         for (edge_face, touched) in [(a, b), (b, a)] {
-            let (Some(edge_frame), Some(touched_frame)) = (frames[edge_face], frames[touched]) else {
+            let Some(touched_frame) = frames[touched] else {
                 continue;
             };
-            let _ = edge_frame;
             let edge_poly = polygons[edge_face].as_ref();
             let touched_poly = polygons[touched].as_ref();
             for i in 0..edge_poly.len() {
@@ -111,10 +110,9 @@ pub fn split_polygons_at_contacts<P: AsRef<[Vec3]>>(polygons: &[P], tolerance: f
     let mut insertions: Vec<Vec<Vec3>> = vec![Vec::new(); pieces.len()];
     for &(a, b) in &touching {
         for (from, to) in [(a, b), (b, a)] {
-            for target in first_piece[to]..first_piece[to + 1] {
-                for donor in first_piece[from]..first_piece[from + 1] {
-                    insertions[target].extend_from_slice(&pieces[donor]);
-                }
+            let donors = &pieces[first_piece[from]..first_piece[from + 1]];
+            for target in &mut insertions[first_piece[to]..first_piece[to + 1]] {
+                donors.iter().for_each(|donor| target.extend_from_slice(donor));
             }
         }
     }
