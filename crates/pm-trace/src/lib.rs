@@ -69,7 +69,7 @@ pub use error::{MapError, SceneError, TraceError};
 pub use glam;
 pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, PointLight, SpotLight};
 pub use material::{Material, Surface};
-pub use partition::{CreaseAngle, MapAssignment, Partitioner, SingleMap};
+pub use partition::{Contact, CreaseAngle, MapAssignment, Partitioner, SingleMap};
 pub use photons::{PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons};
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;

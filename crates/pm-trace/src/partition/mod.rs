@@ -1,8 +1,10 @@
-//! Partitions of the scene's parts into photon maps: the trait, one map for everything, and
-//! flood fill across mesh edges with a small crease angle.
+//! Partitions of the scene's parts into photon maps: the trait, one map for everything, flood
+//! fill across mesh edges with a small crease angle, and the same aware of faces in contact.
 
+mod contact;
 mod crease;
 
+pub use contact::Contact;
 pub use crease::CreaseAngle;
 
 use crate::{PartId, Scene};

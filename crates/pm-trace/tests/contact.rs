@@ -1,0 +1,229 @@
+//! The contact-aware partition: faces touching without sharing an edge never join a map where
+//! they touch, and the floor stays one map where light really passes (a doorway, around a box).
+
+mod common;
+
+use pm_trace::glam::Vec3;
+use pm_trace::{
+    Contact, CreaseAngle, MapAssignment, PartSource, Partitioner, PointLight, Ray, RayKind, Scene, Surface,
+    TraceOptions, scenes, trace_photons,
+};
+
+/// The map of the surface straight below `(x, 0.5, z)`.
+fn map_below(scene: &Scene, maps: &MapAssignment, x: f32, z: f32) -> u32 {
+    let ray = Ray::new(Vec3::new(x, 0.5, z), Vec3::new(1e-4, -1.0, 1e-4).normalize());
+    let hit = scene
+        .intersect(&ray, 10.0, RayKind::Other)
+        .expect("the floor is below");
+    assert!(hit.position.y.abs() < 1e-4, "hit the floor, not {hit:?}");
+    maps.map_of(hit.part)
+}
+
+/// Total area of the scene's mesh faces.
+fn mesh_area(scene: &Scene) -> f64 {
+    scene
+        .meshes()
+        .iter()
+        .map(|m| {
+            m.half_edge_mesh()
+                .faces()
+                .map(|f| m.half_edge_mesh().face_area(f) as f64)
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+#[test]
+fn touching_rooms_floor_splits_into_one_map_per_room() {
+    let scene = scenes::build("touching-rooms").unwrap();
+    let crease = CreaseAngle::default().partition(&scene);
+    assert_eq!(
+        map_below(&scene, &crease, 0.5, 0.5),
+        map_below(&scene, &crease, 1.5, 0.5),
+        "the scene must test the case"
+    );
+
+    let contact = Contact::default();
+    let area_before = mesh_area(&scene);
+    let split = contact.split_scene(scene).unwrap();
+    for mesh in split.meshes() {
+        mesh.half_edge_mesh().validate().unwrap();
+    }
+    assert!(
+        (mesh_area(&split) - area_before).abs() < 1e-6 * area_before,
+        "the split keeps the area"
+    );
+    let maps = contact.partition(&split);
+    assert_ne!(
+        map_below(&split, &maps, 0.5, 0.5),
+        map_below(&split, &maps, 1.5, 0.5)
+    );
+    // No map reaches into both rooms.
+    for parts in maps.parts_per_map() {
+        let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+        for p in parts {
+            split.for_each_part_polygon(p, |poly| {
+                let c = poly.iter().copied().sum::<Vec3>() / poly.len() as f32;
+                lo = lo.min(c.x);
+                hi = hi.max(c.x);
+            });
+        }
+        assert!(hi <= 1.0 + 1e-4 || lo >= 1.0 - 1e-4, "a map spans x {lo}..{hi}");
+        assert!(hi <= 1.02 + 1e-4 || lo >= 1.02 - 1e-4, "a map spans x {lo}..{hi}");
+    }
+}
+
+/// A 2 × 1 floor and a 0.02 m wall across it at x = 1 standing on it over each `z` span, as
+/// separate meshes, with a light in the left half.
+fn floor_with_wall(spans: &[(f32, f32)]) -> Scene {
+    let p = Vec3::new;
+    let floor = [
+        p(0.0, 0.0, 0.0),
+        p(0.0, 0.0, 1.0),
+        p(2.0, 0.0, 1.0),
+        p(2.0, 0.0, 0.0),
+    ];
+    let white = Surface::diffuse(Vec3::splat(0.5));
+    let mut builder = Scene::builder().mesh(&floor, &[[0u32, 1, 2, 3]], white);
+    for &(z0, z1) in spans {
+        let (x0, x1) = (1.0, 1.02);
+        let wall = [
+            p(x0, 0.0, z0),
+            p(x0, 1.0, z0),
+            p(x0, 1.0, z1),
+            p(x0, 0.0, z1),
+            p(x1, 0.0, z0),
+            p(x1, 1.0, z0),
+            p(x1, 1.0, z1),
+            p(x1, 0.0, z1),
+        ];
+        let faces = [
+            [0u32, 1, 2, 3],
+            [4, 7, 6, 5],
+            [0, 4, 5, 1],
+            [3, 2, 6, 7],
+            [1, 5, 6, 2],
+        ];
+        builder = builder.mesh(&wall, &faces, white);
+    }
+    builder
+        .light(PointLight::new(p(0.5, 0.5, 0.5), Vec3::splat(10.0)))
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn full_width_wall_splits_the_floor_into_two_maps() {
+    let contact = Contact::default();
+    let scene = contact.split_scene(floor_with_wall(&[(0.0, 1.0)])).unwrap();
+    let maps = contact.partition(&scene);
+    assert_ne!(
+        map_below(&scene, &maps, 0.5, 0.5),
+        map_below(&scene, &maps, 1.5, 0.5)
+    );
+}
+
+#[test]
+fn doorway_keeps_the_floor_one_map() {
+    let contact = Contact::default();
+    let scene = contact
+        .split_scene(floor_with_wall(&[(0.0, 0.4), (0.6, 1.0)]))
+        .unwrap();
+    let maps = contact.partition(&scene);
+    let left = map_below(&scene, &maps, 0.5, 0.1);
+    assert_eq!(
+        left,
+        map_below(&scene, &maps, 1.5, 0.9),
+        "light passes through the doorway"
+    );
+    assert_eq!(
+        left,
+        map_below(&scene, &maps, 1.01, 0.5),
+        "the doorway's floor joins both rooms"
+    );
+}
+
+#[test]
+fn box_on_a_floor_is_cut_out_and_the_floor_around_it_stays_one_map() {
+    let p = Vec3::new;
+    let white = Surface::diffuse(Vec3::splat(0.5));
+    let floor = [
+        p(0.0, 0.0, 0.0),
+        p(0.0, 0.0, 3.0),
+        p(3.0, 0.0, 3.0),
+        p(3.0, 0.0, 0.0),
+    ];
+    let (lo, hi) = (1.0, 2.0);
+    let corners = [
+        p(lo, 0.0, lo),
+        p(hi, 0.0, lo),
+        p(hi, 0.0, hi),
+        p(lo, 0.0, hi),
+        p(lo, 1.0, lo),
+        p(hi, 1.0, lo),
+        p(hi, 1.0, hi),
+        p(lo, 1.0, hi),
+    ];
+    // Outward normals: bottom, top, x = lo, x = hi, z = lo, z = hi.
+    let faces = [
+        [0u32, 1, 2, 3],
+        [4, 7, 6, 5],
+        [0, 3, 7, 4],
+        [1, 5, 6, 2],
+        [0, 4, 5, 1],
+        [3, 2, 6, 7],
+    ];
+    let scene = Scene::builder()
+        .mesh(&floor, &[[0u32, 1, 2, 3]], white)
+        .mesh(&corners, &faces, white)
+        .light(PointLight::new(p(1.5, 2.0, 1.5), Vec3::splat(10.0)))
+        .build()
+        .unwrap();
+    let contact = Contact::default();
+    let split = contact.split_scene(scene).unwrap();
+    let maps = contact.partition(&split);
+    let around = [(0.5, 0.5), (1.5, 0.5), (2.5, 2.5), (0.5, 1.5), (2.5, 1.5)];
+    let m = map_below(&split, &maps, 0.5, 0.5);
+    for (x, z) in around {
+        assert_eq!(map_below(&split, &maps, x, z), m, "floor at ({x}, {z})");
+    }
+    // Under the box: the floor piece there is in no map of the floor around it.
+    let under: Vec<u32> = (0..split.part_count() as u32)
+        .map(pm_trace::PartId)
+        .filter(|&part| matches!(split.part_source(part), PartSource::MeshFace { mesh: 0, .. }))
+        .filter(|&part| {
+            let mut inside = false;
+            split.for_each_part_polygon(part, |poly| {
+                let c = poly.iter().copied().sum::<Vec3>() / poly.len() as f32;
+                inside = (1.0..2.0).contains(&c.x) && (1.0..2.0).contains(&c.z);
+            });
+            inside
+        })
+        .map(|part| maps.map_of(part))
+        .collect();
+    assert_eq!(under.len(), 1);
+    assert_ne!(under[0], m);
+}
+
+#[test]
+fn splitting_keeps_the_traced_power() {
+    let scene = scenes::build("touching-rooms").unwrap();
+    let options = TraceOptions {
+        photons: 20_000,
+        seed: 7,
+        ..TraceOptions::default()
+    };
+    let before = trace_photons(&scene, &CreaseAngle::default().partition(&scene), &options).unwrap();
+    let contact = Contact::default();
+    let split = contact
+        .split_scene(scenes::build("touching-rooms").unwrap())
+        .unwrap();
+    let after = trace_photons(&split, &contact.partition(&split), &options).unwrap();
+    let (a, b) = (
+        common::stored_power(&before, None),
+        common::stored_power(&after, None),
+    );
+    // The same seed and the same surfaces: the same paths up to float rounding at the cuts.
+    let relative = ((a - b).abs() / a).max_element();
+    assert!(relative < 1e-3, "stored power {a} before, {b} after the split");
+}
