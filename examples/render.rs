@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::{
     EstimatorKind, Image, Mode, Progress, RenderSettings, RenderStats, Renderer, parse_image_size,
 };
-use photon_maps::trace::{CreaseAngle, Partitioner, Scene, SingleMap, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, SingleMap, scenes};
 use std::fmt::Write as _;
 use std::fs::{self, File};
 use std::path::{Path, PathBuf};
@@ -23,7 +23,7 @@ struct Args {
     /// touching-rooms) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,
-    /// Photon-map partition: single | crease.
+    /// Photon-map partition: single | crease | contact.
     #[arg(long, default_value = "crease")]
     maps: String,
     /// Radiance estimator: disc | cube | ball.
@@ -72,6 +72,7 @@ type MakePartitioner = fn() -> Box<dyn Partitioner>;
 const PARTITIONS: &[(&str, MakePartitioner)] = &[
     ("single", || Box::new(SingleMap)),
     ("crease", || Box::new(CreaseAngle::default())),
+    ("contact", || Box::new(Contact::default())),
 ];
 
 fn partitioner(name: &str) -> Result<Box<dyn Partitioner>, String> {
@@ -136,7 +137,7 @@ fn run(args: &Args) -> Result<(), String> {
     };
     settings.validate().map_err(|e| e.to_string())?;
 
-    let (scene, scene_name) = load_scene(&args.scene)?;
+    let (_, scene_name) = load_scene(&args.scene)?;
     let base = args
         .out
         .clone()
@@ -178,6 +179,11 @@ fn run(args: &Args) -> Result<(), String> {
     let mut records = Vec::new();
     for variant in &variants {
         let partition = partitioner(&variant.maps)?;
+        // A partition may re-mesh the scene (contact splits faces), so each variant starts from
+        // a freshly loaded one.
+        let scene = partition
+            .prepare_scene(load_scene(&args.scene)?.0)
+            .map_err(|e| e.to_string())?;
         let bar = TileBar::new(variant.label);
         let out = Renderer::new(variant.estimator, settings)
             .render(&scene, &*partition, &bar)

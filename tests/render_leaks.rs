@@ -1,9 +1,11 @@
-//! Leaks: in `lit-unlit-rooms` the right room has no light, so its true radiance is exactly
-//! zero. With crease maps every pixel showing it must be exactly 0 for all three estimators;
-//! with a single map the disc estimator gathers photons through the wall and shows light.
+//! Leaks: in `lit-unlit-rooms` and `touching-rooms` the room at x > 1.02 has no light, so its
+//! true radiance is exactly zero. With crease maps every pixel showing it must be exactly 0 for
+//! all three estimators in `lit-unlit-rooms`; with a single map the disc estimator gathers
+//! photons through the wall and shows light. In `touching-rooms` the floor and ceiling run under
+//! and over the dividing wall, so crease maps still leak and only contact maps keep it black.
 
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, RayKind, Scene, SingleMap, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene, SingleMap, scenes};
 
 const W: u32 = 64;
 const H: u32 = 32;
@@ -49,7 +51,7 @@ fn crease_maps_keep_the_dark_room_exactly_black() {
     let count = dark.len();
     assert!(
         count > (W * H / 20) as usize,
-        "the dark room should fill part of the right half: {count} pixels"
+        "the dark room should fill part of the image: {count} pixels"
     );
     for kind in EstimatorKind::ALL {
         let out = Renderer::new(kind, settings())
@@ -78,4 +80,43 @@ fn single_map_disc_leaks_light_into_the_dark_room() {
         lit > 0,
         "the basic variant is expected to leak near the shared wall"
     );
+}
+
+#[test]
+fn touching_rooms_leak_through_the_shared_floor_with_crease_maps() {
+    let scene = scenes::build("touching-rooms").unwrap();
+    let dark = dark_room_pixels(&scene);
+    for kind in EstimatorKind::ALL {
+        let out = Renderer::new(kind, settings())
+            .render(&scene, &CreaseAngle::default(), &())
+            .unwrap();
+        let lit = dark.iter().filter(|&&i| out.image.pixels()[i].x > 0.0).count();
+        assert!(
+            lit > 0,
+            "{kind}: the shared floor map should carry light into the dark room"
+        );
+    }
+}
+
+#[test]
+fn touching_rooms_contact_maps_keep_the_dark_room_exactly_black() {
+    let contact = Contact::default();
+    let scene = contact
+        .prepare_scene(scenes::build("touching-rooms").unwrap())
+        .unwrap();
+    let dark = dark_room_pixels(&scene);
+    assert!(dark.len() > (W * H / 20) as usize, "{} dark pixels", dark.len());
+    for kind in EstimatorKind::ALL {
+        let out = Renderer::new(kind, settings())
+            .render(&scene, &contact, &())
+            .unwrap();
+        for &i in &dark {
+            assert_eq!(
+                out.image.pixels()[i].to_array(),
+                [0.0; 3],
+                "{kind}: pixel {i} leaks"
+            );
+        }
+        assert!(out.image.mean().x > 0.0, "{kind}: the lit room must be lit");
+    }
 }

@@ -36,7 +36,7 @@ fn lit_unlit_rooms_have_twelve_maps_none_spanning_both_rooms() {
 }
 
 #[test]
-fn touching_rooms_share_the_floor_map_which_is_the_leak_to_fix_later() {
+fn touching_rooms_share_the_floor_map_under_crease_maps() {
     let scene = scenes::build("touching-rooms").unwrap();
     let maps = CreaseAngle::default().partition(&scene);
     // Ten faces, all meeting at right angles or not at all: ten maps, the floor spans both rooms.

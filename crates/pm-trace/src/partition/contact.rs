@@ -11,7 +11,7 @@ use pm_geom::{FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_contacts};
 /// Crease-angle maps over all meshes of a scene welded together, after splitting faces along
 /// their contacts.
 ///
-/// Use it in two steps: [`Contact::split_scene`] cuts every face that another face stands on
+/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) cuts every face that another face stands on
 /// (the floor under a wall) along the contact line into convex pieces, so that the contact
 /// becomes an edge shared by three or more faces (floor left, floor right, wall); then
 /// [`Partitioner::partition`] flood-fills across edges with a crease angle below `max_angle`
@@ -82,6 +82,10 @@ impl Contact {
 }
 
 impl Partitioner for Contact {
+    fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
+        self.split_scene(scene)
+    }
+
     fn partition(&self, scene: &Scene) -> MapAssignment {
         const UNSET: u32 = u32::MAX;
         let (polygons, _, _) = mesh_faces(scene);

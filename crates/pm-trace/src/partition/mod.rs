@@ -7,7 +7,7 @@ mod crease;
 pub use contact::Contact;
 pub use crease::CreaseAngle;
 
-use crate::{PartId, Scene};
+use crate::{PartId, Scene, SceneError};
 
 /// The photon map of every part of a scene.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -58,6 +58,13 @@ impl MapAssignment {
 pub trait Partitioner {
     /// The assignment for `scene` (one entry per part).
     fn partition(&self, scene: &Scene) -> MapAssignment;
+
+    /// Prepares a scene for this partition before photons are traced, once per scene. The
+    /// default returns it unchanged; [`Contact`] splits faces along the lines where other faces
+    /// stand on them, which changes the scene's parts.
+    fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
+        Ok(scene)
+    }
 }
 
 /// Every part in map 0: one global photon map (the paper's basic variant).
