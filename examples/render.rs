@@ -198,7 +198,7 @@ fn run(args: &Args) -> Result<(), String> {
             stats: out.stats,
             mean,
         };
-        println!("{}", summary(&record));
+        say(&summary(&record));
         records.push(record);
         images.push(out.image);
     }
@@ -212,7 +212,7 @@ fn run(args: &Args) -> Result<(), String> {
     image
         .write_png(&png_path, args.exposure)
         .map_err(|e| e.to_string())?;
-    println!("wrote {} and {}", exr_path.display(), png_path.display());
+    say(&format!("wrote {} and {}", exr_path.display(), png_path.display()));
     if let Some(path) = &args.stats_json {
         let objects: Vec<String> = records.iter().map(json_object).collect();
         let text = if args.compare {
@@ -221,7 +221,7 @@ fn run(args: &Args) -> Result<(), String> {
             objects.join("") + "\n"
         };
         fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-        println!("wrote {}", path.display());
+        say(&format!("wrote {}", path.display()));
     }
     Ok(())
 }
@@ -245,6 +245,12 @@ fn load_scene(arg: &str) -> Result<(Scene, String), String> {
         .unwrap_or("scene")
         .to_owned();
     load_gltf(path).map(|s| (s, name))
+}
+
+/// Prints a line to stdout; a closed pipe (`render | head -1`) is not an error worth a panic.
+fn say(line: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stdout().lock(), "{line}");
 }
 
 /// A glTF scene through pm-trace's safe loader.
