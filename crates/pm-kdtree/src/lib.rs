@@ -1,7 +1,55 @@
 //! Compact 20-byte photons and an implicit kd-tree with k-nearest queries in a sphere
-//! (Euclidean) or a cube (Chebyshev, L∞).
+//! (Euclidean) or a cube (Chebyshev, L∞), for photon-mapping renderers.
 //!
-//! (Crate docs to be completed by the pm-kdtree issue: conventions, example.)
+//! - [`CompactPhoton`] packs a [`Photon`] (position, RGB power, travel direction, kind) into
+//!   20 bytes: power within ±0.35 % per channel, direction within 0.05°.
+//! - [`PhotonTree`] stores photons in tree order with no per-node pointers (20 bytes per
+//!   photon plus about 0.2 bytes of split nodes), built in parallel by median selection.
+//! - [`PhotonTree::nearest_k`] finds the k nearest photons within a maximum distance under a
+//!   [`Metric`] ([`Euclidean`] or [`Chebyshev`], or your own), filtered by [`KindMask`],
+//!   into a reusable [`Neighbours`] buffer that also reports the search extent.
+//! - [`PhotonTree::for_each_within`] visits every photon within a radius.
+//!
+//! # Conventions
+//!
+//! f32 throughout; positions in metres (right-handed, +y up, as in the rest of the
+//! workspace); power in watts per linear-RGB channel; `direction` is the unit direction of
+//! *travel* (pointing into the surface the photon landed on). Distances returned by queries
+//! are true distances under the query's metric, never squared. Queries allocate nothing once
+//! their [`Neighbours`] buffer is warm and may run from many threads at once.
+//!
+//! # Example
+//!
+//! ```
+//! use glam::Vec3;
+//! use pm_kdtree::{Chebyshev, Euclidean, KindMask, Neighbours, Photon, PhotonKind, PhotonTree};
+//!
+//! // 1000 photons of 1 mW each on the floor y = 0, in a 1 m × 1 m grid-like pattern.
+//! let photons: Vec<Photon> = (0..1000)
+//!     .map(|i| Photon {
+//!         position: Vec3::new((i % 32) as f32 / 32.0, 0.0, (i / 32) as f32 / 32.0),
+//!         power: Vec3::splat(1e-3),
+//!         direction: Vec3::NEG_Y,
+//!         kind: if i % 2 == 0 { PhotonKind::Direct } else { PhotonKind::Indirect },
+//!     })
+//!     .collect();
+//! let tree = PhotonTree::from_photons(&photons)?;
+//! tree.validate().expect("a freshly built tree is valid");
+//!
+//! let mut near = Neighbours::new();
+//! tree.nearest_k::<Euclidean>(Vec3::new(0.5, 0.0, 0.5), 50, 0.2, KindMask::ALL, &mut near);
+//! assert_eq!(near.len(), 50);
+//! assert!(!near.is_partial());
+//! // Jensen's estimate: irradiance = total power / (π r²), r = the 50th distance.
+//! let power: Vec3 = near.as_slice().iter().map(|n| tree.get(n.index).power()).sum();
+//! let irradiance = power / (std::f32::consts::PI * near.extent().powi(2));
+//! assert!((irradiance.x - 1.0).abs() < 0.25, "1000 mW on about 1 m² is about 1 W/m²");
+//!
+//! // A cube query that only wants indirect photons and runs out of photons: partial.
+//! tree.nearest_k::<Chebyshev>(Vec3::new(5.0, 0.0, 5.0), 10, 0.1, KindMask::NOT_DIRECT, &mut near);
+//! assert!(near.is_partial() && near.is_empty() && near.extent() == 0.1);
+//! # Ok::<(), pm_kdtree::BuildError>(())
+//! ```
 
 pub mod error;
 pub mod metric;
@@ -13,4 +61,4 @@ pub use error::BuildError;
 pub use metric::{Chebyshev, Euclidean, Metric};
 pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind};
 pub use query::{Neighbour, Neighbours};
-pub use tree::PhotonTree;
+pub use tree::{InvariantError, LEAF_CAPACITY, PhotonTree};

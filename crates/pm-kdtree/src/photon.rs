@@ -1,6 +1,20 @@
 //! Photons: the decoded form used while tracing, and the 20-byte compact form stored in trees.
+//!
+//! The 8 bytes after the position hold, from the lowest bit of a little-endian `u64`:
+//! red, green, blue power as 12-bit logarithmic codes (bits 0–35), the travel direction as
+//! a 2 × 12-bit octahedral code (bits 36–59), the kind (bits 60–61) and 2 spare bits. The
+//! direction code is the best of the four grid points around the exact projection, chosen by
+//! squared distance (an f32 dot product near 1 cannot rank directions 0.02° apart); the
+//! worst error measured over 300,000 random directions is 0.040°.
+//!
+//! Power is stored per channel on a log scale rather than with a shared exponent (as Ward's
+//! RGBE and Jensen's 4-byte power do): a shared exponent gives the largest channel 0.4 %
+//! precision but a channel 10× smaller only 4 %, and photon powers after a few coloured
+//! bounces routinely differ by 10–100× between channels. Per-channel codes keep every channel
+//! within ±0.35 % over 9.5e-7 … 2.0e6 W. Decoding is a lookup in a 4096-entry table computed
+//! at compile time: no `exp` in the hot loop.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// How a photon got where it is stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -31,6 +45,10 @@ impl KindMask {
     pub const fn accepts(self, kind: PhotonKind) -> bool {
         self.0 & (1 << kind as u8) != 0
     }
+    /// True when every kind is accepted (queries then skip the filter).
+    pub const fn accepts_all(self) -> bool {
+        self.0 & 0b111 == 0b111
+    }
 }
 
 /// A photon in full precision.
@@ -47,6 +65,10 @@ pub struct Photon {
 }
 
 /// A photon in 20 bytes: position as 3×f32 and 8 bytes of encoded power, direction and kind.
+///
+/// See the [module docs](self) for the layout and precision: power within ±0.35 % per
+/// channel over [`CompactPhoton::MIN_POWER`] … [`CompactPhoton::MAX_POWER`] watts, direction
+/// within 0.05°.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct CompactPhoton {
@@ -54,15 +76,153 @@ pub struct CompactPhoton {
     packed: [u32; 2],
 }
 
-impl CompactPhoton {
-    /// Encodes a photon.
-    pub fn encode(photon: &Photon) -> Self {
-        let _ = photon;
-        todo!("pm-kdtree issue")
+/// Power codes per octave (factor 2): a step of 2^(1/100), so rounding errs by ≤ 0.347 %.
+const CODES_PER_OCTAVE: i32 = 100;
+/// log2 of the power of code 1.
+const MIN_LOG2: i32 = -20;
+const POWER_BITS: u32 = 12;
+const POWER_MAX_CODE: u32 = (1 << POWER_BITS) - 1;
+const DIRECTION_BITS: u32 = 12;
+/// Even, so the middle code decodes to exactly 0 and the six axis directions are exact.
+const DIRECTION_MAX_CODE: u32 = (1 << DIRECTION_BITS) - 2;
+const DIRECTION_SHIFT: u32 = 3 * POWER_BITS;
+const KIND_SHIFT: u32 = DIRECTION_SHIFT + 2 * DIRECTION_BITS;
+
+/// `exp(x)` for small |x| by its Taylor series (compile-time table construction only).
+const fn exp_series(x: f64) -> f64 {
+    let mut sum = 1.0;
+    let mut term = 1.0;
+    let mut i = 1;
+    while i < 30 {
+        term = term * x / i as f64;
+        sum += term;
+        i += 1;
     }
+    sum
+}
+
+/// Decoded watts for each 12-bit power code; code 0 is zero.
+const POWER_TABLE_VALUES: [f32; 1 << POWER_BITS] = {
+    let mut table = [0.0f32; 1 << POWER_BITS];
+    let mut code = 1;
+    while code < table.len() {
+        let e = code as i32 - 1;
+        let octave = e.div_euclid(CODES_PER_OCTAVE) + MIN_LOG2;
+        let frac = e.rem_euclid(CODES_PER_OCTAVE);
+        let whole = f64::from_bits(((1023 + octave) as u64) << 52);
+        let part = exp_series(frac as f64 / CODES_PER_OCTAVE as f64 * core::f64::consts::LN_2);
+        table[code] = (whole * part) as f32;
+        code += 1;
+    }
+    table
+};
+static POWER_TABLE: [f32; 1 << POWER_BITS] = POWER_TABLE_VALUES;
+
+fn encode_channel(watts: f32) -> u64 {
+    if watts.is_nan() || watts <= 0.0 {
+        return 0;
+    }
+    if watts == f32::INFINITY {
+        return POWER_MAX_CODE as u64;
+    }
+    let code = ((watts.log2() - MIN_LOG2 as f32) * CODES_PER_OCTAVE as f32).round() + 1.0;
+    if code >= 1.0 {
+        return code.min(POWER_MAX_CODE as f32) as u64;
+    }
+    // Below the smallest code: keep it when it is nearer to that code than to zero.
+    if watts >= 0.5 * POWER_TABLE[1] { 1 } else { 0 }
+}
+
+fn decode_direction(u: u32, v: u32) -> Vec3 {
+    // (2u − M) / M is exact at u = M/2 and at both ends.
+    let m = DIRECTION_MAX_CODE as i32;
+    let x = (2 * u as i32 - m) as f32 / m as f32;
+    let y = (2 * v as i32 - m) as f32 / m as f32;
+    let z = 1.0 - x.abs() - y.abs();
+    let (x, y) = if z < 0.0 {
+        ((1.0 - y.abs()).copysign(x), (1.0 - x.abs()).copysign(y))
+    } else {
+        (x, y)
+    };
+    Vec3::new(x, y, z).normalize()
+}
+
+/// Octahedral code of a direction; of the four grid points around the exact projection it
+/// keeps the one that decodes nearest (Cigolle et al. 2014, "precise" variant).
+fn encode_direction(direction: Vec3) -> (u32, u32) {
+    let l1 = direction.x.abs() + direction.y.abs() + direction.z.abs();
+    if !(l1 > 0.0 && l1.is_finite()) {
+        return encode_direction(Vec3::Z);
+    }
+    let n = direction / l1;
+    let mut p = Vec2::new(n.x, n.y);
+    if n.z < 0.0 {
+        p = Vec2::new((1.0 - n.y.abs()).copysign(n.x), (1.0 - n.x.abs()).copysign(n.y));
+    }
+    let grid = (p + 1.0) * (0.5 * DIRECTION_MAX_CODE as f32);
+    let unit = direction.normalize();
+    let mut best = (0, 0);
+    // Compared by squared distance, not by dot product: near 1 an f32 dot product cannot
+    // tell apart directions 0.02° apart.
+    let mut best_error = f32::INFINITY;
+    for du in 0..2 {
+        for dv in 0..2 {
+            let u = (grid.x.floor() + du as f32).clamp(0.0, DIRECTION_MAX_CODE as f32) as u32;
+            let v = (grid.y.floor() + dv as f32).clamp(0.0, DIRECTION_MAX_CODE as f32) as u32;
+            let error = (decode_direction(u, v) - unit).length_squared();
+            if error < best_error {
+                best_error = error;
+                best = (u, v);
+            }
+        }
+    }
+    best
+}
+
+impl CompactPhoton {
+    /// Smallest nonzero power a channel keeps (watts); smaller powers round to it or to zero.
+    pub const MIN_POWER: f32 = POWER_TABLE_VALUES[1];
+    /// Largest power a channel keeps (watts); larger powers are clamped to it.
+    pub const MAX_POWER: f32 = POWER_TABLE_VALUES[POWER_MAX_CODE as usize];
+
+    /// Encodes a photon. Negative or NaN power channels become zero; the direction is
+    /// normalised (a zero or non-finite direction becomes +z). The position is kept as is:
+    /// [`crate::PhotonTree::build`] rejects non-finite ones.
+    pub fn encode(photon: &Photon) -> Self {
+        let power = photon.power;
+        let (u, v) = encode_direction(photon.direction);
+        let bits = encode_channel(power.x)
+            | encode_channel(power.y) << POWER_BITS
+            | encode_channel(power.z) << (2 * POWER_BITS)
+            | (u as u64) << DIRECTION_SHIFT
+            | (v as u64) << (DIRECTION_SHIFT + DIRECTION_BITS)
+            | (photon.kind as u64) << KIND_SHIFT;
+        Self::from_parts(photon.position.to_array(), bits)
+    }
+
+    pub(crate) fn from_parts(position: [f32; 3], bits: u64) -> Self {
+        Self {
+            position,
+            packed: [bits as u32, (bits >> 32) as u32],
+        }
+    }
+
+    pub(crate) fn bits(&self) -> u64 {
+        self.packed[0] as u64 | (self.packed[1] as u64) << 32
+    }
+
+    pub(crate) fn position_array(&self) -> [f32; 3] {
+        self.position
+    }
+
     /// Decodes it.
     pub fn decode(&self) -> Photon {
-        todo!("pm-kdtree issue")
+        Photon {
+            position: self.position(),
+            power: self.power(),
+            direction: self.direction(),
+            kind: self.kind(),
+        }
     }
     /// Position.
     pub fn position(&self) -> Vec3 {
@@ -70,15 +230,63 @@ impl CompactPhoton {
     }
     /// Decoded power (watts per channel).
     pub fn power(&self) -> Vec3 {
-        todo!("pm-kdtree issue")
+        let bits = self.bits();
+        let mask = POWER_MAX_CODE as u64;
+        Vec3::new(
+            POWER_TABLE[(bits & mask) as usize],
+            POWER_TABLE[(bits >> POWER_BITS & mask) as usize],
+            POWER_TABLE[(bits >> (2 * POWER_BITS) & mask) as usize],
+        )
     }
     /// Decoded unit direction of travel.
     pub fn direction(&self) -> Vec3 {
-        todo!("pm-kdtree issue")
+        let bits = self.bits();
+        let mask = (1u64 << DIRECTION_BITS) - 1;
+        decode_direction(
+            (bits >> DIRECTION_SHIFT & mask) as u32,
+            (bits >> (DIRECTION_SHIFT + DIRECTION_BITS) & mask) as u32,
+        )
     }
     /// Kind.
     pub fn kind(&self) -> PhotonKind {
-        let _ = self.packed;
-        todo!("pm-kdtree issue")
+        kind_of_bits(self.bits())
+    }
+}
+
+/// The kind stored in packed bits (code 3 is never written; it reads as indirect).
+#[inline]
+pub(crate) fn kind_of_bits(bits: u64) -> PhotonKind {
+    match bits >> KIND_SHIFT & 0b11 {
+        0 => PhotonKind::Direct,
+        2 => PhotonKind::Caustic,
+        _ => PhotonKind::Indirect,
+    }
+}
+
+/// The raw 2-bit kind code of packed bits (3 is never written).
+#[inline]
+pub(crate) fn kind_code_of_bits(bits: u64) -> u8 {
+    (bits >> KIND_SHIFT & 0b11) as u8
+}
+
+/// The kind-mask bit of packed bits, for filtering without decoding.
+#[inline]
+pub(crate) fn kind_bit_of_bits(bits: u64) -> u8 {
+    1 << (bits >> KIND_SHIFT & 0b11)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn power_table_ends_match_the_documented_range() {
+        assert_eq!(POWER_TABLE[1], CompactPhoton::MIN_POWER);
+        assert_eq!(POWER_TABLE[POWER_MAX_CODE as usize], CompactPhoton::MAX_POWER);
+        // Closed form at whole octaves: code 1 + 100·m is exactly 2^(m − 20).
+        for m in 0..40 {
+            let code = 1 + 100 * m as usize;
+            assert_eq!(POWER_TABLE[code], 2f32.powi(m - 20));
+        }
     }
 }

@@ -1,4 +1,15 @@
-//! Query results: a reusable buffer of neighbours plus the search extent.
+//! Queries on a [`PhotonTree`]: the k nearest within a maximum distance (with a kind filter)
+//! into a reusable buffer, and a visit-everything-within query.
+//!
+//! Both descend to the query's own leaf first, then visit the far side of a split only when
+//! a lower bound on the distance to that side (built incrementally per axis, see
+//! [`Metric::grow_bound`]) does not exceed the current k-th distance. Leaves are scanned in two
+//! passes, ranks first (vectorisable) and then the few candidates, so the scan is branch-light.
+
+use crate::photon::kind_bit_of_bits;
+use crate::tree::LEAF_CAPACITY;
+use crate::{KindMask, Metric, PhotonTree};
+use glam::Vec3;
 
 /// One found photon.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -10,6 +21,9 @@ pub struct Neighbour {
 }
 
 /// Reusable result buffer of a k-nearest query; keep one per thread.
+///
+/// It grows to `k` entries on first use; later queries with the same or smaller `k`
+/// allocate nothing.
 #[derive(Clone, Debug, Default)]
 pub struct Neighbours {
     found: Vec<Neighbour>,
@@ -22,9 +36,29 @@ impl Neighbours {
     pub fn new() -> Self {
         Self::default()
     }
-    /// The neighbours found (order unspecified).
+    /// An empty buffer with room for `k` neighbours (no allocation in later queries).
+    pub fn with_capacity(k: usize) -> Self {
+        Self {
+            found: Vec::with_capacity(k),
+            ..Self::default()
+        }
+    }
+    /// The neighbours found, in no particular order (see [`Neighbours::sort_by_distance`]).
     pub fn as_slice(&self) -> &[Neighbour] {
         &self.found
+    }
+    /// Sorts the neighbours found by increasing distance (ties in no particular order).
+    pub fn sort_by_distance(&mut self) {
+        self.found
+            .sort_unstable_by(|a, b| a.distance.total_cmp(&b.distance));
+    }
+    /// Number of neighbours found.
+    pub fn len(&self) -> usize {
+        self.found.len()
+    }
+    /// True when nothing was found.
+    pub fn is_empty(&self) -> bool {
+        self.found.is_empty()
     }
     /// The search extent: the k-th distance, or the maximum distance when fewer than k were found.
     pub fn extent(&self) -> f32 {
@@ -33,5 +67,247 @@ impl Neighbours {
     /// True when fewer than k photons lay within the maximum distance.
     pub fn is_partial(&self) -> bool {
         self.partial
+    }
+}
+
+impl PhotonTree {
+    /// The `k` nearest photons to `query` under metric `M` within `max_distance` whose kind is
+    /// in `kinds`, written into `out` (in no particular order; see [`Neighbours`]).
+    ///
+    /// A photon at distance exactly `max_distance` counts as within. When fewer than `k`
+    /// photons qualify, all of them are returned, [`Neighbours::extent`] is `max_distance` and
+    /// [`Neighbours::is_partial`] is true. Edge cases: `k = 0` finds nothing, with extent 0 and
+    /// not partial; a negative or NaN `max_distance` or a non-finite `query` finds nothing
+    /// (partial, extent `max_distance`); an infinite `max_distance` is allowed. Allocates nothing once `out` holds `k`.
+    pub fn nearest_k<M: Metric>(
+        &self,
+        query: Vec3,
+        k: usize,
+        max_distance: f32,
+        kinds: KindMask,
+        out: &mut Neighbours,
+    ) {
+        out.found.clear();
+        if k == 0 {
+            out.extent = 0.0;
+            out.partial = false;
+            return;
+        }
+        out.extent = max_distance;
+        out.partial = true;
+        if max_distance.is_nan() || max_distance < 0.0 || !query.is_finite() || self.is_empty() {
+            return;
+        }
+        out.found.reserve(k);
+        let max_rank = M::distance_to_rank(max_distance);
+        let mut search = Knn::<M> {
+            tree: self,
+            query,
+            k,
+            worst: max_rank,
+            all_kinds: kinds.accepts_all(),
+            kinds: kinds.0,
+            found: &mut out.found,
+            metric: std::marker::PhantomData,
+        };
+        search.visit(1, 0, self.len(), 0, 0.0, [0.0; 3]);
+        for n in out.found.iter_mut() {
+            n.distance = M::rank_to_distance(n.distance);
+        }
+        if out.found.len() == k {
+            // The heap's root is the k-th nearest.
+            out.extent = out.found[0].distance;
+            out.partial = false;
+        }
+    }
+
+    /// Calls `f(index, distance)` for every photon within `radius` of `query` under `M`
+    /// (a photon at distance exactly `radius` included), in no particular order. A negative or
+    /// NaN radius, or a non-finite query, visits nothing.
+    pub fn for_each_within<M: Metric>(&self, query: Vec3, radius: f32, mut f: impl FnMut(u32, f32)) {
+        if radius.is_nan() || radius < 0.0 || !query.is_finite() || self.is_empty() {
+            return;
+        }
+        let mut search = Within::<M, _> {
+            tree: self,
+            query,
+            limit: M::distance_to_rank(radius),
+            f: &mut f,
+            metric: std::marker::PhantomData,
+        };
+        search.visit(1, 0, self.len(), 0, 0.0, [0.0; 3]);
+    }
+
+    /// Ranks of the photons `lo..hi` (at most [`LEAF_CAPACITY`]) from `query`, into `ranks`.
+    #[inline(always)]
+    fn leaf_ranks<M: Metric>(
+        &self,
+        query: Vec3,
+        lo: usize,
+        hi: usize,
+        ranks: &mut [f32; LEAF_CAPACITY],
+    ) -> usize {
+        let len = (hi - lo).min(LEAF_CAPACITY);
+        let (xs, ys, zs) = (
+            &self.xs[lo..lo + len],
+            &self.ys[lo..lo + len],
+            &self.zs[lo..lo + len],
+        );
+        for (((r, &x), &y), &z) in ranks[..len].iter_mut().zip(xs).zip(ys).zip(zs) {
+            *r = M::rank(Vec3::new(x - query.x, y - query.y, z - query.z));
+        }
+        len
+    }
+}
+
+/// State of one k-nearest search. `found` holds ranks (not distances) while searching, as a
+/// max-heap.
+struct Knn<'a, M> {
+    tree: &'a PhotonTree,
+    query: Vec3,
+    k: usize,
+    /// Rank a photon must not exceed to be kept: the k-th rank once k are found.
+    worst: f32,
+    all_kinds: bool,
+    kinds: u8,
+    found: &'a mut Vec<Neighbour>,
+    metric: std::marker::PhantomData<M>,
+}
+
+impl<M: Metric> Knn<'_, M> {
+    fn visit(&mut self, node: usize, lo: usize, hi: usize, level: u32, bound: f32, offsets: [f32; 3]) {
+        if level == self.tree.depth {
+            self.scan_leaf(lo, hi);
+            return;
+        }
+        let axis = self.tree.axes[node] as usize;
+        let delta = self.query[axis] - self.tree.splits[node];
+        let mid = lo + (hi - lo) / 2;
+        let (near, near_lo, near_hi, far, far_lo, far_hi) = if delta < 0.0 {
+            (2 * node, lo, mid, 2 * node + 1, mid, hi)
+        } else {
+            (2 * node + 1, mid, hi, 2 * node, lo, mid)
+        };
+        self.visit(near, near_lo, near_hi, level + 1, bound, offsets);
+        let offset = M::axis_rank(delta);
+        let far_bound = M::grow_bound(bound, offsets[axis], offset);
+        if far_bound <= self.worst {
+            let mut far_offsets = offsets;
+            far_offsets[axis] = offset;
+            self.visit(far, far_lo, far_hi, level + 1, far_bound, far_offsets);
+        }
+    }
+
+    #[inline]
+    fn scan_leaf(&mut self, lo: usize, hi: usize) {
+        let mut ranks = [0.0f32; LEAF_CAPACITY];
+        let len = self.tree.leaf_ranks::<M>(self.query, lo, hi, &mut ranks);
+        // A bit per candidate, computed without branches; `insert` re-checks against the
+        // threshold, which tightens as candidates go in.
+        let worst = self.worst;
+        let mut candidates = ranks[..len]
+            .iter()
+            .enumerate()
+            .fold(0u64, |bits, (i, &rank)| bits | u64::from(rank <= worst) << i);
+        while candidates != 0 {
+            let i = candidates.trailing_zeros() as usize;
+            candidates &= candidates - 1;
+            let index = lo + i;
+            if self.all_kinds || self.kinds & kind_bit_of_bits(self.tree.payload[index]) != 0 {
+                self.insert(index as u32, ranks[i]);
+            }
+        }
+    }
+
+    /// Keeps `found` a max-heap on rank (the worst at the root), at most `k` long.
+    #[inline]
+    fn insert(&mut self, index: u32, rank: f32) {
+        let item = Neighbour {
+            index,
+            distance: rank,
+        };
+        let heap = &mut *self.found;
+        if heap.len() < self.k {
+            // Sift up: on average O(1) moves for random arrivals.
+            let mut at = heap.len();
+            heap.push(item);
+            while at > 0 {
+                let parent = (at - 1) / 2;
+                if heap[parent].distance >= rank {
+                    break;
+                }
+                heap[at] = heap[parent];
+                at = parent;
+            }
+            heap[at] = item;
+            if heap.len() == self.k {
+                self.worst = heap[0].distance;
+            }
+            return;
+        }
+        if rank >= self.worst {
+            return;
+        }
+        // Replace the root and sift it down; the larger child is picked without a branch.
+        let heap = heap.as_mut_slice();
+        let len = heap.len();
+        let mut at = 0;
+        loop {
+            let left = 2 * at + 1;
+            let child = if left + 1 < len {
+                left + usize::from(heap[left + 1].distance > heap[left].distance)
+            } else if left < len {
+                left
+            } else {
+                break;
+            };
+            if heap[child].distance <= rank {
+                break;
+            }
+            heap[at] = heap[child];
+            at = child;
+        }
+        heap[at] = item;
+        self.worst = heap[0].distance;
+    }
+}
+
+/// State of one visit-everything-within search.
+struct Within<'a, M, F> {
+    tree: &'a PhotonTree,
+    query: Vec3,
+    limit: f32,
+    f: &'a mut F,
+    metric: std::marker::PhantomData<M>,
+}
+
+impl<M: Metric, F: FnMut(u32, f32)> Within<'_, M, F> {
+    fn visit(&mut self, node: usize, lo: usize, hi: usize, level: u32, bound: f32, offsets: [f32; 3]) {
+        if level == self.tree.depth {
+            let mut ranks = [0.0f32; LEAF_CAPACITY];
+            let len = self.tree.leaf_ranks::<M>(self.query, lo, hi, &mut ranks);
+            for (i, &rank) in ranks[..len].iter().enumerate() {
+                if rank <= self.limit {
+                    (self.f)((lo + i) as u32, M::rank_to_distance(rank));
+                }
+            }
+            return;
+        }
+        let axis = self.tree.axes[node] as usize;
+        let delta = self.query[axis] - self.tree.splits[node];
+        let mid = lo + (hi - lo) / 2;
+        let (near, near_lo, near_hi, far, far_lo, far_hi) = if delta < 0.0 {
+            (2 * node, lo, mid, 2 * node + 1, mid, hi)
+        } else {
+            (2 * node + 1, mid, hi, 2 * node, lo, mid)
+        };
+        self.visit(near, near_lo, near_hi, level + 1, bound, offsets);
+        let offset = M::axis_rank(delta);
+        let far_bound = M::grow_bound(bound, offsets[axis], offset);
+        if far_bound <= self.limit {
+            let mut far_offsets = offsets;
+            far_offsets[axis] = offset;
+            self.visit(far, far_lo, far_hi, level + 1, far_bound, far_offsets);
+        }
     }
 }

@@ -1,1 +1,137 @@
-//! Safe glTF 2.0 loading (`.gltf`, `.glb`) into a [`crate`] scene (filled in by the glTF issue).
+//! Safe glTF 2.0 loading (`.gltf`, `.glb`) into a [`Scene`]: [`load_scene`] or
+//! [`load_scene_with`]; [`read_content`] gives the flattened file without building a scene.
+//!
+//! # What is read, and what is refused
+//!
+//! Only the scene file itself, and buffers given as relative paths that stay inside the
+//! scene's folder after percent-decoding and canonicalisation (symbolic links included), each
+//! a regular file no larger than its declared `byteLength` (at most `byteLength + 1` bytes are
+//! ever read). Buffers may also be `data:` URIs or the GLB binary chunk. Absolute paths,
+//! `file:` and every other scheme, escapes such as `..%2F`, invalid escapes such as `%FF`,
+//! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
+//! buffer. A GLB container's length fields are checked against the file before parsing.
+//! Images are never read (textures are not used). Memory is bounded by the file sizes: no
+//! accessor may describe more bytes than the file's buffers hold.
+//!
+//! The gltf crate panics on some malformed files; the loader checks what it can first (GLB
+//! lengths, `POSITION` accessor indices, accessor and buffer-view bounds, vertex indices)
+//! and runs every call into the crate behind [`std::panic::catch_unwind`], reporting
+//! [`GltfError::Panic`]. No panic hook is installed, so the process's hook may still print.
+//!
+//! # Mapping
+//!
+//! - **Geometry**: the default scene (else scene 0, else every root node) is walked with an
+//!   explicit stack; a node reached twice (a cycle) or deeper than [`MAX_DEPTH`] is an error.
+//!   World transforms compose `matrix` (column-major) or translation × rotation × scale.
+//!   Triangle lists, strips and fans are read, each primitive becoming one scene mesh;
+//!   points and lines are skipped and counted ([`GltfContent::skipped_non_triangle`]).
+//!   Non-finite positions and out-of-range indices are errors.
+//! - **Materials** ([`GltfMaterial`]): `KHR_materials_transmission` ≥ 0.5 → glass
+//!   (`KHR_materials_ior`, default 1.5); metallic ≥ 0.9 and roughness ≤ 0.1 → mirror with
+//!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
+//!   albedo. Textures are ignored.
+//! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
+//!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
+//!   nit-like units taken 1:1). Every emissive primitive also becomes an
+//!   [`AreaLight`](crate::AreaLight) emitting from the front (counter-clockwise) side of its
+//!   triangles, like the scene's own area lights, whatever `doubleSided` says.
+//! - **Punctual lights** (`KHR_lights_punctual`): point and spot intensities in candela
+//!   become radiant intensities in W/sr, directional illuminance in lux becomes irradiance in
+//!   W/m², dividing by [`LUMENS_PER_WATT`] (683 lm/W, the efficacy of 555 nm light) and
+//!   multiplying by [`GltfOptions::light_scale`] (files that store "watts-like" numbers want
+//!   683). A point light of intensity `I` has power `4π I`; a spot becomes a hard cone of the
+//!   outer angle with power `2π (1 − cos θ_outer) I` (the spec's advice for single-angle
+//!   engines). Lights and cameras point down their node's −Z axis; `range` is ignored.
+//! - **Camera**: the first perspective camera met in the walk (orthographic ones are
+//!   skipped); otherwise [`frame_bounds`] places one on the +z side looking along −z.
+//! - **No light at all**: with [`GltfOptions::default_light`] (the default) a white point
+//!   light at the camera gives 1 W/m² at the centre of the bounds; without it the file is an
+//!   error ([`GltfError::Scene`]).
+//!
+//! # Example
+//!
+//! ```
+//! use pm_trace::gltf::{GltfOptions, read_content};
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/gltf/scenes/known.gltf");
+//! let content = read_content(path.as_ref(), &GltfOptions::default())?;
+//! assert_eq!((content.triangle_count(), content.lights.len()), (5, 3));
+//!
+//! let escape = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/gltf/scenes/traversal.gltf");
+//! let err = pm_trace::gltf::load_scene(escape.as_ref()).unwrap_err();
+//! assert_eq!(err.kind(), "buffer/escapes-folder");
+//! # Ok::<(), pm_trace::gltf::GltfError>(())
+//! ```
+
+mod accessor;
+mod buffers;
+mod build;
+mod camera;
+mod content;
+mod error;
+mod graph;
+mod light;
+mod material;
+mod primitive;
+mod source;
+
+pub use build::build_scene;
+pub use camera::{DEFAULT_VFOV, GltfCamera, frame_bounds};
+pub use content::{GltfContent, GltfMesh, read_content};
+pub use error::{BufferError, GltfError};
+pub use graph::MAX_DEPTH;
+pub use light::{GltfLight, LUMENS_PER_WATT};
+pub use material::{GltfMaterial, SurfaceKind};
+
+use std::path::Path;
+
+use crate::Scene;
+
+/// Knobs for loading a glTF file. `GltfOptions::default()` follows the glTF units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GltfOptions {
+    /// Multiplies every punctual light's power after the photometric conversion (1 by
+    /// default; 683 for files whose intensities are really watts).
+    pub light_scale: f32,
+    /// Multiplies every emissive surface's radiance (1 by default).
+    pub emission_scale: f32,
+    /// The largest scene file or buffer read, in bytes (1 GiB by default).
+    pub max_file_bytes: u64,
+    /// When the file has neither punctual lights nor emissive surfaces, add a point light at
+    /// the camera (a "headlight") so the scene still renders (on by default).
+    pub default_light: bool,
+}
+
+/// Loads a `.gltf` or `.glb` file into a [`Scene`] with [`GltfOptions::default`].
+///
+/// ```
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/gltf/scenes/known.gltf");
+/// let scene = pm_trace::gltf::load_scene(path.as_ref())?;
+/// // Five triangles, three punctual lights and one emissive triangle (an area light).
+/// assert_eq!(scene.lights().len(), 4);
+/// # Ok::<(), pm_trace::gltf::GltfError>(())
+/// ```
+pub fn load_scene(path: &Path) -> Result<Scene, GltfError> {
+    load_scene_with(path, &GltfOptions::default())
+}
+
+/// Loads a `.gltf` or `.glb` file into a [`Scene`]: [`read_content`] then [`build_scene`].
+pub fn load_scene_with(path: &Path, options: &GltfOptions) -> Result<Scene, GltfError> {
+    let content = read_content(path, options)?;
+    build_scene(path, &content, options)
+}
+
+impl GltfOptions {
+    /// The glTF units as written, a 1 GiB limit, a headlight for unlit files.
+    pub const DEFAULT: Self = Self {
+        light_scale: 1.0,
+        emission_scale: 1.0,
+        max_file_bytes: 1 << 30,
+        default_light: true,
+    };
+}
+
+impl Default for GltfOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}

@@ -1,0 +1,90 @@
+//! Errors of pm-render: bad parameters, bad images, and image I/O.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// What went wrong, and where.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// k = 0 photons to gather.
+    #[error("k must be at least 1")]
+    ZeroK,
+    /// A maximum search distance that is not positive and finite.
+    #[error("maximum search distance must be positive and finite, got {0}")]
+    BadMaxDistance(f32),
+    /// An image with zero width or height.
+    #[error("image size {width}x{height}: both sides must be at least 1")]
+    EmptyImage {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+    },
+    /// Zero photons for a mode that reads photon maps.
+    #[error("photons must be at least 1")]
+    ZeroPhotons,
+    /// Tiles of zero pixels.
+    #[error("tile size must be at least 1")]
+    ZeroTileSize,
+    /// The worker pool could not be made.
+    #[error("thread pool: {0}")]
+    Threads(String),
+    /// An image size that is not `WIDTHxHEIGHT` with both sides at least 1.
+    #[error("image size '{0}': expected WIDTHxHEIGHT with both sides at least 1, e.g. 500x500")]
+    BadSize(String),
+    /// Zero samples per pixel.
+    #[error("samples per pixel must be at least 1")]
+    ZeroSamples,
+    /// Two images that should have the same size do not.
+    #[error("image sizes differ: {a_width}x{a_height} vs {b_width}x{b_height}")]
+    SizeMismatch {
+        /// First width.
+        a_width: u32,
+        /// First height.
+        a_height: u32,
+        /// Second width.
+        b_width: u32,
+        /// Second height.
+        b_height: u32,
+    },
+    /// A pixel rectangle that is empty or reaches outside the image.
+    #[error(
+        "pixel rectangle at ({x}, {y}) of {width}x{height} is empty or outside the {image_width}x{image_height} image"
+    )]
+    BadRect {
+        /// Left column.
+        x: u32,
+        /// Top row.
+        y: u32,
+        /// Width.
+        width: u32,
+        /// Height.
+        height: u32,
+        /// Image width.
+        image_width: u32,
+        /// Image height.
+        image_height: u32,
+    },
+    /// A name (estimator, mode, …) that is not known.
+    #[error("unknown {what} '{name}' (expected {expected})")]
+    UnknownName {
+        /// What kind of name.
+        what: &'static str,
+        /// The name given.
+        name: String,
+        /// The accepted names.
+        expected: &'static str,
+    },
+    /// Reading or writing an image file failed.
+    #[error("{path}: {message}")]
+    ImageIo {
+        /// The file.
+        path: PathBuf,
+        /// What failed.
+        message: String,
+    },
+    /// The scene cannot be rendered (no camera, no light, …) or photon tracing failed.
+    #[error("scene: {0}")]
+    Scene(String),
+}

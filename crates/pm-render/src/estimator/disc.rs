@@ -1,0 +1,39 @@
+//! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere.
+
+use super::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, gather_found};
+use glam::Vec3;
+use pm_kdtree::Euclidean;
+use std::f32::consts::PI;
+
+/// Jensen's estimator: the k nearest photons (Euclidean) divided by the disc `π r²`, where `r`
+/// is the k-th distance or the maximum distance when fewer were found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Disc;
+
+impl Estimator for Disc {
+    fn irradiance(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        if map.tree.is_empty() {
+            return Vec3::ZERO;
+        }
+        map.tree.nearest_k::<Euclidean>(
+            at.position,
+            options.k,
+            options.max_distance,
+            options.kinds,
+            &mut scratch.neighbours,
+        );
+        let r = scratch.neighbours.extent();
+        if r <= 0.0 {
+            return Vec3::ZERO;
+        }
+        gather_found(at, map.tree, options, scratch);
+        let total: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
+        total / (PI * r * r)
+    }
+}

@@ -1,0 +1,50 @@
+//! Lossless OpenEXR files (32-bit float RGB, ZIP compression) through the `exr` crate.
+
+use super::Image;
+use crate::RenderError;
+use exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
+use glam::Vec3;
+use std::path::Path;
+
+fn io_error(path: &Path, e: impl std::fmt::Display) -> RenderError {
+    RenderError::ImageIo {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
+}
+
+impl Image {
+    /// Writes the image as a lossless 32-bit float RGB EXR file.
+    pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), RenderError> {
+        let path = path.as_ref();
+        let w = self.width as usize;
+        let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+            let p = self.pixels[y * w + x];
+            (p.x, p.y, p.z)
+        });
+        exr::prelude::Image::from_encoded_channels(
+            (w, self.height as usize),
+            Encoding::SMALL_LOSSLESS,
+            channels,
+        )
+        .write()
+        .to_file(path)
+        .map_err(|e| io_error(path, e))
+    }
+
+    /// Reads the first RGB(A) layer of an EXR file (alpha is dropped).
+    pub fn read_exr(path: impl AsRef<Path>) -> Result<Image, RenderError> {
+        let path = path.as_ref();
+        let img = exr::prelude::read_first_rgba_layer_from_file(
+            path,
+            |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
+            |(w, buf): &mut (usize, Vec<Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                buf[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
+            },
+        )
+        .map_err(|e| io_error(path, e))?;
+        let size = img.layer_data.size;
+        let (_, pixels) = img.layer_data.channel_data.pixels;
+        Image::from_pixels(size.width() as u32, size.height() as u32, pixels)
+    }
+}

@@ -1,0 +1,127 @@
+//! Linear RGB images (the film), with metrics, a 2×2 grid, EXR and PNG files.
+
+#[cfg(feature = "exr")]
+mod exr_file;
+mod metrics;
+#[cfg(feature = "png")]
+mod png_file;
+mod srgb;
+
+pub use srgb::{linear_to_srgb8, srgb8_of_image};
+
+use crate::RenderError;
+use glam::Vec3;
+
+/// A linear-light RGB image (Rec. 709 primaries), f32 per channel, rows top to bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    width: u32,
+    height: u32,
+    pixels: Vec<Vec3>,
+}
+
+impl Image {
+    /// A black image. Errors when a side is 0.
+    pub fn new(width: u32, height: u32) -> Result<Self, RenderError> {
+        Self::from_fn(width, height, |_, _| Vec3::ZERO)
+    }
+
+    /// An image whose pixel `(x, y)` is `f(x, y)`. Errors when a side is 0.
+    pub fn from_fn(
+        width: u32,
+        height: u32,
+        mut f: impl FnMut(u32, u32) -> Vec3,
+    ) -> Result<Self, RenderError> {
+        if width == 0 || height == 0 {
+            return Err(RenderError::EmptyImage { width, height });
+        }
+        let mut pixels = Vec::with_capacity(width as usize * height as usize);
+        for y in 0..height {
+            for x in 0..width {
+                pixels.push(f(x, y));
+            }
+        }
+        Ok(Image {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// An image from its pixels in row order. Errors when a side is 0 or the count is wrong.
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>) -> Result<Self, RenderError> {
+        if width == 0 || height == 0 {
+            return Err(RenderError::EmptyImage { width, height });
+        }
+        if pixels.len() != width as usize * height as usize {
+            return Err(RenderError::SizeMismatch {
+                a_width: width,
+                a_height: height,
+                b_width: pixels.len() as u32,
+                b_height: 1,
+            });
+        }
+        Ok(Image {
+            width,
+            height,
+            pixels,
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// All pixels, row by row from the top.
+    pub fn pixels(&self) -> &[Vec3] {
+        &self.pixels
+    }
+
+    /// All pixels, mutable.
+    pub fn pixels_mut(&mut self) -> &mut [Vec3] {
+        &mut self.pixels
+    }
+
+    /// Pixel `(x, y)`, or `None` outside the image.
+    pub fn get(&self, x: u32, y: u32) -> Option<Vec3> {
+        (x < self.width && y < self.height).then(|| self.pixels[(y * self.width + x) as usize])
+    }
+
+    /// Sets pixel `(x, y)`; ignored outside the image.
+    pub fn set(&mut self, x: u32, y: u32, value: Vec3) {
+        if x < self.width && y < self.height {
+            self.pixels[(y * self.width + x) as usize] = value;
+        }
+    }
+
+    /// The four images side by side in a 2×2 grid: `[top left, top right, bottom left,
+    /// bottom right]`. All must have the same size.
+    pub fn grid_2x2(images: [&Image; 4]) -> Result<Image, RenderError> {
+        let (w, h) = (images[0].width, images[0].height);
+        for im in &images[1..] {
+            check_same_size(images[0], im)?;
+        }
+        Image::from_fn(2 * w, 2 * h, |x, y| {
+            let cell = (y / h) * 2 + x / w;
+            images[cell as usize].pixels[((y % h) * w + x % w) as usize]
+        })
+    }
+}
+
+pub(crate) fn check_same_size(a: &Image, b: &Image) -> Result<(), RenderError> {
+    if a.width != b.width || a.height != b.height {
+        return Err(RenderError::SizeMismatch {
+            a_width: a.width,
+            a_height: a.height,
+            b_width: b.width,
+            b_height: b.height,
+        });
+    }
+    Ok(())
+}

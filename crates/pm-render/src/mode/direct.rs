@@ -1,0 +1,22 @@
+//! Direct irradiance by shadow rays: one sample per light, unoccluded samples only.
+
+use glam::Vec3;
+use pm_trace::{Hit, Rng, Scene};
+
+/// Irradiance (W/m²) at `hit` straight from the scene's lights, one shadow ray per light.
+pub fn direct_irradiance(scene: &Scene, hit: &Hit, rng: &mut Rng) -> Vec3 {
+    let mut e = Vec3::ZERO;
+    for light in scene.lights() {
+        let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
+            continue;
+        };
+        let cos = hit.normal.dot(sample.direction);
+        if cos <= 0.0 || !sample.radiance_over_pdf.is_finite() {
+            continue;
+        }
+        if !scene.occluded(hit.position, hit.position + sample.direction * sample.distance) {
+            e += sample.radiance_over_pdf * cos;
+        }
+    }
+    e
+}

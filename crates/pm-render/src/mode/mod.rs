@@ -1,0 +1,113 @@
+//! Render modes: what radiance a camera ray carries (DESIGN.md section 7). `Visualize` shows the
+//! photon maps directly, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
+//! unbiased reference.
+
+mod direct;
+mod path_trace;
+mod scatter;
+mod shadow_rays;
+mod visualize;
+
+pub use direct::direct_irradiance;
+
+use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RenderError, SurfacePoint};
+use glam::Vec3;
+use pm_trace::{Hit, PhotonMaps, Ray, Rng, Scene};
+use std::fmt;
+use std::str::FromStr;
+
+/// How a camera ray's radiance is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Follow specular bounces from the eye, then at the first diffuse hit return emission +
+    /// `albedo/π · E` from that surface's photon map (the paper's main results).
+    Visualize,
+    /// Direct light by shadow rays to every light, plus the photon map without direct photons
+    /// for the rest (the paper's Image 1).
+    ShadowRays,
+    /// An unbiased path tracer with next-event estimation and Russian roulette (the reference).
+    PathTrace,
+}
+
+impl Mode {
+    /// All modes, in command-line order.
+    pub const ALL: [Mode; 3] = [Mode::Visualize, Mode::ShadowRays, Mode::PathTrace];
+
+    /// The command-line name: `visualize`, `shadow-rays` or `path-trace`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Mode::Visualize => "visualize",
+            Mode::ShadowRays => "shadow-rays",
+            Mode::PathTrace => "path-trace",
+        }
+    }
+
+    /// True when the mode reads photon maps (every mode but [`Mode::PathTrace`]).
+    pub const fn uses_photons(self) -> bool {
+        !matches!(self, Mode::PathTrace)
+    }
+}
+
+impl fmt::Display for Mode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Mode {
+    type Err = RenderError;
+    fn from_str(s: &str) -> Result<Self, RenderError> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| RenderError::UnknownName {
+                what: "mode",
+                name: s.to_owned(),
+                expected: "visualize|shadow-rays|path-trace",
+            })
+    }
+}
+
+/// Everything a mode reads: the scene, the photon maps, and the estimator with its options.
+#[derive(Clone, Copy, Debug)]
+pub struct Lighting<'a, E> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The photon maps (`None` for [`Mode::PathTrace`], which needs none).
+    pub maps: Option<&'a PhotonMaps>,
+    /// The estimator.
+    pub estimator: &'a E,
+    /// Its options.
+    pub options: &'a EstimatorOptions,
+}
+
+impl<E: Estimator> Lighting<'_, E> {
+    /// Irradiance at `hit` from the photon map of the part hit (zero when that map is missing).
+    #[inline]
+    pub fn photon_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        let Some(maps) = self.maps else { return Vec3::ZERO };
+        let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
+            return Vec3::ZERO;
+        };
+        let view = MapView {
+            tree: map.tree(),
+            polygons: map.geometry(),
+        };
+        let at = SurfacePoint {
+            position: hit.position,
+            normal: hit.normal,
+            front_face: hit.front_face,
+        };
+        self.estimator.irradiance(at, view, self.options, scratch)
+    }
+
+    /// Radiance arriving along the camera `ray` under `mode`.
+    #[inline]
+    pub fn radiance(&self, mode: Mode, ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
+        match mode {
+            Mode::Visualize => visualize::radiance(self, ray, rng, scratch),
+            Mode::ShadowRays => shadow_rays::radiance(self, ray, rng, scratch),
+            Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
+        }
+    }
+}

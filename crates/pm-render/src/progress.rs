@@ -1,0 +1,25 @@
+//! Progress reporting: a small observer the renderer calls as tiles finish (`()` ignores it).
+
+/// Receives progress from the renderer. Called from worker threads, without locks on the
+/// renderer's side; keep implementations cheap.
+pub trait Progress: Sync {
+    /// A phase begins: `"trace"`, `"build"` or `"render"`.
+    fn phase(&self, name: &'static str) {
+        let _ = name;
+    }
+    /// `done` of `total` tiles are finished.
+    fn tiles_done(&self, done: usize, total: usize);
+}
+
+impl Progress for () {
+    fn tiles_done(&self, _done: usize, _total: usize) {}
+}
+
+impl<P: Progress + ?Sized> Progress for &P {
+    fn phase(&self, name: &'static str) {
+        (**self).phase(name)
+    }
+    fn tiles_done(&self, done: usize, total: usize) {
+        (**self).tiles_done(done, total)
+    }
+}

@@ -1,0 +1,218 @@
+//! The renderer: photon tracing, map building, then the image in tiles on rayon workers.
+//! Every pixel sample draws from its own random stream (seed, pixel, sample), so the image is
+//! bit-identical for any number of threads.
+
+use crate::{
+    Estimator, EstimatorScratch, Image, Lighting, Progress, RenderError, RenderSettings, RenderStats,
+};
+use glam::Vec3;
+use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// Keeps the pixel streams apart from the photon-path streams of the same seed.
+const PIXEL_SEED_SALT: u64 = 0x5DEE_CE66_D1CE_4E5B;
+
+/// An image and the figures of the render that made it.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// The linear RGB image (radiance, W/(m²·sr)).
+    pub image: Image,
+    /// Counts and timings.
+    pub stats: RenderStats,
+}
+
+/// Renders scenes with one estimator and one set of settings.
+///
+/// ```no_run
+/// # use pm_render::{Renderer, RenderSettings, GeometryCube};
+/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// let renderer = Renderer::new(GeometryCube, RenderSettings::default());
+/// let out = renderer.render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// println!("{:?} total", out.stats.total());
+/// # Ok(()) }
+/// ```
+#[derive(Clone, Debug)]
+pub struct Renderer<E> {
+    estimator: E,
+    settings: RenderSettings,
+}
+
+impl<E: Estimator> Renderer<E> {
+    /// A renderer with this estimator and these settings.
+    pub fn new(estimator: E, settings: RenderSettings) -> Self {
+        Renderer { estimator, settings }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// Traces photons into the maps `partitioner` assigns (skipped for path tracing), builds
+    /// the maps and renders the image, on `settings.threads` workers.
+    pub fn render<P: Partitioner + ?Sized>(
+        &self,
+        scene: &Scene,
+        partitioner: &P,
+        progress: &dyn Progress,
+    ) -> Result<Rendered, RenderError> {
+        self.settings.validate()?;
+        let uses_photons = self.settings.mode.uses_photons();
+        let start = Instant::now();
+        let assignment = uses_photons.then(|| partitioner.partition(scene));
+        let partition_time = start.elapsed();
+        self.in_pool(|| {
+            let mut stats = RenderStats {
+                threads: rayon::current_num_threads(),
+                ..RenderStats::default()
+            };
+            let maps = match &assignment {
+                Some(assignment) => Some(self.build_maps(scene, assignment, progress, &mut stats)?),
+                None => None,
+            };
+            stats.trace += partition_time;
+            progress.phase("render");
+            let start = Instant::now();
+            let image = self.render_image(scene, maps.as_ref(), progress)?;
+            stats.render = start.elapsed();
+            Ok(Rendered { image, stats })
+        })?
+    }
+
+    /// The photon maps for `scene` under `assignment` (the "trace" and "build" phases),
+    /// timing them into `stats`; runs in the current rayon pool.
+    pub fn build_maps(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<PhotonMaps, RenderError> {
+        progress.phase("trace");
+        let start = Instant::now();
+        let options = TraceOptions {
+            photons: self.settings.photons,
+            seed: self.settings.seed,
+            ..TraceOptions::default()
+        };
+        let traced =
+            trace_photons(scene, assignment, &options).map_err(|e| RenderError::Scene(e.to_string()))?;
+        stats.photons_emitted = traced.stats().emitted;
+        stats.photons_stored = traced.stats().total_stored();
+        stats.map_count = assignment.map_count();
+        stats.trace = start.elapsed();
+        progress.phase("build");
+        let start = Instant::now();
+        let maps =
+            PhotonMaps::build(scene, assignment, traced).map_err(|e| RenderError::Scene(e.to_string()))?;
+        stats.build = start.elapsed();
+        Ok(maps)
+    }
+
+    /// Renders the image from already built maps (`None` is fine for path tracing) in the
+    /// current rayon pool.
+    pub fn render_image(
+        &self,
+        scene: &Scene,
+        maps: Option<&PhotonMaps>,
+        progress: &dyn Progress,
+    ) -> Result<Image, RenderError> {
+        self.settings.validate()?;
+        let s = &self.settings;
+        let options = s.estimator_options(&scene.bounds());
+        options.validate()?;
+        let lighting = Lighting {
+            scene,
+            maps,
+            estimator: &self.estimator,
+            options: &options,
+        };
+        let tiles = tiles(s.width, s.height, s.tile_size);
+        let done = AtomicUsize::new(0);
+        let rendered: Vec<Vec<Vec3>> = tiles
+            .par_iter()
+            .map_init(EstimatorScratch::new, |scratch, tile| {
+                let pixels = render_tile(&lighting, s, tile, scratch);
+                progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
+                pixels
+            })
+            .collect();
+        let mut image = Image::new(s.width, s.height)?;
+        let width = s.width as usize;
+        for (tile, pixels) in tiles.iter().zip(&rendered) {
+            for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+                let start = (tile.y as usize + row) * width + tile.x as usize;
+                image.pixels_mut()[start..start + chunk.len()].copy_from_slice(chunk);
+            }
+        }
+        Ok(image)
+    }
+
+    fn in_pool<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
+        if self.settings.threads == 0 {
+            return Ok(f());
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.settings.threads)
+            .build()
+            .map_err(|e| RenderError::Threads(e.to_string()))?;
+        Ok(pool.install(f))
+    }
+}
+
+/// A rectangle of pixels rendered by one worker.
+#[derive(Clone, Copy, Debug)]
+struct Tile {
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+}
+
+fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    let mut out = Vec::new();
+    for y in (0..height).step_by(size as usize) {
+        for x in (0..width).step_by(size as usize) {
+            out.push(Tile {
+                x,
+                y,
+                width: size.min(width - x),
+                height: size.min(height - y),
+            });
+        }
+    }
+    out
+}
+
+fn render_tile<E: Estimator>(
+    lighting: &Lighting<'_, E>,
+    s: &RenderSettings,
+    tile: &Tile,
+    scratch: &mut EstimatorScratch,
+) -> Vec<Vec3> {
+    let camera = lighting.scene.camera();
+    let aspect = s.width as f32 / s.height as f32;
+    let spp = s.samples_per_pixel as u64;
+    let seed = s.seed ^ PIXEL_SEED_SALT;
+    let mut out = Vec::with_capacity(tile.width as usize * tile.height as usize);
+    for y in tile.y..tile.y + tile.height {
+        for x in tile.x..tile.x + tile.width {
+            let pixel = y as u64 * s.width as u64 + x as u64;
+            let mut sum = Vec3::ZERO;
+            for sample in 0..spp {
+                let mut rng = Rng::new(seed, pixel * spp + sample);
+                let u = (x as f32 + rng.next_f32()) / s.width as f32;
+                let v = (y as f32 + rng.next_f32()) / s.height as f32;
+                let l = lighting.radiance(s.mode, camera.ray(u, v, aspect), &mut rng, scratch);
+                // A non-finite sample (a degenerate light sample) must not poison the pixel.
+                if l.is_finite() {
+                    sum += l;
+                }
+            }
+            out.push(sum / spp as f32);
+        }
+    }
+    out
+}

@@ -1,0 +1,102 @@
+//! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
+//! the paper's defaults.
+
+use crate::{EstimatorOptions, Mode, RenderError};
+use pm_geom::Aabb;
+use pm_kdtree::KindMask;
+
+/// What to render and how; [`RenderSettings::default`] is the paper's setup (500×500, one
+/// sample per pixel, 100,000 photons, k = 100).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel (jittered within the pixel).
+    pub samples_per_pixel: u32,
+    /// Photon paths emitted from the lights.
+    pub photons: u32,
+    /// Photons gathered per estimate.
+    pub k: usize,
+    /// Largest search distance in metres; `None` means 10 % of the scene's diagonal.
+    pub max_distance: Option<f32>,
+    /// Drop photons arriving from behind the viewed side (see [`EstimatorOptions`]).
+    pub reject_behind: bool,
+    /// The render mode.
+    pub mode: Mode,
+    /// Seed of every random stream (photon paths and pixel samples).
+    pub seed: u64,
+    /// Worker threads; 0 uses rayon's current pool.
+    pub threads: usize,
+    /// Side of the square tiles handed to workers, in pixels.
+    pub tile_size: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 500,
+            height: 500,
+            samples_per_pixel: 1,
+            photons: 100_000,
+            k: EstimatorOptions::DEFAULT_K,
+            max_distance: None,
+            reject_behind: false,
+            mode: Mode::Visualize,
+            seed: 0,
+            threads: 0,
+            tile_size: 16,
+        }
+    }
+}
+
+impl RenderSettings {
+    /// Checks sizes, counts and distances; the error names the bad setting.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        if self.width == 0 || self.height == 0 {
+            return Err(RenderError::EmptyImage {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        if self.samples_per_pixel == 0 {
+            return Err(RenderError::ZeroSamples);
+        }
+        if self.photons == 0 && self.mode.uses_photons() {
+            return Err(RenderError::ZeroPhotons);
+        }
+        if self.tile_size == 0 {
+            return Err(RenderError::ZeroTileSize);
+        }
+        self.estimator_options(&Aabb::cube(glam::Vec3::ZERO, 1.0))
+            .validate()
+    }
+
+    /// The estimator options these settings give for a scene with `bounds`: photons of kind
+    /// direct are left out in [`Mode::ShadowRays`], where shadow rays supply direct light.
+    pub fn estimator_options(&self, bounds: &Aabb) -> EstimatorOptions {
+        let mut options = match self.max_distance {
+            Some(d) => EstimatorOptions::with_max_distance(d),
+            None => EstimatorOptions::for_scene(bounds),
+        };
+        options.k = self.k;
+        options.reject_behind = self.reject_behind;
+        if self.mode == Mode::ShadowRays {
+            options.kinds = KindMask::NOT_DIRECT;
+        }
+        options
+    }
+}
+
+/// Parses an image size written `WIDTHxHEIGHT` (e.g. `500x500`); both sides must be ≥ 1.
+pub fn parse_image_size(text: &str) -> Result<(u32, u32), RenderError> {
+    let bad = || RenderError::BadSize(text.to_owned());
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(bad());
+    }
+    Ok((w, h))
+}

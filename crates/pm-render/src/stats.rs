@@ -1,0 +1,29 @@
+//! Figures of one render: photon counts and the time of each phase.
+
+use std::time::Duration;
+
+/// What a render did and how long each phase took.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    /// Photon paths emitted.
+    pub photons_emitted: u64,
+    /// Photons stored over all maps.
+    pub photons_stored: u64,
+    /// Number of photon maps.
+    pub map_count: u32,
+    /// Worker threads used.
+    pub threads: usize,
+    /// Photon tracing.
+    pub trace: Duration,
+    /// Building the maps (kd-trees and polygon sets).
+    pub build: Duration,
+    /// Rendering the image.
+    pub render: Duration,
+}
+
+impl RenderStats {
+    /// Sum of the three phases.
+    pub fn total(&self) -> Duration {
+        self.trace + self.build + self.render
+    }
+}

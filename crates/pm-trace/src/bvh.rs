@@ -1,0 +1,269 @@
+//! The scene's BVH (obvhs `CwBvh`) over triangles and analytic shape parts, with our own
+//! watertight ray–triangle test (Woop, Benthin & Wald 2013): no ray slips between the
+//! triangles of a closed mesh, which obvhs's own Möller–Trumbore test allows.
+
+use crate::shape::{Ring, RingSide, Sphere};
+use crate::{PartId, Ray};
+use glam::{Vec3, Vec3A};
+use obvhs::cwbvh::CwBvh;
+use obvhs::ray::RayHit;
+use obvhs::{Boundable, BvhBuildParams};
+use std::time::Duration;
+
+/// One BVH leaf primitive; each belongs to exactly one part.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Primitive {
+    Triangle {
+        v: [Vec3; 3],
+        part: PartId,
+    },
+    Sphere {
+        sphere: Sphere,
+        part: PartId,
+    },
+    RingSide {
+        ring: Ring,
+        side: RingSide,
+        part: PartId,
+    },
+}
+
+impl Primitive {
+    pub(crate) fn part(&self) -> PartId {
+        match *self {
+            Primitive::Triangle { part, .. }
+            | Primitive::Sphere { part, .. }
+            | Primitive::RingSide { part, .. } => part,
+        }
+    }
+
+    fn bounds(&self) -> pm_geom::Aabb {
+        match self {
+            Primitive::Triangle { v, .. } => pm_geom::Aabb::from_points(v),
+            Primitive::Sphere { sphere, .. } => sphere.bounds(),
+            Primitive::RingSide { ring, side, .. } => ring.side_bounds(*side),
+        }
+    }
+
+    /// Distance along the ray in `(t_min, t_max)`, or infinity.
+    #[inline]
+    fn intersect(&self, w: &WatertightRay, t_min: f32, t_max: f32) -> f32 {
+        match self {
+            Primitive::Triangle { v, .. } => w.intersect_triangle(v, t_min, t_max),
+            Primitive::Sphere { sphere, .. } => sphere.intersect(w.origin, w.direction, t_min, t_max),
+            Primitive::RingSide { ring, side, .. } => {
+                ring.intersect_side(*side, w.origin, w.direction, t_min, t_max)
+            }
+        }
+    }
+
+    /// Unit geometric normal at `p` (triangles: counter-clockwise winding).
+    pub(crate) fn normal_at(&self, p: Vec3) -> Vec3 {
+        match self {
+            Primitive::Triangle { v, .. } => (v[1] - v[0]).cross(v[2] - v[0]).normalize(),
+            Primitive::Sphere { sphere, .. } => sphere.normal_at(p),
+            Primitive::RingSide { ring, side, .. } => ring.side_normal(*side, p),
+        }
+    }
+}
+
+struct Bounded(obvhs::aabb::Aabb);
+
+impl Boundable for Bounded {
+    fn aabb(&self) -> obvhs::aabb::Aabb {
+        self.0
+    }
+}
+
+/// A ray prepared for the watertight test: the axis permutation and shear constants.
+pub(crate) struct WatertightRay {
+    origin: Vec3,
+    direction: Vec3,
+    k: [usize; 3],
+    shear: Vec3,
+}
+
+impl WatertightRay {
+    pub(crate) fn new(origin: Vec3, direction: Vec3) -> Self {
+        let abs = direction.abs();
+        let kz = if abs.x > abs.y {
+            if abs.x > abs.z { 0 } else { 2 }
+        } else if abs.y > abs.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if direction[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let dz = direction[kz];
+        let shear = Vec3::new(direction[kx] / dz, direction[ky] / dz, 1.0 / dz);
+        WatertightRay {
+            origin,
+            direction,
+            k: [kx, ky, kz],
+            shear,
+        }
+    }
+
+    /// Woop–Benthin–Wald watertight ray–triangle intersection (no backface culling).
+    #[inline]
+    pub(crate) fn intersect_triangle(&self, v: &[Vec3; 3], t_min: f32, t_max: f32) -> f32 {
+        let [kx, ky, kz] = self.k;
+        let s = self.shear;
+        let a = v[0] - self.origin;
+        let b = v[1] - self.origin;
+        let c = v[2] - self.origin;
+        let ax = a[kx] - s.x * a[kz];
+        let ay = a[ky] - s.y * a[kz];
+        let bx = b[kx] - s.x * b[kz];
+        let by = b[ky] - s.y * b[kz];
+        let cx = c[kx] - s.x * c[kz];
+        let cy = c[ky] - s.y * c[kz];
+        let mut u = cx * by - cy * bx;
+        let mut vv = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        if u == 0.0 || vv == 0.0 || w == 0.0 {
+            // Exactly on an edge in single precision: decide in double precision.
+            u = (cx as f64 * by as f64 - cy as f64 * bx as f64) as f32;
+            vv = (ax as f64 * cy as f64 - ay as f64 * cx as f64) as f32;
+            w = (bx as f64 * ay as f64 - by as f64 * ax as f64) as f32;
+        }
+        if (u < 0.0 || vv < 0.0 || w < 0.0) && (u > 0.0 || vv > 0.0 || w > 0.0) {
+            return f32::INFINITY;
+        }
+        let det = u + vv + w;
+        if det == 0.0 {
+            return f32::INFINITY;
+        }
+        let az = s.z * a[kz];
+        let bz = s.z * b[kz];
+        let cz = s.z * c[kz];
+        let t = (u * az + vv * bz + w * cz) / det;
+        if t > t_min && t < t_max { t } else { f32::INFINITY }
+    }
+}
+
+/// The scene BVH: primitives stored in BVH leaf order.
+pub(crate) struct SceneBvh {
+    bvh: CwBvh,
+    prims: Vec<Primitive>,
+}
+
+impl std::fmt::Debug for SceneBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SceneBvh")
+            .field("primitives", &self.prims.len())
+            .finish()
+    }
+}
+
+/// The obvhs ray. Its node test picks slab sides by `direction < 0` but inverts −0.0 to a
+/// large *negative* number, so an axis-aligned ray with a −0.0 component missed every node
+/// (found by the watertightness test); adding +0.0 turns −0.0 into +0.0.
+#[inline]
+fn obvhs_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
+    let direction = ray.direction + Vec3::ZERO;
+    obvhs::ray::Ray::new(Vec3A::from(ray.origin), Vec3A::from(direction), t_min, t_max)
+}
+
+fn to_obvhs(b: pm_geom::Aabb) -> obvhs::aabb::Aabb {
+    obvhs::aabb::Aabb::new(Vec3A::from(b.min), Vec3A::from(b.max))
+}
+
+impl SceneBvh {
+    /// Builds the BVH; `prims` must not be empty.
+    pub(crate) fn build(prims: Vec<Primitive>) -> Self {
+        let bounds: Vec<Bounded> = prims.iter().map(|p| Bounded(to_obvhs(p.bounds()))).collect();
+        let bvh = obvhs::cwbvh::builder::build_cwbvh(
+            &bounds,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        // Reorder once so that leaf index i is primitive i (see API-NOTES, index convention).
+        let ordered = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
+        SceneBvh { bvh, prims: ordered }
+    }
+
+    pub(crate) fn primitive(&self, index: u32) -> &Primitive {
+        &self.prims[index as usize]
+    }
+
+    /// Closest hit in `(t_min, t_max)` among primitives accepted by `accept`: (t, primitive).
+    #[inline]
+    pub(crate) fn closest(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        accept: impl Fn(PartId) -> bool,
+    ) -> Option<(f32, u32)> {
+        let w = WatertightRay::new(ray.origin, ray.direction);
+        let oray = obvhs_ray(ray, t_min, t_max);
+        let mut hit = RayHit::none();
+        let found = self.bvh.ray_traverse(oray, &mut hit, |r, i| {
+            let p = &self.prims[i];
+            if !accept(p.part()) {
+                return f32::INFINITY;
+            }
+            p.intersect(&w, r.tmin, r.tmax)
+        });
+        found.then_some((hit.t, hit.primitive_id))
+    }
+
+    /// True when any primitive lies on the ray in `(t_min, t_max)`.
+    #[inline]
+    pub(crate) fn any_hit(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        let w = WatertightRay::new(ray.origin, ray.direction);
+        let oray = obvhs_ray(ray, t_min, t_max);
+        !self
+            .bvh
+            .ray_traverse_miss(oray, |r, i| self.prims[i].intersect(&w, r.tmin, r.tmax))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn watertight_test_hits_the_shared_edge_of_two_triangles_exactly_once_or_twice_never_zero() {
+        // A quad split along its diagonal; rays aimed exactly at the diagonal must hit.
+        let q = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        let t1 = [q[0], q[1], q[2]];
+        let t2 = [q[0], q[2], q[3]];
+        for i in 0..=100 {
+            let s = i as f32 / 100.0;
+            let target = Vec3::new(s, s, 0.0);
+            let origin = Vec3::new(0.3, 0.7, 1.0);
+            let w = WatertightRay::new(origin, (target - origin).normalize());
+            let hits = [t1, t2]
+                .iter()
+                .filter(|t| w.intersect_triangle(t, 0.0, f32::INFINITY).is_finite())
+                .count();
+            assert!(hits >= 1, "ray to the diagonal at {s} slipped through");
+        }
+    }
+
+    #[test]
+    fn triangle_distance_matches_the_plane_distance() {
+        let tri = [
+            Vec3::new(-1.0, -1.0, 2.0),
+            Vec3::new(1.0, -1.0, 2.0),
+            Vec3::new(0.0, 1.0, 2.0),
+        ];
+        let d = Vec3::new(0.1, 0.05, 1.0).normalize();
+        let w = WatertightRay::new(Vec3::ZERO, d);
+        let t = w.intersect_triangle(&tri, 0.0, f32::INFINITY);
+        assert!((t - 2.0 / d.z).abs() < 1e-5);
+        let w = WatertightRay::new(Vec3::ZERO, -d);
+        assert_eq!(w.intersect_triangle(&tri, 0.0, f32::INFINITY), f32::INFINITY);
+    }
+}

@@ -1,0 +1,73 @@
+//! The pinhole camera: position, look-at point, up vector and vertical field of view.
+
+use crate::Ray;
+use glam::Vec3;
+
+/// A pinhole camera. Image coordinates `(u, v) ∈ [0,1]²` run left to right and top to bottom.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    position: Vec3,
+    forward: Vec3,
+    right: Vec3,
+    up: Vec3,
+    tan_half_fov: f32,
+}
+
+impl Camera {
+    /// A camera at `position` looking at `look_at`, with `up` pointing up in the image and a
+    /// vertical field of view of `vfov_radians`. Degenerate input (look_at = position, up
+    /// parallel to the view direction) falls back to looking along +z with +y up.
+    pub fn new(position: Vec3, look_at: Vec3, up: Vec3, vfov_radians: f32) -> Self {
+        let forward = (look_at - position).try_normalize().unwrap_or(Vec3::Z);
+        let right = forward
+            .cross(up)
+            .try_normalize()
+            .unwrap_or_else(|| forward.cross(Vec3::Y).try_normalize().unwrap_or(Vec3::X));
+        let up = right.cross(forward);
+        Camera {
+            position,
+            forward,
+            right,
+            up,
+            tan_half_fov: (vfov_radians * 0.5).tan(),
+        }
+    }
+
+    /// Position of the pinhole.
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    /// Unit viewing direction (the image centre).
+    pub fn forward(&self) -> Vec3 {
+        self.forward
+    }
+
+    /// The primary ray through image point `(u, v)` for an image of width/height `aspect`.
+    pub fn ray(&self, u: f32, v: f32, aspect: f32) -> Ray {
+        let x = (2.0 * u - 1.0) * self.tan_half_fov * aspect;
+        let y = (1.0 - 2.0 * v) * self.tan_half_fov;
+        Ray {
+            origin: self.position,
+            direction: (self.forward + self.right * x + self.up * y).normalize(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_ray_looks_at_target_and_top_edge_is_half_fov_up() {
+        let fov = 40f32.to_radians();
+        let cam = Camera::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, 10.0), Vec3::Y, fov);
+        let c = cam.ray(0.5, 0.5, 1.5);
+        assert!((c.direction - Vec3::Z).length() < 1e-6);
+        let top = cam.ray(0.5, 0.0, 1.5);
+        assert!(top.direction.y > 0.0);
+        assert!((top.direction.angle_between(Vec3::Z) - fov / 2.0).abs() < 1e-5);
+        // Right-handed, +y up, looking along +z: image right is -x.
+        assert!(cam.ray(1.0, 0.5, 1.0).direction.x < 0.0);
+    }
+}

@@ -1,0 +1,109 @@
+//! Errors of scene building, photon tracing and photon-map building.
+
+use thiserror::Error;
+
+/// Why a scene could not be built.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// A mesh could not be built.
+    #[error("mesh {mesh}: {source}")]
+    Mesh {
+        /// Index of the mesh in the order it was added.
+        mesh: usize,
+        /// What was wrong.
+        source: pm_geom::MeshError,
+    },
+    /// A mesh with per-face surfaces got a different number of surfaces than faces.
+    #[error("mesh {mesh}: {surfaces} surfaces given for {faces} faces")]
+    SurfaceCount {
+        /// Index of the mesh.
+        mesh: usize,
+        /// Number of surfaces given.
+        surfaces: usize,
+        /// Number of faces given.
+        faces: usize,
+    },
+    /// An analytic shape with invalid parameters.
+    #[error("shape {shape}: {reason}")]
+    InvalidShape {
+        /// Index of the shape in the order it was added.
+        shape: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A surface with a non-finite or negative colour, or a non-positive index of refraction.
+    #[error("{what}: invalid surface: {reason}")]
+    InvalidSurface {
+        /// Which object carries the surface.
+        what: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The scene has no surfaces at all.
+    #[error("the scene has no geometry")]
+    NoGeometry,
+    /// `scenes::build` got a name it does not know.
+    #[error("unknown scene {name:?}; the built-in scenes are: {valid}")]
+    UnknownScene {
+        /// The name asked for.
+        name: String,
+        /// The valid names, comma separated.
+        valid: String,
+    },
+}
+
+/// Why photons could not be traced.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum TraceError {
+    /// Zero photons were asked for.
+    #[error("zero photons requested; ask for at least one")]
+    ZeroPhotons,
+    /// The scene has no light.
+    #[error("the scene has no light to emit photons from")]
+    NoLights,
+    /// The lights emit no power, or a light's power is negative or not finite.
+    #[error(
+        "light {light}: power {power:?} W; every light needs finite, non-negative power and the total must be positive"
+    )]
+    InvalidPower {
+        /// Index of the (first) offending light, or the light count when the total is zero.
+        light: usize,
+        /// Its power.
+        power: [f32; 3],
+    },
+    /// The map assignment does not belong to this scene.
+    #[error("map assignment covers {assigned} parts but the scene has {parts}")]
+    AssignmentMismatch {
+        /// Parts in the assignment.
+        assigned: usize,
+        /// Parts in the scene.
+        parts: usize,
+    },
+}
+
+/// Why photon maps could not be built.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum MapError {
+    /// The photons or the assignment do not match the scene.
+    #[error(transparent)]
+    Mismatch(#[from] TraceError),
+    /// `PhotonMaps::validate` found a broken invariant.
+    #[error("map {map}: {what}")]
+    Invalid {
+        /// The map.
+        map: u32,
+        /// What is wrong.
+        what: String,
+    },
+    /// A photon tree could not be built.
+    #[error("map {map}: {source}")]
+    Tree {
+        /// The map.
+        map: u32,
+        /// What was wrong.
+        source: pm_kdtree::BuildError,
+    },
+}

@@ -1,0 +1,240 @@
+//! Our own buffer resolver (never `gltf::import`, which follows any path): `data:` URIs, the
+//! GLB binary chunk, and relative paths confined to the scene's folder, each read no further
+//! than the buffer's declared `byteLength`.
+
+use std::fs::File;
+use std::io::Read;
+use std::path::{Component, Path, PathBuf};
+
+use gltf::json;
+
+use super::error::{BufferError, GltfError};
+
+/// Resolves every buffer of `root` to its bytes, trimmed to the declared `byteLength`.
+pub(super) fn resolve_buffers(
+    file: &Path,
+    root: &json::Root,
+    mut blob: Option<Vec<u8>>,
+    limit: u64,
+) -> Result<Vec<Vec<u8>>, GltfError> {
+    let folder = file
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut out = Vec::with_capacity(root.buffers.len());
+    for (index, buffer) in root.buffers.iter().enumerate() {
+        let declared = buffer.byte_length.0;
+        let bytes =
+            resolve_one(folder, buffer.uri.as_deref(), declared, limit, &mut blob).map_err(|reason| {
+                GltfError::Buffer {
+                    file: file.to_path_buf(),
+                    buffer: index,
+                    reason,
+                }
+            })?;
+        out.push(bytes);
+    }
+    Ok(out)
+}
+
+fn resolve_one(
+    folder: &Path,
+    uri: Option<&str>,
+    declared: u64,
+    limit: u64,
+    blob: &mut Option<Vec<u8>>,
+) -> Result<Vec<u8>, BufferError> {
+    if declared > limit {
+        return Err(BufferError::TooLarge { declared, limit });
+    }
+    let mut bytes = match uri {
+        None => blob.take().ok_or(BufferError::MissingBinChunk)?,
+        Some(uri) if has_prefix_ignore_case(uri, "data:") => {
+            let bytes = decode_data_uri(uri)?;
+            // A base64 payload may carry up to 3 bytes of padding past byteLength.
+            if bytes.len() as u64 > declared + 3 {
+                return Err(BufferError::LongerThanDeclared { declared });
+            }
+            bytes
+        }
+        Some(uri) => read_confined(folder, uri, declared)?,
+    };
+    if (bytes.len() as u64) < declared {
+        return Err(BufferError::ShorterThanDeclared {
+            declared,
+            actual: bytes.len() as u64,
+        });
+    }
+    bytes.truncate(declared as usize);
+    Ok(bytes)
+}
+
+fn has_prefix_ignore_case(s: &str, prefix: &str) -> bool {
+    s.len() >= prefix.len() && s.as_bytes()[..prefix.len()].eq_ignore_ascii_case(prefix.as_bytes())
+}
+
+/// True when `s` starts with a URI scheme (`file:`, `http:`, `c:` ...), RFC 3986 section 3.1.
+fn has_scheme(s: &str) -> bool {
+    let Some(colon) = s.find(':') else {
+        return false;
+    };
+    let scheme = &s.as_bytes()[..colon];
+    scheme.first().is_some_and(u8::is_ascii_alphabetic)
+        && scheme
+            .iter()
+            .all(|&c| c.is_ascii_alphanumeric() || matches!(c, b'+' | b'-' | b'.'))
+}
+
+/// Reads a relative, percent-encoded path that must stay inside `folder` after decoding and
+/// canonicalisation (symbolic links included), must be a regular file, and must hold no more
+/// than `declared` bytes. At most `declared + 1` bytes are read.
+fn read_confined(folder: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, BufferError> {
+    let owned = || uri.to_owned();
+    if has_scheme(uri) {
+        return Err(BufferError::Scheme { uri: owned() });
+    }
+    let decoded = urlencoding::decode(uri).map_err(|_| BufferError::BadEscape { uri: owned() })?;
+    if decoded.contains('\0') {
+        return Err(BufferError::BadEscape { uri: owned() });
+    }
+    if has_scheme(&decoded) {
+        return Err(BufferError::Scheme { uri: owned() });
+    }
+    let relative = Path::new(decoded.as_ref());
+    if relative.has_root() || decoded.starts_with(['/', '\\']) {
+        return Err(BufferError::Absolute { uri: owned() });
+    }
+    if escapes_lexically(relative) {
+        return Err(BufferError::EscapesFolder { uri: owned() });
+    }
+    let unreadable = |source| BufferError::Unreadable { uri: owned(), source };
+    let base = folder.canonicalize().map_err(unreadable)?;
+    let target: PathBuf = base.join(relative).canonicalize().map_err(unreadable)?;
+    if !target.starts_with(&base) {
+        return Err(BufferError::EscapesFolder { uri: owned() });
+    }
+    let meta = std::fs::metadata(&target).map_err(unreadable)?;
+    if !meta.is_file() {
+        return Err(BufferError::NotRegularFile { uri: owned() });
+    }
+    if meta.len() > declared {
+        return Err(BufferError::LongerThanDeclared { declared });
+    }
+    let file = File::open(&target).map_err(unreadable)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(declared.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(unreadable)?;
+    if bytes.len() as u64 > declared {
+        return Err(BufferError::LongerThanDeclared { declared });
+    }
+    Ok(bytes)
+}
+
+/// True when the `..` components of a relative path climb above its start.
+fn escapes_lexically(relative: &Path) -> bool {
+    let mut depth = 0i64;
+    for component in relative.components() {
+        match component {
+            Component::ParentDir => {
+                depth -= 1;
+                if depth < 0 {
+                    return true;
+                }
+            }
+            Component::Normal(_) => depth += 1,
+            Component::CurDir => {}
+            Component::RootDir | Component::Prefix(_) => return true,
+        }
+    }
+    false
+}
+
+/// Decodes `data:[<media type>][;base64],<data>`.
+fn decode_data_uri(uri: &str) -> Result<Vec<u8>, BufferError> {
+    let bad = |reason: &str| BufferError::BadDataUri {
+        reason: reason.to_owned(),
+    };
+    let (header, payload) = uri["data:".len()..]
+        .split_once(',')
+        .ok_or_else(|| bad("no comma before the payload"))?;
+    if has_suffix_ignore_case(header, ";base64") {
+        decode_base64(payload).ok_or_else(|| bad("invalid base64"))
+    } else {
+        Ok(urlencoding::decode_binary(payload.as_bytes()).into_owned())
+    }
+}
+
+fn has_suffix_ignore_case(s: &str, suffix: &str) -> bool {
+    s.len() >= suffix.len() && s.as_bytes()[s.len() - suffix.len()..].eq_ignore_ascii_case(suffix.as_bytes())
+}
+
+/// Standard or URL-safe base64, padding optional; `None` on any other character.
+pub(super) fn decode_base64(text: &str) -> Option<Vec<u8>> {
+    fn value(c: u8) -> Option<u32> {
+        Some(match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            _ => return None,
+        } as u32)
+    }
+    let text = text.trim_end_matches('=').as_bytes();
+    if text.len() % 4 == 1 {
+        return None;
+    }
+    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 2);
+    for chunk in text.chunks(4) {
+        let mut acc = 0u32;
+        for &c in chunk {
+            acc = (acc << 6) | value(c)?;
+        }
+        acc <<= 6 * (4 - chunk.len() as u32);
+        let bytes = acc.to_be_bytes();
+        out.extend_from_slice(&bytes[1..chunk.len()]);
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_rfc4648_vectors() {
+        // RFC 4648 section 10 test vectors: an independent truth.
+        for (plain, encoded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(decode_base64(encoded).as_deref(), Some(plain.as_bytes()));
+        }
+        assert_eq!(decode_base64("Zm9v!"), None);
+        assert_eq!(decode_base64("Z"), None);
+    }
+
+    #[test]
+    fn schemes_are_recognised() {
+        assert!(has_scheme("file:///etc/passwd"));
+        assert!(has_scheme("http://x"));
+        assert!(has_scheme("C:\\x"));
+        assert!(!has_scheme("a/b:c.bin"));
+        assert!(!has_scheme("../x.bin"));
+        assert!(!has_scheme("1abc:x"));
+    }
+
+    #[test]
+    fn lexical_escape_counts_parent_components() {
+        assert!(escapes_lexically(Path::new("../x")));
+        assert!(escapes_lexically(Path::new("a/../../x")));
+        assert!(!escapes_lexically(Path::new("a/../x")));
+        assert!(!escapes_lexically(Path::new("./a/b")));
+    }
+}

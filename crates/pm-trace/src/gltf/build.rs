@@ -1,0 +1,115 @@
+//! World-space glTF content to a [`Scene`]: one scene mesh per primitive, an area light per
+//! emissive primitive, the punctual lights converted to the library's lights, the camera, and
+//! a headlight for files without any light.
+
+use std::f32::consts::PI;
+use std::path::Path;
+
+use glam::Vec3;
+
+use super::GltfOptions;
+use super::camera::frame_bounds;
+use super::content::GltfContent;
+use super::error::GltfError;
+use super::light::GltfLight;
+use super::material::SurfaceKind;
+use crate::{AreaLight, Camera, DirectionalLight, Material, PointLight, Scene, SpotLight, Surface};
+
+/// Builds a scene from content read by [`read_content`](super::read_content). `file` only
+/// names the source in errors.
+pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) -> Result<Scene, GltfError> {
+    let scene_error = |reason: String| GltfError::Scene {
+        file: file.to_path_buf(),
+        reason,
+    };
+    let (min, max) = content
+        .bounds()
+        .ok_or_else(|| scene_error("the scene holds no triangles".into()))?;
+    let mut builder = Scene::builder();
+    let mut has_light = false;
+    for mesh in content.meshes.iter().filter(|m| !m.triangles.is_empty()) {
+        let material = mesh.material;
+        let surface = Surface {
+            material: match material.kind {
+                SurfaceKind::Lambertian { albedo } => Material::Lambertian { albedo },
+                SurfaceKind::Mirror { reflectance } => Material::Mirror { reflectance },
+                SurfaceKind::Glass { ior } => Material::Glass { ior },
+            },
+            emission: material.emission,
+            camera_visible: true,
+        };
+        builder = builder.mesh(&mesh.positions, &mesh.triangles, surface);
+        if material.emission.max_element() > 0.0 {
+            let triangles: Vec<[Vec3; 3]> = mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| mesh.positions[i as usize]))
+                .collect();
+            let light = AreaLight::from_triangles(&triangles, material.emission);
+            if light.area() > 0.0 {
+                builder = builder.light(light);
+                has_light = true;
+            }
+        }
+    }
+    for light in &content.lights {
+        builder = match *light {
+            GltfLight::Point { position, intensity } => {
+                builder.light(PointLight::new(position, 4.0 * PI * intensity))
+            }
+            GltfLight::Spot {
+                position,
+                direction,
+                intensity,
+                outer_cone_angle,
+                ..
+            } => builder.light(SpotLight::new(
+                position,
+                direction,
+                outer_cone_angle,
+                spot_power(intensity, outer_cone_angle),
+            )),
+            GltfLight::Directional {
+                direction,
+                irradiance,
+            } => builder.light(DirectionalLight::new(direction, irradiance)),
+        };
+        has_light = true;
+    }
+    let camera = content.camera.unwrap_or_else(|| frame_bounds(min, max));
+    if !has_light {
+        if !options.default_light {
+            return Err(scene_error(
+                "the file has no punctual lights and no emissive surfaces".into(),
+            ));
+        }
+        builder = builder.light(headlight(camera.position, (min + max) * 0.5));
+    }
+    builder
+        .camera(Camera::new(
+            camera.position,
+            camera.look_at,
+            camera.up,
+            camera.vfov,
+        ))
+        .build()
+        .map_err(|source| GltfError::Build {
+            file: file.to_path_buf(),
+            source,
+        })
+}
+
+/// Total power of a uniform cone of half-angle `outer` with radiant intensity `intensity`:
+/// `I · 2π (1 − cos θ)`. The renderer's spot has one hard edge; glTF's smooth falloff between
+/// the inner and outer angles is replaced by full intensity out to the outer angle, as the
+/// `KHR_lights_punctual` spec advises for engines with a single cone angle.
+pub(super) fn spot_power(intensity: Vec3, outer: f32) -> Vec3 {
+    intensity * (2.0 * PI * (1.0 - outer.cos()))
+}
+
+/// The default light of a file without lights: a white point light at the camera whose
+/// irradiance at the centre of the scene's bounds, facing it, is 1 W/m².
+fn headlight(eye: Vec3, center: Vec3) -> PointLight {
+    let d2 = eye.distance_squared(center).max(1e-6);
+    PointLight::new(eye, Vec3::splat(4.0 * PI * d2))
+}

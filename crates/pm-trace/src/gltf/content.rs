@@ -1,0 +1,147 @@
+//! A glTF file flattened into world space — triangles with materials, punctual lights and a
+//! camera — independent of the scene type it is built into.
+
+use std::path::Path;
+
+use glam::Vec3;
+use gltf::json;
+
+use super::GltfOptions;
+use super::accessor::AccessorReader;
+use super::buffers::resolve_buffers;
+use super::camera::{GltfCamera, place_camera};
+use super::error::GltfError;
+use super::graph::{root_nodes, walk};
+use super::light::{GltfLight, place_light};
+use super::material::{GltfMaterial, map_material};
+use super::primitive::{PrimitiveGeometry, read_primitive};
+use super::source::{guard, parse, read_bounded};
+
+/// One mesh primitive placed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfMesh {
+    /// Index of the node that placed it.
+    pub node: usize,
+    /// Index of the mesh in `meshes`.
+    pub mesh: usize,
+    /// Index of the primitive within the mesh.
+    pub primitive: usize,
+    /// Index of the material in `materials`, `None` for the default material.
+    pub material_index: Option<usize>,
+    /// World-space vertex positions in metres.
+    pub positions: Vec<Vec3>,
+    /// Triangles as indices into `positions` (each checked in range), counter-clockwise
+    /// seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// The material as this loader reads it.
+    pub material: GltfMaterial,
+}
+
+/// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GltfContent {
+    /// Every triangle primitive reached from the scene, placed in the world.
+    pub meshes: Vec<GltfMesh>,
+    /// Every `KHR_lights_punctual` light reached from the scene.
+    pub lights: Vec<GltfLight>,
+    /// The first perspective camera reached from the scene, if any.
+    pub camera: Option<GltfCamera>,
+    /// Primitives skipped because they are points or lines.
+    pub skipped_non_triangle: usize,
+    /// Primitives skipped because they have no `POSITION` attribute.
+    pub skipped_without_positions: usize,
+}
+
+impl GltfContent {
+    /// The bounds `(min, max)` of every vertex, `None` without geometry.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut points = self.meshes.iter().flat_map(|m| m.positions.iter().copied());
+        let first = points.next()?;
+        Some(points.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+    }
+
+    /// Number of triangles over all meshes.
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.triangles.len()).sum()
+    }
+}
+
+/// Reads `path` (`.gltf` or `.glb`) into world-space content without building a scene.
+/// Every call into the gltf crate runs behind a panic guard (see [`GltfError::Panic`]).
+pub fn read_content(path: &Path, options: &GltfOptions) -> Result<GltfContent, GltfError> {
+    let bytes = read_bounded(path, options.max_file_bytes)?;
+    let (root, blob) = parse(path, &bytes)?;
+    drop(bytes);
+    let buffers = resolve_buffers(path, &root, blob, options.max_file_bytes)?;
+    guard(path, || flatten(path, &root, &buffers, options))
+}
+
+fn flatten(
+    file: &Path,
+    root: &json::Root,
+    buffers: &[Vec<u8>],
+    options: &GltfOptions,
+) -> Result<GltfContent, GltfError> {
+    let reader = AccessorReader::new(file, root, buffers);
+    let roots = root_nodes(file, root)?;
+    let placed = walk(file, root, &roots)?;
+    let mut content = GltfContent::default();
+    for p in &placed {
+        let node = &root.nodes[p.index];
+        let missing = |what: &str, index: usize, len: usize| GltfError::Node {
+            file: file.to_path_buf(),
+            node: p.index,
+            reason: format!("{what} {index} does not exist (the file has {len})"),
+        };
+        if let Some(mesh_index) = node.mesh.map(|m| m.value()) {
+            let mesh = root
+                .meshes
+                .get(mesh_index)
+                .ok_or_else(|| missing("mesh", mesh_index, root.meshes.len()))?;
+            for (primitive, prim) in mesh.primitives.iter().enumerate() {
+                let material_index = prim.material.map(|m| m.value());
+                let material = match material_index {
+                    Some(i) => Some(root.materials.get(i).ok_or_else(|| GltfError::Primitive {
+                        file: file.to_path_buf(),
+                        mesh: mesh_index,
+                        primitive,
+                        reason: format!(
+                            "material {i} does not exist (the file has {})",
+                            root.materials.len()
+                        ),
+                    })?),
+                    None => None,
+                };
+                match read_primitive(file, &reader, (mesh_index, primitive), prim, p.world)? {
+                    PrimitiveGeometry::Triangles { positions, triangles } => content.meshes.push(GltfMesh {
+                        node: p.index,
+                        mesh: mesh_index,
+                        primitive,
+                        material_index,
+                        positions,
+                        triangles,
+                        material: map_material(material, options),
+                    }),
+                    PrimitiveGeometry::NotTriangles => content.skipped_non_triangle += 1,
+                    PrimitiveGeometry::NoPositions => content.skipped_without_positions += 1,
+                }
+            }
+        }
+        if let Some(camera) = node.camera.map(|c| c.value())
+            && content.camera.is_none()
+        {
+            content.camera = place_camera(file, root, p.index, camera, p.world)?;
+        }
+        let light = node
+            .extensions
+            .as_ref()
+            .and_then(|e| e.khr_lights_punctual.as_ref())
+            .map(|l| l.light.value());
+        if let Some(light) = light {
+            content
+                .lights
+                .push(place_light(file, root, p.index, light, p.world, options)?);
+        }
+    }
+    Ok(content)
+}

@@ -1,0 +1,179 @@
+//! glTF materials to the renderer's three materials plus emission; the mapping is documented
+//! on [`GltfMaterial`] and in the module docs of [`crate::gltf`].
+
+use glam::Vec3;
+use gltf::json;
+
+use super::GltfOptions;
+
+/// How a surface scatters light, as this loader reads a glTF material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SurfaceKind {
+    /// Diffuse reflection with this albedo (linear RGB, each channel in `[0, 1]`).
+    Lambertian {
+        /// Diffuse reflectance.
+        albedo: Vec3,
+    },
+    /// Perfect specular reflection with this reflectance.
+    Mirror {
+        /// Specular reflectance.
+        reflectance: Vec3,
+    },
+    /// Smooth dielectric with this index of refraction.
+    Glass {
+        /// Index of refraction.
+        ior: f32,
+    },
+}
+
+/// A glTF material as this loader reads it.
+///
+/// - `KHR_materials_transmission` with `transmissionFactor ≥ 0.5` → [`SurfaceKind::Glass`]
+///   with `KHR_materials_ior` (default 1.5; values below 1 also give 1.5);
+/// - else `metallicFactor ≥ 0.9` and `roughnessFactor ≤ 0.1` → [`SurfaceKind::Mirror`] with
+///   the base colour as reflectance;
+/// - else [`SurfaceKind::Lambertian`] with the base colour factor as albedo.
+///
+/// Textures are ignored. `emission` is `emissiveFactor × emissiveStrength ×`
+/// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GltfMaterial {
+    /// How the surface scatters light.
+    pub kind: SurfaceKind,
+    /// Emitted radiance in W/(m²·sr); zero for a surface that does not glow.
+    pub emission: Vec3,
+    /// The glTF `doubleSided` flag (an emissive surface emits from both sides when set).
+    pub double_sided: bool,
+}
+
+/// Mirror threshold on `metallicFactor`.
+const MIRROR_MIN_METALLIC: f32 = 0.9;
+/// Mirror threshold on `roughnessFactor`.
+const MIRROR_MAX_ROUGHNESS: f32 = 0.1;
+/// Glass threshold on `transmissionFactor`.
+const GLASS_MIN_TRANSMISSION: f32 = 0.5;
+/// `KHR_materials_ior`'s default.
+const DEFAULT_IOR: f32 = 1.5;
+
+fn finite_or(x: f32, default: f32) -> f32 {
+    if x.is_finite() { x } else { default }
+}
+
+fn clamp01(v: Vec3) -> Vec3 {
+    Vec3::new(finite_or(v.x, 0.0), finite_or(v.y, 0.0), finite_or(v.z, 0.0)).clamp(Vec3::ZERO, Vec3::ONE)
+}
+
+/// Maps a glTF material (or the spec's default material for `None`).
+pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOptions) -> GltfMaterial {
+    let Some(m) = material else {
+        // The glTF default material: white base colour, metallic 1, roughness 1.
+        return GltfMaterial {
+            kind: SurfaceKind::Lambertian { albedo: Vec3::ONE },
+            emission: Vec3::ZERO,
+            double_sided: false,
+        };
+    };
+    let pbr = &m.pbr_metallic_roughness;
+    let [r, g, b, _] = pbr.base_color_factor.0;
+    let base = clamp01(Vec3::new(r, g, b));
+    let metallic = finite_or(pbr.metallic_factor.0, 1.0);
+    let roughness = finite_or(pbr.roughness_factor.0, 1.0);
+    let ext = m.extensions.as_ref();
+    let transmission = ext
+        .and_then(|e| e.transmission.as_ref())
+        .map_or(0.0, |t| finite_or(t.transmission_factor.0, 0.0));
+    let ior = ext.and_then(|e| e.ior.as_ref()).map_or(DEFAULT_IOR, |i| i.ior.0);
+    let ior = if ior.is_finite() && ior >= 1.0 {
+        ior
+    } else {
+        DEFAULT_IOR
+    };
+    let strength = ext
+        .and_then(|e| e.emissive_strength.as_ref())
+        .map_or(1.0, |s| s.emissive_strength.0);
+    let strength = finite_or(strength, 0.0).max(0.0);
+    let emission = Vec3::from(m.emissive_factor.0) * strength * options.emission_scale;
+    let emission = Vec3::new(
+        finite_or(emission.x, 0.0),
+        finite_or(emission.y, 0.0),
+        finite_or(emission.z, 0.0),
+    )
+    .max(Vec3::ZERO);
+    let kind = if transmission >= GLASS_MIN_TRANSMISSION {
+        SurfaceKind::Glass { ior }
+    } else if metallic >= MIRROR_MIN_METALLIC && roughness <= MIRROR_MAX_ROUGHNESS {
+        SurfaceKind::Mirror { reflectance: base }
+    } else {
+        SurfaceKind::Lambertian { albedo: base }
+    };
+    GltfMaterial {
+        kind,
+        emission,
+        double_sided: m.double_sided,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kind_of(json: &str) -> SurfaceKind {
+        let m: json::Material = material_from(json);
+        map_material(Some(&m), &GltfOptions::default()).kind
+    }
+
+    fn material_from(text: &str) -> json::Material {
+        json::deserialize::from_str(text).expect("test material parses")
+    }
+
+    #[test]
+    fn thresholds_split_mirror_glass_and_diffuse() {
+        let pbr = |m: f32, r: f32| {
+            format!(r#"{{"pbrMetallicRoughness":{{"metallicFactor":{m},"roughnessFactor":{r}}}}}"#)
+        };
+        assert!(matches!(kind_of(&pbr(0.9, 0.1)), SurfaceKind::Mirror { .. }));
+        assert!(matches!(kind_of(&pbr(0.89, 0.1)), SurfaceKind::Lambertian { .. }));
+        assert!(matches!(kind_of(&pbr(1.0, 0.11)), SurfaceKind::Lambertian { .. }));
+        // The glTF defaults are metallic 1, roughness 1: diffuse, white.
+        assert_eq!(kind_of("{}"), SurfaceKind::Lambertian { albedo: Vec3::ONE });
+        let glass = |t: f32, ior: &str| {
+            format!(r#"{{"extensions":{{"KHR_materials_transmission":{{"transmissionFactor":{t}}}{ior}}}}}"#)
+        };
+        assert_eq!(kind_of(&glass(0.5, "")), SurfaceKind::Glass { ior: 1.5 });
+        assert_eq!(
+            kind_of(&glass(1.0, r#","KHR_materials_ior":{"ior":2.4}"#)),
+            SurfaceKind::Glass { ior: 2.4 }
+        );
+        assert!(matches!(
+            kind_of(&glass(0.49, "")),
+            SurfaceKind::Lambertian { .. }
+        ));
+    }
+
+    #[test]
+    fn emission_is_factor_times_strength_times_scale() {
+        let m = material_from(
+            r#"{"emissiveFactor":[1,0.5,0],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":4}}}"#,
+        );
+        let options = GltfOptions {
+            emission_scale: 0.5,
+            ..GltfOptions::default()
+        };
+        assert_eq!(
+            map_material(Some(&m), &options).emission,
+            Vec3::new(2.0, 1.0, 0.0)
+        );
+        // Without the extension the strength is 1; colours above 1 are clamped for albedo.
+        let m = material_from(
+            r#"{"emissiveFactor":[0.25,0.25,0.25],"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,1],"metallicFactor":0}}"#,
+        );
+        let mapped = map_material(Some(&m), &GltfOptions::default());
+        assert_eq!(mapped.emission, Vec3::splat(0.25));
+        assert_eq!(
+            mapped.kind,
+            SurfaceKind::Lambertian {
+                albedo: Vec3::new(1.0, 0.5, 0.0)
+            }
+        );
+    }
+}

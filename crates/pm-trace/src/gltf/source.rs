@@ -1,0 +1,157 @@
+//! Reading the scene file: a bounded read, a check of a GLB container's length fields against
+//! the bytes actually present, and the gltf crate's parser behind a panic guard.
+
+use std::fs::File;
+use std::io::Read;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+
+use gltf::json;
+use json::validation::Checked;
+
+use super::error::GltfError;
+
+/// Reads at most `limit` bytes of `path`; a longer file is an error, never a truncated read.
+pub(super) fn read_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, GltfError> {
+    let io = |source| GltfError::Io {
+        file: path.to_path_buf(),
+        source,
+    };
+    let file = File::open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    if !meta.is_file() {
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file",
+        )));
+    }
+    let mut bytes = Vec::with_capacity(meta.len().min(limit) as usize);
+    file.take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > limit {
+        return Err(GltfError::FileTooLarge {
+            file: path.to_path_buf(),
+            limit,
+        });
+    }
+    Ok(bytes)
+}
+
+const GLB_MAGIC: &[u8; 4] = b"glTF";
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
+    let b = bytes.get(at..at.checked_add(4)?)?;
+    Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+}
+
+/// Checks a GLB container's header and chunk lengths against the bytes present, so that the
+/// gltf crate never sees a length that lies. Bytes that are not a GLB pass unchanged.
+pub(super) fn check_glb(bytes: &[u8]) -> Result<(), String> {
+    if !bytes.starts_with(GLB_MAGIC) {
+        return Ok(());
+    }
+    let (Some(version), Some(length)) = (u32_at(bytes, 4), u32_at(bytes, 8)) else {
+        return Err(format!("header cut short: {} bytes", bytes.len()));
+    };
+    if version != 2 {
+        return Err(format!("version {version}, only 2 is supported"));
+    }
+    if length as usize != bytes.len() {
+        return Err(format!(
+            "header says {length} bytes, the file has {}",
+            bytes.len()
+        ));
+    }
+    let mut at = 12usize;
+    let mut index = 0;
+    while at < bytes.len() {
+        let (Some(chunk_len), Some(kind)) = (u32_at(bytes, at), u32_at(bytes, at + 4)) else {
+            return Err(format!("chunk {index} header cut short at byte {at}"));
+        };
+        let end = (at + 8)
+            .checked_add(chunk_len as usize)
+            .filter(|&end| end <= bytes.len())
+            .ok_or_else(|| format!("chunk {index} declares {chunk_len} bytes, past the end of the file"))?;
+        match (index, kind) {
+            (0, CHUNK_JSON) | (1, CHUNK_BIN) => {}
+            (0, _) => return Err("the first chunk is not JSON".into()),
+            (1, CHUNK_JSON) => return Err("a second JSON chunk".into()),
+            _ => {} // unknown chunks are skipped by the spec
+        }
+        at = end;
+        index += 1;
+    }
+    if index == 0 {
+        return Err("no JSON chunk".into());
+    }
+    Ok(())
+}
+
+/// Runs `f`, turning a panic into [`GltfError::Panic`]. The gltf crate panics on some
+/// malformed files; this is the last line of defence after our own checks. It installs no
+/// panic hook, so the process's hook may still print the panic message.
+pub(super) fn guard<T>(file: &Path, f: impl FnOnce() -> Result<T, GltfError>) -> Result<T, GltfError> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(result) => result,
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "non-string panic payload".to_owned());
+            Err(GltfError::Panic {
+                file: file.to_path_buf(),
+                message,
+            })
+        }
+    }
+}
+
+/// Parses `.gltf` JSON or a `.glb` container (checked first), then validates it with the
+/// gltf crate after our own checks of what its validator would index blindly.
+pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<(json::Root, Option<Vec<u8>>), GltfError> {
+    check_glb(bytes).map_err(|reason| GltfError::Glb {
+        file: file.to_path_buf(),
+        reason,
+    })?;
+    let invalid = |e: gltf::Error| GltfError::Parse {
+        file: file.to_path_buf(),
+        message: e.to_string(),
+    };
+    guard(file, || {
+        let gltf::Gltf { document, blob } =
+            gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+        let root = document.into_json();
+        check_position_accessors(file, &root)?;
+        let document = gltf::Document::from_json(root).map_err(invalid)?;
+        Ok((document.into_json(), blob))
+    })
+}
+
+/// The gltf crate's validator indexes `accessors` with each `POSITION` attribute unchecked
+/// (it panics on a missing one); check them first.
+fn check_position_accessors(file: &Path, root: &json::Root) -> Result<(), GltfError> {
+    for (mesh, m) in root.meshes.iter().enumerate() {
+        for (primitive, p) in m.primitives.iter().enumerate() {
+            let position = p.attributes.get(&Checked::Valid(json::mesh::Semantic::Positions));
+            if let Some(accessor) = position
+                && accessor.value() >= root.accessors.len()
+            {
+                return Err(GltfError::Primitive {
+                    file: file.to_path_buf(),
+                    mesh,
+                    primitive,
+                    reason: format!(
+                        "POSITION accessor {} does not exist (the file has {})",
+                        accessor.value(),
+                        root.accessors.len()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,131 @@
+//! The area light: any set of triangles emitting constant radiance from their front side
+//! (counter-clockwise winding), cosine-distributed.
+
+use super::{EmittedRay, Light, LightSample};
+use crate::sampling::{cosine_hemisphere, uniform_triangle};
+use crate::{Ray, Rng};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// Triangles emitting `radiance` (W/(m²·sr) per channel) on their front side; power
+/// `π · radiance · area`. Photons start at uniform points (triangles chosen by area) with
+/// cosine-distributed directions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AreaLight {
+    triangles: Vec<[Vec3; 3]>,
+    normals: Vec<Vec3>,
+    /// Cumulative areas, last = total.
+    cumulative: Vec<f32>,
+    radiance: Vec3,
+}
+
+impl AreaLight {
+    /// The parallelogram `corner + s·edge_u + t·edge_v`, `(s, t) ∈ [0,1]²`, front side along
+    /// `edge_u × edge_v`.
+    pub fn quad(corner: Vec3, edge_u: Vec3, edge_v: Vec3, radiance: Vec3) -> Self {
+        let (a, b, c, d) = (corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v);
+        Self::from_triangles(&[[a, b, c], [a, c, d]], radiance)
+    }
+
+    /// Emissive triangles (degenerate ones are skipped).
+    pub fn from_triangles(triangles: &[[Vec3; 3]], radiance: Vec3) -> Self {
+        let mut light = AreaLight {
+            triangles: Vec::new(),
+            normals: Vec::new(),
+            cumulative: Vec::new(),
+            radiance,
+        };
+        let mut total = 0.0;
+        for t in triangles {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            let area = 0.5 * n.length();
+            if !(area > 0.0 && area.is_finite()) {
+                continue;
+            }
+            total += area;
+            light.triangles.push(*t);
+            light.normals.push(n.normalize());
+            light.cumulative.push(total);
+        }
+        light
+    }
+
+    /// Total emitting area (m²).
+    pub fn area(&self) -> f32 {
+        self.cumulative.last().copied().unwrap_or(0.0)
+    }
+
+    /// Emitted radiance.
+    pub fn radiance(&self) -> Vec3 {
+        self.radiance
+    }
+
+    /// The emitting triangles.
+    pub fn triangles(&self) -> &[[Vec3; 3]] {
+        &self.triangles
+    }
+
+    fn sample_point(&self, rng: &mut Rng) -> Option<(Vec3, Vec3)> {
+        let total = self.area();
+        if total <= 0.0 {
+            return None;
+        }
+        let x = rng.next_f32() * total;
+        let i = self
+            .cumulative
+            .partition_point(|&c| c <= x)
+            .min(self.triangles.len() - 1);
+        let t = &self.triangles[i];
+        Some((
+            uniform_triangle(t[0], t[1], t[2], Vec2::new(rng.next_f32(), rng.next_f32())),
+            self.normals[i],
+        ))
+    }
+}
+
+impl Light for AreaLight {
+    fn power(&self) -> Vec3 {
+        self.radiance * (PI * self.area())
+    }
+
+    fn emit(&self, rng: &mut Rng) -> EmittedRay {
+        match self.sample_point(rng) {
+            Some((p, n)) => {
+                let d = cosine_hemisphere(n, Vec2::new(rng.next_f32(), rng.next_f32()));
+                EmittedRay {
+                    ray: Ray {
+                        origin: p,
+                        direction: d,
+                    },
+                    weight: Vec3::ONE,
+                }
+            }
+            // Zero area means zero power; a tracer never picks such a light.
+            None => EmittedRay {
+                ray: Ray {
+                    origin: Vec3::ZERO,
+                    direction: Vec3::Y,
+                },
+                weight: Vec3::ZERO,
+            },
+        }
+    }
+
+    fn sample_incident(&self, point: Vec3, _normal: Vec3, rng: &mut Rng) -> Option<LightSample> {
+        let (y, n) = self.sample_point(rng)?;
+        let to = y - point;
+        let d2 = to.length_squared();
+        let distance = d2.sqrt();
+        let direction = (to / distance).try_normalize()?;
+        let cos_light = -direction.dot(n);
+        if cos_light <= 0.0 {
+            return None;
+        }
+        // pdf_area = 1/A → pdf_solid_angle = d² / (A cos θ_light).
+        Some(LightSample {
+            direction,
+            distance,
+            radiance_over_pdf: self.radiance * (self.area() * cos_light / d2),
+        })
+    }
+}

@@ -1,0 +1,66 @@
+//! Lights: a trait with photon emission and shadow-ray sampling, and the point, spot,
+//! directional and area lights.
+
+mod area;
+mod directional;
+mod point;
+mod spot;
+
+pub use area::AreaLight;
+pub use directional::DirectionalLight;
+pub use point::PointLight;
+pub use spot::SpotLight;
+
+use crate::{Ray, Rng};
+use glam::Vec3;
+use pm_geom::Aabb;
+
+/// A photon ray leaving a light.
+///
+/// Emission is importance-sampled by the light's own emission distribution, so every photon
+/// of a light carries the same power: with `N` photons emitted from the scene and the light
+/// chosen with probability `p`, each starts with `power() / (N · p)` (times `weight`, which
+/// all built-in lights set to 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmittedRay {
+    /// Origin on the light and unit direction of travel.
+    pub ray: Ray,
+    /// Per-channel multiplier of the photon's share of power (expected value 1).
+    pub weight: Vec3,
+}
+
+/// A shadow-ray sample towards a light from a receiving point.
+///
+/// The irradiance at the point is estimated by `E ≈ radiance_over_pdf · max(0, n · direction)`
+/// when the segment to the light is unoccluded (`Scene::occluded(point, point + direction ·
+/// distance)`). For delta lights (point, spot, directional) `radiance_over_pdf` is the
+/// incident irradiance on a surface facing the light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit direction from the point towards the light.
+    pub direction: Vec3,
+    /// Distance to the sampled point on the light (finite; for directional lights, beyond the scene).
+    pub distance: f32,
+    /// Incident radiance divided by the solid-angle pdf of the sample, W/m² per channel.
+    pub radiance_over_pdf: Vec3,
+}
+
+/// A light source. Units: watts for power, W/(m²·sr) for radiance.
+pub trait Light: Send + Sync + std::fmt::Debug {
+    /// Total emitted flux per RGB channel, in watts.
+    fn power(&self) -> Vec3;
+
+    /// Emits one photon ray (see [`EmittedRay`] for how power is shared).
+    fn emit(&self, rng: &mut Rng) -> EmittedRay;
+
+    /// Samples a direction towards the light from `point` (with surface normal `normal`, which
+    /// lights may use to skip samples behind the surface); `None` when the light cannot
+    /// reach the point.
+    fn sample_incident(&self, point: Vec3, normal: Vec3, rng: &mut Rng) -> Option<LightSample>;
+
+    /// Called once by the scene builder with the bounds of the scene's geometry, before any
+    /// other call (the directional light sizes its emission disc here). Default: nothing.
+    fn attach(&mut self, scene_bounds: &Aabb) {
+        let _ = scene_bounds;
+    }
+}

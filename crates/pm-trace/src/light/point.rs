@@ -1,0 +1,52 @@
+//! The isotropic point light.
+
+use super::{EmittedRay, Light, LightSample};
+use crate::sampling::uniform_sphere;
+use crate::{Ray, Rng};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// A point emitting `power` watts uniformly in all directions (intensity `power / 4π`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    /// Position (metres).
+    pub position: Vec3,
+    /// Total flux per channel (watts).
+    pub power: Vec3,
+}
+
+impl PointLight {
+    /// A point light.
+    pub fn new(position: Vec3, power: Vec3) -> Self {
+        PointLight { position, power }
+    }
+}
+
+impl Light for PointLight {
+    fn power(&self) -> Vec3 {
+        self.power
+    }
+
+    fn emit(&self, rng: &mut Rng) -> EmittedRay {
+        let d = uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+        EmittedRay {
+            ray: Ray {
+                origin: self.position,
+                direction: d,
+            },
+            weight: Vec3::ONE,
+        }
+    }
+
+    fn sample_incident(&self, point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
+        let to = self.position - point;
+        let d2 = to.length_squared();
+        let distance = d2.sqrt();
+        let direction = (to / distance).try_normalize()?;
+        Some(LightSample {
+            direction,
+            distance,
+            radiance_over_pdf: self.power / (4.0 * PI * d2),
+        })
+    }
+}

@@ -1,0 +1,75 @@
+//! The spot light: a point light restricted to a cone, with uniform intensity inside.
+
+use super::{EmittedRay, Light, LightSample};
+use crate::sampling::uniform_cone;
+use crate::{Ray, Rng};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// A point emitting `power` watts uniformly into the cone of half-angle `cone_angle` around
+/// `direction` (intensity `power / (2π (1 − cos cone_angle))` inside, zero outside).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotLight {
+    /// Position (metres).
+    pub position: Vec3,
+    /// Unit axis of the cone.
+    pub direction: Vec3,
+    /// Half-angle of the cone in radians, in `(0, π]`.
+    pub cone_angle: f32,
+    /// Total flux per channel (watts).
+    pub power: Vec3,
+}
+
+impl SpotLight {
+    /// A spot light (the direction is normalised; a zero direction points down).
+    pub fn new(position: Vec3, direction: Vec3, cone_angle: f32, power: Vec3) -> Self {
+        SpotLight {
+            position,
+            direction: direction.try_normalize().unwrap_or(Vec3::NEG_Y),
+            cone_angle,
+            power,
+        }
+    }
+
+    fn cos_max(&self) -> f32 {
+        self.cone_angle.clamp(1e-4, PI).cos()
+    }
+}
+
+impl Light for SpotLight {
+    fn power(&self) -> Vec3 {
+        self.power
+    }
+
+    fn emit(&self, rng: &mut Rng) -> EmittedRay {
+        let d = uniform_cone(
+            self.direction,
+            self.cos_max(),
+            Vec2::new(rng.next_f32(), rng.next_f32()),
+        );
+        EmittedRay {
+            ray: Ray {
+                origin: self.position,
+                direction: d,
+            },
+            weight: Vec3::ONE,
+        }
+    }
+
+    fn sample_incident(&self, point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
+        let to = self.position - point;
+        let d2 = to.length_squared();
+        let distance = d2.sqrt();
+        let direction = (to / distance).try_normalize()?;
+        let cos_max = self.cos_max();
+        if (-direction).dot(self.direction) < cos_max {
+            return None;
+        }
+        let intensity = self.power / (2.0 * PI * (1.0 - cos_max));
+        Some(LightSample {
+            direction,
+            distance,
+            radiance_over_pdf: intensity / d2,
+        })
+    }
+}

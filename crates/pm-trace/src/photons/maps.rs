@@ -1,0 +1,169 @@
+//! Photon maps: per map, the photons in a kd-tree and the map's polygons (with an overlap
+//! index) for the geometry-based estimators.
+
+use super::TracedPhotons;
+use crate::{MapAssignment, MapError, PartId, Scene, TraceError};
+use glam::Vec3;
+use pm_geom::{Aabb, PolygonSet};
+use pm_kdtree::{CompactPhoton, PhotonTree};
+use rayon::prelude::*;
+
+/// One photon map: its photons and its geometry.
+#[derive(Clone, Debug)]
+pub struct PhotonMap {
+    tree: PhotonTree,
+    geometry: PolygonSet,
+    bounds: Aabb,
+}
+
+impl PhotonMap {
+    /// The photons.
+    pub fn tree(&self) -> &PhotonTree {
+        &self.tree
+    }
+
+    /// The map's polygons (mesh faces as they are, analytic parts as fine proxies), indexed.
+    pub fn geometry(&self) -> &PolygonSet {
+        &self.geometry
+    }
+
+    /// Bounds of the map's polygons.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+}
+
+/// All photon maps of a scene and the map of each part.
+#[derive(Clone, Debug)]
+pub struct PhotonMaps {
+    maps: Vec<PhotonMap>,
+    assignment: MapAssignment,
+}
+
+impl PhotonMaps {
+    /// Builds every map (in parallel): a kd-tree over its photons and its polygon set.
+    pub fn build(scene: &Scene, assignment: &MapAssignment, traced: TracedPhotons) -> Result<Self, MapError> {
+        if assignment.part_count() != scene.part_count() {
+            return Err(TraceError::AssignmentMismatch {
+                assigned: assignment.part_count(),
+                parts: scene.part_count(),
+            }
+            .into());
+        }
+        let (photons, _) = traced.into_parts();
+        if photons.len() != assignment.map_count() as usize {
+            return Err(TraceError::AssignmentMismatch {
+                assigned: photons.len(),
+                parts: assignment.map_count() as usize,
+            }
+            .into());
+        }
+        let parts = assignment.parts_per_map();
+        let maps = photons
+            .into_par_iter()
+            .zip(parts.par_iter())
+            .enumerate()
+            .map(|(m, (photons, parts))| build_map(scene, m as u32, photons, parts))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(PhotonMaps {
+            maps,
+            assignment: assignment.clone(),
+        })
+    }
+
+    /// The map of `part`.
+    #[inline]
+    pub fn map_of(&self, part: PartId) -> u32 {
+        self.assignment.map_of(part)
+    }
+
+    /// Map `id`.
+    #[inline]
+    pub fn map(&self, id: u32) -> &PhotonMap {
+        &self.maps[id as usize]
+    }
+
+    /// All maps.
+    pub fn maps(&self) -> &[PhotonMap] {
+        &self.maps
+    }
+
+    /// Number of maps.
+    pub fn len(&self) -> usize {
+        self.maps.len()
+    }
+
+    /// True when there are no maps.
+    pub fn is_empty(&self) -> bool {
+        self.maps.is_empty()
+    }
+
+    /// Checks every map: its kd-tree's invariants, and that every photon lies within the
+    /// map's geometry bounds (grown by 1 % of their diagonal for the proxies of analytic
+    /// parts), i.e. photons were stored in the map of the surface they hit.
+    pub fn validate(&self) -> Result<(), MapError> {
+        if self.maps.len() != self.assignment.map_count() as usize {
+            return Err(MapError::Invalid {
+                map: self.maps.len() as u32,
+                what: format!(
+                    "{} maps for an assignment of {}",
+                    self.maps.len(),
+                    self.assignment.map_count()
+                ),
+            });
+        }
+        for (m, map) in self.maps.iter().enumerate() {
+            let m = m as u32;
+            map.tree.validate().map_err(|e| MapError::Invalid {
+                map: m,
+                what: e.to_string(),
+            })?;
+            if map.tree.is_empty() {
+                continue;
+            }
+            let grow = Vec3::splat(0.01 * map.bounds.diagonal() + 1e-4);
+            let bounds = Aabb::new(map.bounds.min - grow, map.bounds.max + grow);
+            for i in 0..map.tree.len() as u32 {
+                let p = map.tree.get(i).position();
+                if !bounds.contains_point(p) {
+                    return Err(MapError::Invalid {
+                        map: m,
+                        what: format!("photon {i} at {p} outside the map's bounds"),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The assignment the maps were built with.
+    pub fn assignment(&self) -> &MapAssignment {
+        &self.assignment
+    }
+}
+
+fn build_map(
+    scene: &Scene,
+    map: u32,
+    photons: Vec<pm_kdtree::Photon>,
+    parts: &[PartId],
+) -> Result<PhotonMap, MapError> {
+    let compact: Vec<CompactPhoton> = photons.iter().map(CompactPhoton::encode).collect();
+    drop(photons);
+    let tree = PhotonTree::build(compact).map_err(|source| MapError::Tree { map, source })?;
+    let mut geometry = PolygonSet::new();
+    let mut bounds = Aabb::EMPTY;
+    for &part in parts {
+        scene.for_each_part_polygon(part, |polygon| {
+            if geometry.push(polygon).is_some() {
+                bounds = bounds.union(Aabb::from_points(polygon));
+            }
+        });
+    }
+    geometry.build_index();
+    Ok(PhotonMap {
+        tree,
+        geometry,
+        bounds,
+    })
+}

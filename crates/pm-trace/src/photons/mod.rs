@@ -1,0 +1,10 @@
+//! Photon tracing from the lights into per-map photon lists, and building the photon maps
+//! (kd-tree plus area geometry) from them.
+
+mod maps;
+mod scatter;
+mod trace;
+
+pub use maps::{PhotonMap, PhotonMaps};
+pub use scatter::{fresnel_dielectric, reflect, refract};
+pub use trace::{TraceOptions, TraceStats, TracedPhotons, trace_photons};

@@ -1,0 +1,256 @@
+//! Deterministic parallel photon tracing: every path draws from its own random stream
+//! `(seed, path index)`, chunks of paths run on rayon and are merged in path order, so the
+//! stored photons are bit-identical for any thread count.
+
+use super::scatter::{fresnel_dielectric, reflect, refract};
+use crate::sampling::cosine_hemisphere;
+use crate::{MapAssignment, Material, Ray, RayKind, Rng, Scene, TraceError};
+use glam::Vec2;
+use pm_kdtree::{Photon, PhotonKind};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Paths per parallel work item.
+const CHUNK: u32 = 2048;
+
+/// What to trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TraceOptions {
+    /// Number of emitted photon paths (each starts with `Φ_total / photons` on average).
+    pub photons: u32,
+    /// Seed of the random streams (path `i` uses stream `i`).
+    pub seed: u64,
+    /// Longest path (surface interactions); Russian roulette ends paths long before in
+    /// practice. The cut-off loses the power of longer paths.
+    pub max_bounces: u32,
+}
+
+impl Default for TraceOptions {
+    /// 100,000 photons (the paper's count), seed 0, at most 64 bounces.
+    fn default() -> Self {
+        TraceOptions {
+            photons: 100_000,
+            seed: 0,
+            max_bounces: 64,
+        }
+    }
+}
+
+/// Statistics of one tracing run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TraceStats {
+    /// Paths emitted.
+    pub emitted: u64,
+    /// Photons stored per map, indexed by `PhotonKind as usize` (direct, indirect, caustic).
+    pub stored: Vec<[u64; 3]>,
+    /// Wall-clock seconds spent tracing.
+    pub seconds: f64,
+}
+
+impl TraceStats {
+    /// Photons stored over all maps and kinds.
+    pub fn total_stored(&self) -> u64 {
+        self.stored.iter().flatten().sum()
+    }
+}
+
+/// The photons of each map, in path order, with statistics.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TracedPhotons {
+    photons: Vec<Vec<Photon>>,
+    stats: TraceStats,
+}
+
+impl TracedPhotons {
+    /// Photons per map (`photons_per_map()[map]`).
+    pub fn photons_per_map(&self) -> &[Vec<Photon>] {
+        &self.photons
+    }
+
+    /// The photons of one map.
+    pub fn photons(&self, map: u32) -> &[Photon] {
+        &self.photons[map as usize]
+    }
+
+    /// Statistics.
+    pub fn stats(&self) -> &TraceStats {
+        &self.stats
+    }
+
+    /// Photons per map and statistics, by value.
+    pub fn into_parts(self) -> (Vec<Vec<Photon>>, TraceStats) {
+        (self.photons, self.stats)
+    }
+}
+
+/// Light selection in proportion to power (sum over channels).
+struct LightPicker {
+    cumulative: Vec<f32>,
+    total: f32,
+}
+
+impl LightPicker {
+    fn new(scene: &Scene) -> Result<Self, TraceError> {
+        if scene.lights().is_empty() {
+            return Err(TraceError::NoLights);
+        }
+        let mut cumulative = Vec::with_capacity(scene.lights().len());
+        let mut total = 0.0f32;
+        for (i, light) in scene.lights().iter().enumerate() {
+            let p = light.power();
+            if !p.is_finite() || p.min_element() < 0.0 {
+                return Err(TraceError::InvalidPower {
+                    light: i,
+                    power: p.to_array(),
+                });
+            }
+            total += p.element_sum();
+            cumulative.push(total);
+        }
+        if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return Err(TraceError::InvalidPower {
+                light: scene.lights().len(),
+                power: [0.0; 3],
+            });
+        }
+        Ok(LightPicker { cumulative, total })
+    }
+
+    /// Index and selection probability.
+    fn pick(&self, rng: &mut Rng) -> (usize, f32) {
+        let x = rng.next_f32() * self.total;
+        let i = self
+            .cumulative
+            .partition_point(|&c| c <= x)
+            .min(self.cumulative.len() - 1);
+        let lo = if i == 0 { 0.0 } else { self.cumulative[i - 1] };
+        (i, (self.cumulative[i] - lo) / self.total)
+    }
+}
+
+/// Traces `options.photons` photon paths from the scene's lights and stores a photon at every
+/// diffuse hit, in the map `assignment` gives the part hit.
+///
+/// Errors: zero photons, no lights, a light with negative or non-finite power, all lights
+/// at zero power, or an assignment made for another scene.
+pub fn trace_photons(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+) -> Result<TracedPhotons, TraceError> {
+    let start = Instant::now();
+    if options.photons == 0 {
+        return Err(TraceError::ZeroPhotons);
+    }
+    if assignment.part_count() != scene.part_count() {
+        return Err(TraceError::AssignmentMismatch {
+            assigned: assignment.part_count(),
+            parts: scene.part_count(),
+        });
+    }
+    let picker = LightPicker::new(scene)?;
+    let chunks = options.photons.div_ceil(CHUNK);
+    let per_chunk: Vec<Vec<(u32, Photon)>> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let begin = c * CHUNK;
+            let end = (begin + CHUNK).min(options.photons);
+            let mut out = Vec::with_capacity(((end - begin) * 3) as usize);
+            for path in begin..end {
+                trace_path(scene, assignment, options, &picker, path, &mut out);
+            }
+            out
+        })
+        .collect();
+    let maps = assignment.map_count() as usize;
+    let mut stored = vec![[0u64; 3]; maps];
+    for &(m, ref p) in per_chunk.iter().flatten() {
+        stored[m as usize][p.kind as usize] += 1;
+    }
+    let mut photons: Vec<Vec<Photon>> = stored
+        .iter()
+        .map(|s| Vec::with_capacity(s.iter().sum::<u64>() as usize))
+        .collect();
+    for &(m, p) in per_chunk.iter().flatten() {
+        photons[m as usize].push(p);
+    }
+    let stats = TraceStats {
+        emitted: options.photons as u64,
+        stored,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok(TracedPhotons { photons, stats })
+}
+
+/// One photon path: emission, then surface interactions until absorption.
+fn trace_path(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    picker: &LightPicker,
+    path: u32,
+    out: &mut Vec<(u32, Photon)>,
+) {
+    let mut rng = Rng::new(options.seed, path as u64);
+    let (li, p_light) = picker.pick(&mut rng);
+    let light = &scene.lights()[li];
+    let emitted = light.emit(&mut rng);
+    let mut power = light.power() * emitted.weight / (options.photons as f32 * p_light);
+    // Step off the emitter's own surface (area lights start on their geometry).
+    let mut ray = Ray {
+        origin: emitted.ray.at(scene.epsilon()),
+        direction: emitted.ray.direction,
+    };
+    let mut diffuse_bounces = 0u32;
+    let mut specular = false;
+    for _ in 0..options.max_bounces {
+        let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
+            break;
+        };
+        let direction = match *scene.material(&hit) {
+            Material::Lambertian { albedo } => {
+                let kind = match (diffuse_bounces, specular) {
+                    (0, false) => PhotonKind::Direct,
+                    (0, true) => PhotonKind::Caustic,
+                    _ => PhotonKind::Indirect,
+                };
+                out.push((
+                    assignment.map_of(hit.part),
+                    Photon {
+                        position: hit.position,
+                        power,
+                        direction: ray.direction,
+                        kind,
+                    },
+                ));
+                // Russian roulette on albedo: survive with q, scale by albedo / q (unbiased).
+                let q = albedo.max_element().min(1.0);
+                if rng.next_f32() >= q {
+                    break;
+                }
+                power *= albedo / q;
+                diffuse_bounces += 1;
+                cosine_hemisphere(hit.normal, Vec2::new(rng.next_f32(), rng.next_f32()))
+            }
+            Material::Mirror { reflectance } => {
+                power *= reflectance;
+                if power.max_element() <= 0.0 {
+                    break;
+                }
+                specular = true;
+                reflect(ray.direction, hit.normal)
+            }
+            Material::Glass { ior } => {
+                specular = true;
+                let eta = if hit.front_face { 1.0 / ior } else { ior };
+                let cos_i = -ray.direction.dot(hit.normal);
+                let f = fresnel_dielectric(cos_i, eta);
+                match refract(ray.direction, hit.normal, eta) {
+                    Some(t) if rng.next_f32() >= f => t,
+                    _ => reflect(ray.direction, hit.normal),
+                }
+            }
+        };
+        ray = scene.spawn_ray(&hit, direction);
+    }
+}

@@ -1,0 +1,575 @@
+//! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
+//! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
+
+use crate::bvh::{Primitive, SceneBvh};
+use crate::shape::{Ring, RingSide, Shape, Sphere};
+use crate::{AreaLight, Camera, Light, Material, Ray, SceneError, Surface};
+use glam::Vec3;
+use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
+
+/// Identifies one part of the scene: a mesh face, a sphere, or one side of a ring. Photon
+/// maps are assigned per part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct PartId(pub u32);
+
+/// What a part is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PartSource {
+    /// Face `face` of mesh `mesh` (indices into [`Scene::meshes`]).
+    MeshFace {
+        /// Mesh index.
+        mesh: u32,
+        /// Face of that mesh.
+        face: FaceId,
+    },
+    /// A sphere (index into [`Scene::shapes`]).
+    Sphere {
+        /// Shape index.
+        shape: u32,
+    },
+    /// One side of a ring (index into [`Scene::shapes`]).
+    Ring {
+        /// Shape index.
+        shape: u32,
+        /// Which side.
+        side: RingSide,
+    },
+}
+
+/// Which rays a query is for: camera rays skip surfaces hidden from the camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayKind {
+    /// Primary or specular eye rays: surfaces with `camera_visible = false` are transparent.
+    Camera,
+    /// Photon, shadow and path rays: every surface counts.
+    Other,
+}
+
+/// A ray–surface intersection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along the ray.
+    pub t: f32,
+    /// Hit point.
+    pub position: Vec3,
+    /// Unit geometric normal, flipped to face the incoming ray (`normal · direction ≤ 0`).
+    pub normal: Vec3,
+    /// True when the ray hit the side the surface's own normal points to (the emitting side
+    /// of area lights, the outside of glass).
+    pub front_face: bool,
+    /// The part hit.
+    pub part: PartId,
+}
+
+/// A mesh of the scene and the parts of its faces.
+#[derive(Clone, Debug)]
+pub struct SceneMesh {
+    mesh: HalfEdgeMesh,
+    first_part: u32,
+}
+
+impl SceneMesh {
+    /// The half-edge mesh (faces after welding and dropping zero-area faces).
+    pub fn half_edge_mesh(&self) -> &HalfEdgeMesh {
+        &self.mesh
+    }
+
+    /// The part of face `face`.
+    pub fn part_of_face(&self, face: FaceId) -> PartId {
+        PartId(self.first_part + face.0)
+    }
+}
+
+enum FaceSurfaces {
+    One(Surface),
+    PerFace(Vec<Surface>),
+}
+
+struct MeshInput {
+    positions: Vec<Vec3>,
+    faces: Vec<Vec<u32>>,
+    surfaces: FaceSurfaces,
+}
+
+/// Builds a [`Scene`]; errors are reported by [`SceneBuilder::build`].
+///
+/// ```
+/// use pm_trace::{Scene, Surface, PointLight, glam::Vec3};
+/// let floor = [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(-1.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(1.0, 0.0, -1.0)];
+/// let scene = Scene::builder()
+///     .mesh(&floor, &[[0u32, 1, 2, 3]], Surface::diffuse(Vec3::splat(0.5)))
+///     .sphere(Vec3::new(0.0, 0.5, 0.0), 0.25, Surface::mirror(Vec3::ONE))
+///     .light(PointLight::new(Vec3::new(0.0, 2.0, 0.0), Vec3::splat(100.0)))
+///     .build()?;
+/// assert_eq!(scene.part_count(), 2);
+/// # Ok::<(), pm_trace::SceneError>(())
+/// ```
+#[derive(Default)]
+pub struct SceneBuilder {
+    meshes: Vec<MeshInput>,
+    shapes: Vec<(Shape, Surface)>,
+    lights: Vec<Box<dyn Light>>,
+    camera: Option<Camera>,
+    mesh_options: MeshOptions,
+}
+
+impl std::fmt::Debug for SceneBuilder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SceneBuilder")
+            .field("meshes", &self.meshes.len())
+            .field("shapes", &self.shapes.len())
+            .field("lights", &self.lights)
+            .field("camera", &self.camera)
+            .finish()
+    }
+}
+
+impl SceneBuilder {
+    /// Adds a mesh of convex planar polygons (vertex index lists, counter-clockwise seen from
+    /// the side the normal points to), all with `surface`.
+    pub fn mesh<F: AsRef<[u32]>>(mut self, positions: &[Vec3], faces: &[F], surface: Surface) -> Self {
+        self.meshes.push(MeshInput {
+            positions: positions.to_vec(),
+            faces: faces.iter().map(|f| f.as_ref().to_vec()).collect(),
+            surfaces: FaceSurfaces::One(surface),
+        });
+        self
+    }
+
+    /// Adds a mesh with one surface per face (`surfaces.len() == faces.len()`).
+    pub fn mesh_per_face<F: AsRef<[u32]>>(
+        mut self,
+        positions: &[Vec3],
+        faces: &[F],
+        surfaces: &[Surface],
+    ) -> Self {
+        self.meshes.push(MeshInput {
+            positions: positions.to_vec(),
+            faces: faces.iter().map(|f| f.as_ref().to_vec()).collect(),
+            surfaces: FaceSurfaces::PerFace(surfaces.to_vec()),
+        });
+        self
+    }
+
+    /// Adds a sphere.
+    pub fn sphere(mut self, center: Vec3, radius: f32, surface: Surface) -> Self {
+        self.shapes
+            .push((Shape::Sphere(Sphere { center, radius }), surface));
+        self
+    }
+
+    /// Adds a ring (thick washer) whose bottom annulus is centred at `center`, extending
+    /// `height` along `axis` (normalised here).
+    pub fn ring(
+        mut self,
+        center: Vec3,
+        axis: Vec3,
+        inner_radius: f32,
+        outer_radius: f32,
+        height: f32,
+        surface: Surface,
+    ) -> Self {
+        let axis = axis.try_normalize().unwrap_or(Vec3::ZERO);
+        self.shapes.push((
+            Shape::Ring(Ring {
+                center,
+                axis,
+                inner_radius,
+                outer_radius,
+                height,
+            }),
+            surface,
+        ));
+        self
+    }
+
+    /// Adds a light.
+    pub fn light(self, light: impl Light + 'static) -> Self {
+        self.boxed_light(Box::new(light))
+    }
+
+    /// Adds a boxed light.
+    pub fn boxed_light(mut self, light: Box<dyn Light>) -> Self {
+        self.lights.push(light);
+        self
+    }
+
+    /// Adds a parallelogram area light `corner + s·edge_u + t·edge_v` emitting `radiance`
+    /// towards `edge_u × edge_v`: both its (black, emissive) geometry, as a mesh of its own,
+    /// and the [`AreaLight`].
+    pub fn area_light_quad(self, corner: Vec3, edge_u: Vec3, edge_v: Vec3, radiance: Vec3) -> Self {
+        let quad = [corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v];
+        let surface = Surface {
+            material: Material::Lambertian { albedo: Vec3::ZERO },
+            emission: radiance,
+            camera_visible: true,
+        };
+        self.mesh(&quad, &[[0u32, 1, 2, 3]], surface)
+            .light(AreaLight::quad(corner, edge_u, edge_v, radiance))
+    }
+
+    /// Sets the camera (default: looking at the scene along +z from in front of its bounds).
+    pub fn camera(mut self, camera: Camera) -> Self {
+        self.camera = Some(camera);
+        self
+    }
+
+    /// Sets the mesh options (weld tolerance) used for meshes.
+    pub fn mesh_options(mut self, options: MeshOptions) -> Self {
+        self.mesh_options = options;
+        self
+    }
+
+    /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
+    /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
+    pub fn build(self) -> Result<Scene, SceneError> {
+        let mut parts = Vec::new();
+        let mut part_surfaces = Vec::new();
+        let mut prims = Vec::new();
+        let mut meshes = Vec::with_capacity(self.meshes.len());
+        for (mi, input) in self.meshes.iter().enumerate() {
+            if let FaceSurfaces::PerFace(s) = &input.surfaces
+                && s.len() != input.faces.len()
+            {
+                return Err(SceneError::SurfaceCount {
+                    mesh: mi,
+                    surfaces: s.len(),
+                    faces: input.faces.len(),
+                });
+            }
+            let mesh = HalfEdgeMesh::build(&input.positions, &input.faces, &self.mesh_options)
+                .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
+            let first_part = parts.len() as u32;
+            let mut polygon = Vec::new();
+            for face in mesh.faces() {
+                let surface = match &input.surfaces {
+                    FaceSurfaces::One(s) => *s,
+                    FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
+                };
+                check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
+                let part = PartId(parts.len() as u32);
+                parts.push(PartSource::MeshFace {
+                    mesh: mi as u32,
+                    face,
+                });
+                part_surfaces.push(surface);
+                polygon.clear();
+                polygon.extend(mesh.face_polygon(face));
+                for i in 1..polygon.len().saturating_sub(1) {
+                    prims.push(Primitive::Triangle {
+                        v: [polygon[0], polygon[i], polygon[i + 1]],
+                        part,
+                    });
+                }
+            }
+            meshes.push(SceneMesh { mesh, first_part });
+        }
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (si, (shape, surface)) in self.shapes.iter().enumerate() {
+            check_shape(shape).map_err(|reason| SceneError::InvalidShape { shape: si, reason })?;
+            check_surface(surface, || format!("shape {si}"))?;
+            match *shape {
+                Shape::Sphere(sphere) => {
+                    let part = PartId(parts.len() as u32);
+                    parts.push(PartSource::Sphere { shape: si as u32 });
+                    part_surfaces.push(*surface);
+                    prims.push(Primitive::Sphere { sphere, part });
+                }
+                Shape::Ring(ring) => {
+                    for side in RingSide::ALL {
+                        let part = PartId(parts.len() as u32);
+                        parts.push(PartSource::Ring {
+                            shape: si as u32,
+                            side,
+                        });
+                        part_surfaces.push(*surface);
+                        prims.push(Primitive::RingSide { ring, side, part });
+                    }
+                }
+            }
+            shapes.push(*shape);
+        }
+        if prims.is_empty() {
+            return Err(SceneError::NoGeometry);
+        }
+        let bounds = meshes
+            .iter()
+            .flat_map(|m| m.mesh.positions().iter())
+            .fold(Aabb::EMPTY, |b, &p| b.grow(p));
+        let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
+        let mut lights = self.lights;
+        for light in &mut lights {
+            light.attach(&bounds);
+        }
+        let camera = self.camera.unwrap_or_else(|| default_camera(&bounds));
+        let epsilon = 1e-5 * bounds.size().max_element().max(1.0);
+        Ok(Scene {
+            meshes,
+            shapes,
+            parts,
+            part_surfaces,
+            lights,
+            camera,
+            bounds,
+            epsilon,
+            mesh_options: self.mesh_options,
+            bvh: SceneBvh::build(prims),
+        })
+    }
+}
+
+fn default_camera(bounds: &Aabb) -> Camera {
+    let c = bounds.center();
+    let size = bounds.size();
+    let fov = 40f32.to_radians();
+    let back = 0.5 * size.y.max(size.x) / (fov * 0.5).tan() + 0.5 * size.z;
+    Camera::new(c - Vec3::Z * back * 1.1, c, Vec3::Y, fov)
+}
+
+fn check_shape(shape: &Shape) -> Result<(), String> {
+    match shape {
+        Shape::Sphere(s) => {
+            if !(s.center.is_finite() && s.radius.is_finite() && s.radius > 0.0) {
+                return Err(format!(
+                    "sphere needs a finite centre and a positive radius, got {:?}, {}",
+                    s.center, s.radius
+                ));
+            }
+        }
+        Shape::Ring(r) => {
+            let ok = r.center.is_finite()
+                && r.axis.is_normalized()
+                && r.inner_radius.is_finite()
+                && r.outer_radius.is_finite()
+                && r.height.is_finite()
+                && r.inner_radius >= 0.0
+                && r.outer_radius > r.inner_radius
+                && r.height > 0.0;
+            if !ok {
+                return Err(format!(
+                    "ring needs a finite centre, a non-zero axis, 0 <= inner < outer radius and a positive height, got {r:?}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_surface(s: &Surface, what: impl Fn() -> String) -> Result<(), SceneError> {
+    let colour_ok = |c: Vec3| c.is_finite() && c.min_element() >= 0.0;
+    let reason = match s.material {
+        Material::Lambertian { albedo } if !colour_ok(albedo) || albedo.max_element() > 1.0 => {
+            Some(format!("albedo {albedo} must be finite and in [0, 1]"))
+        }
+        Material::Mirror { reflectance } if !colour_ok(reflectance) || reflectance.max_element() > 1.0 => {
+            Some(format!("reflectance {reflectance} must be finite and in [0, 1]"))
+        }
+        Material::Glass { ior } if !(ior.is_finite() && ior > 0.0) => {
+            Some(format!("index of refraction {ior} must be finite and positive"))
+        }
+        _ if !colour_ok(s.emission) => {
+            Some(format!("emission {} must be finite and non-negative", s.emission))
+        }
+        _ => None,
+    };
+    match reason {
+        Some(reason) => Err(SceneError::InvalidSurface { what: what(), reason }),
+        None => Ok(()),
+    }
+}
+
+/// A scene ready for ray queries: parts with surfaces, lights, a camera and a BVH.
+#[derive(Debug)]
+pub struct Scene {
+    meshes: Vec<SceneMesh>,
+    shapes: Vec<Shape>,
+    parts: Vec<PartSource>,
+    part_surfaces: Vec<Surface>,
+    lights: Vec<Box<dyn Light>>,
+    camera: Camera,
+    bounds: Aabb,
+    epsilon: f32,
+    mesh_options: MeshOptions,
+    bvh: SceneBvh,
+}
+
+/// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
+const SPHERE_PROXY_STACKS: u32 = 16;
+/// Segments of each ring side's proxy (64 quads).
+const RING_PROXY_SEGMENTS: u32 = 64;
+
+impl Scene {
+    /// A new, empty builder.
+    pub fn builder() -> SceneBuilder {
+        SceneBuilder::default()
+    }
+
+    /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
+    /// [`Scene::spawn_ray`]'s offset origin.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
+        let (t, index) = match kind {
+            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
+            RayKind::Camera => self.bvh.closest(ray, 0.0, t_max, |p| {
+                self.part_surfaces[p.0 as usize].camera_visible
+            })?,
+        };
+        let prim = self.bvh.primitive(index);
+        let position = ray.at(t);
+        let n = prim.normal_at(position);
+        let front_face = n.dot(ray.direction) < 0.0;
+        Some(Hit {
+            t,
+            position,
+            normal: if front_face { n } else { -n },
+            front_face,
+            part: prim.part(),
+        })
+    }
+
+    /// True when a surface lies strictly between `from` and `to` (surfaces within
+    /// [`Scene::epsilon`] of either end do not count, so both may lie on surfaces).
+    #[inline]
+    pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
+        let d = to - from;
+        let dist = d.length();
+        if !dist.is_finite() || dist <= 2.0 * self.epsilon {
+            return false;
+        }
+        let ray = Ray {
+            origin: from,
+            direction: d / dist,
+        };
+        self.bvh.any_hit(&ray, self.epsilon, dist - self.epsilon)
+    }
+
+    /// A ray leaving `hit` along unit `direction`, its origin pushed off the surface to the
+    /// side `direction` goes to (avoids re-hitting the same surface).
+    #[inline]
+    pub fn spawn_ray(&self, hit: &Hit, direction: Vec3) -> Ray {
+        let side = if direction.dot(hit.normal) >= 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        Ray {
+            origin: hit.position + side * self.epsilon,
+            direction,
+        }
+    }
+
+    /// The distance used to push rays off surfaces (1e-5 × the scene's size, at least 1e-5 m).
+    pub fn epsilon(&self) -> f32 {
+        self.epsilon
+    }
+
+    /// The lights.
+    pub fn lights(&self) -> &[Box<dyn Light>] {
+        &self.lights
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Bounds of all geometry.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Surface of the part that was hit.
+    #[inline]
+    pub fn surface(&self, hit: &Hit) -> &Surface {
+        &self.part_surfaces[hit.part.0 as usize]
+    }
+
+    /// Surface of a part.
+    pub fn part_surface(&self, part: PartId) -> &Surface {
+        &self.part_surfaces[part.0 as usize]
+    }
+
+    /// Material of the part that was hit.
+    #[inline]
+    pub fn material(&self, hit: &Hit) -> &Material {
+        &self.surface(hit).material
+    }
+
+    /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
+    #[inline]
+    pub fn emission(&self, hit: &Hit) -> Vec3 {
+        if hit.front_face {
+            self.surface(hit).emission
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// Number of parts.
+    pub fn part_count(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// What part `part` is.
+    pub fn part_source(&self, part: PartId) -> PartSource {
+        self.parts[part.0 as usize]
+    }
+
+    /// The meshes, in the order they were added.
+    pub fn meshes(&self) -> &[SceneMesh] {
+        &self.meshes
+    }
+
+    /// The analytic shapes, in the order they were added.
+    pub fn shapes(&self) -> &[Shape] {
+        &self.shapes
+    }
+
+    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
+    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
+    /// along contact lines). Add every mesh again, including those of area-light quads.
+    pub fn into_builder_without_meshes(self) -> SceneBuilder {
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (p, source) in self.parts.iter().enumerate() {
+            match *source {
+                PartSource::Sphere { shape } => {
+                    shapes.push((self.shapes[shape as usize], self.part_surfaces[p]))
+                }
+                PartSource::Ring {
+                    shape,
+                    side: RingSide::Top,
+                } => shapes.push((self.shapes[shape as usize], self.part_surfaces[p])),
+                _ => {}
+            }
+        }
+        SceneBuilder {
+            meshes: Vec::new(),
+            shapes,
+            lights: self.lights,
+            camera: Some(self.camera),
+            mesh_options: self.mesh_options,
+        }
+    }
+
+    /// Calls `f` with each polygon of `part`: a mesh face as it is, analytic parts as a fine
+    /// polygonal proxy (512 polygons per sphere, 64 per ring side). Polygons are wound
+    /// counter-clockwise seen from the side the part's normal points to.
+    pub fn for_each_part_polygon(&self, part: PartId, mut f: impl FnMut(&[Vec3])) {
+        match self.parts[part.0 as usize] {
+            PartSource::MeshFace { mesh, face } => {
+                let polygon: Vec<Vec3> = self.meshes[mesh as usize].mesh.face_polygon(face).collect();
+                f(&polygon);
+            }
+            PartSource::Sphere { shape } => {
+                if let Shape::Sphere(s) = self.shapes[shape as usize] {
+                    s.for_each_proxy_polygon(SPHERE_PROXY_STACKS, f);
+                }
+            }
+            PartSource::Ring { shape, side } => {
+                if let Shape::Ring(r) = self.shapes[shape as usize] {
+                    r.for_each_proxy_polygon(side, RING_PROXY_SEGMENTS, f);
+                }
+            }
+        }
+    }
+}

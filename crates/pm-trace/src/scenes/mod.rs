@@ -1,0 +1,70 @@
+//! The report's built-in scenes by name (DESIGN.md section 8), each with its camera.
+
+mod accordion;
+mod cornell;
+mod rooms;
+
+pub use accordion::ACCORDION_LIGHT_DIRECTION;
+
+use crate::{Scene, SceneError};
+use glam::Vec3;
+
+/// Names of the built-in scenes, in the report's order.
+pub const NAMES: [&str; 5] = [
+    "cornell-box",
+    "lit-unlit-rooms",
+    "colored-rooms",
+    "accordion",
+    "touching-rooms",
+];
+
+/// Builds the built-in scene `name`; an unknown name is an error listing the valid ones.
+///
+/// ```
+/// let scene = pm_trace::scenes::build("cornell-box")?;
+/// assert_eq!(scene.lights().len(), 1);
+/// assert!(pm_trace::scenes::build("cornell").is_err());
+/// # Ok::<(), pm_trace::SceneError>(())
+/// ```
+pub fn build(name: &str) -> Result<Scene, SceneError> {
+    match name {
+        "cornell-box" => cornell::cornell_box(),
+        "lit-unlit-rooms" => rooms::lit_unlit_rooms(),
+        "colored-rooms" => rooms::colored_rooms(),
+        "accordion" => accordion::accordion(),
+        "touching-rooms" => rooms::touching_rooms(),
+        _ => Err(SceneError::UnknownScene {
+            name: name.to_string(),
+            valid: NAMES.join(", "),
+        }),
+    }
+}
+
+/// Faces of the box `[min, max]` as quads over the 8 corners `i → (x: bit 0, y: bit 1,
+/// z: bit 2)`, in the order floor (y min), ceiling, x min, x max, z max (back), z min (front).
+/// `inward` winds them so their normals point into the box, otherwise out of it.
+pub(crate) fn box_mesh(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<[u32; 4]>) {
+    let corners = (0..8)
+        .map(|i| {
+            Vec3::new(
+                if i & 1 != 0 { max.x } else { min.x },
+                if i & 2 != 0 { max.y } else { min.y },
+                if i & 4 != 0 { max.z } else { min.z },
+            )
+        })
+        .collect();
+    let mut faces = vec![
+        [0, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+        [4, 6, 7, 5],
+        [0, 1, 3, 2],
+    ];
+    if !inward {
+        for f in &mut faces {
+            f.reverse();
+        }
+    }
+    (corners, faces)
+}

@@ -1,0 +1,446 @@
+//! Hand-written hostile glTF files (tests/data/gltf/scenes) and a few generated ones: each is
+//! refused with the right kind of error and none reads outside the scene's folder. The
+//! sentinel `tests/data/gltf/sentinel.bin` beside that folder holds a valid triangle buffer,
+//! so a loader that read it would *succeed*: the refusal kind proves it was not read.
+//! `known.gltf` checks the mapping against values worked out by hand.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use pm_trace::gltf::{
+    BufferError, GltfCamera, GltfError, GltfLight, GltfOptions, MAX_DEPTH, SurfaceKind, read_content,
+};
+
+const SCENES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gltf/scenes");
+const SENTINEL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gltf/sentinel.bin");
+
+fn load(name: &str) -> Result<pm_trace::gltf::GltfContent, GltfError> {
+    read_content(&Path::new(SCENES).join(name), &GltfOptions::default())
+}
+
+fn buffer_error(name: &str) -> BufferError {
+    match load(name) {
+        Err(GltfError::Buffer { reason, buffer, .. }) => {
+            assert_eq!(buffer, 0);
+            reason
+        }
+        other => panic!("{name}: expected a buffer error, got {other:?}"),
+    }
+}
+
+/// A scratch folder under the system temp dir, removed on drop.
+struct Scratch(PathBuf);
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("pm-gltf-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn triangle_gltf(uri: &str) -> String {
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36,"uri":{uri:?}}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+        "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}]}}"#
+    )
+}
+
+#[test]
+fn the_sentinel_is_a_loadable_buffer() {
+    // Without this the refusals below would prove nothing: the sentinel, reached legally,
+    // loads as a triangle.
+    let scratch = Scratch::new("sentinel");
+    std::fs::copy(SENTINEL, scratch.0.join("sentinel.bin")).unwrap();
+    let file = scratch.0.join("ok.gltf");
+    std::fs::write(&file, triangle_gltf("sentinel.bin")).unwrap();
+    let content = read_content(&file, &GltfOptions::default()).unwrap();
+    assert_eq!(content.triangle_count(), 1);
+}
+
+#[test]
+fn parent_traversal_is_refused() {
+    for name in [
+        "traversal.gltf",
+        "encoded_traversal.gltf",
+        "encoded_dots_traversal.gltf",
+        "dev_zero.gltf",
+    ] {
+        assert!(
+            matches!(buffer_error(name), BufferError::EscapesFolder { .. }),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn absolute_paths_are_refused() {
+    for name in ["absolute.gltf", "encoded_absolute.gltf"] {
+        assert!(
+            matches!(buffer_error(name), BufferError::Absolute { .. }),
+            "{name}"
+        );
+    }
+    // The sentinel's real absolute path, which exists and would load.
+    let scratch = Scratch::new("absolute");
+    let file = scratch.0.join("abs.gltf");
+    let sentinel = Path::new(SENTINEL).canonicalize().unwrap();
+    std::fs::write(&file, triangle_gltf(sentinel.to_str().unwrap())).unwrap();
+    let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            GltfError::Buffer {
+                reason: BufferError::Absolute { .. },
+                ..
+            }
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn schemes_are_refused() {
+    for name in ["file_uri.gltf", "file_url_absolute.gltf", "http.gltf"] {
+        assert!(matches!(buffer_error(name), BufferError::Scheme { .. }), "{name}");
+    }
+}
+
+#[test]
+fn invalid_percent_escape_is_an_error_not_a_panic() {
+    assert!(matches!(
+        buffer_error("bad_escape.gltf"),
+        BufferError::BadEscape { .. }
+    ));
+}
+
+#[test]
+fn non_regular_and_missing_files_are_refused() {
+    assert!(matches!(
+        buffer_error("directory.gltf"),
+        BufferError::NotRegularFile { .. }
+    ));
+    assert!(matches!(
+        buffer_error("missing.gltf"),
+        BufferError::Unreadable { .. }
+    ));
+}
+
+#[test]
+fn file_longer_than_its_byte_length_is_refused() {
+    assert!(matches!(
+        buffer_error("longer_than_declared.gltf"),
+        BufferError::LongerThanDeclared { declared: 24 }
+    ));
+}
+
+#[cfg(unix)]
+#[test]
+fn symlink_out_of_the_folder_is_refused() {
+    let scratch = Scratch::new("symlink");
+    let inner = scratch.0.join("scene");
+    std::fs::create_dir(&inner).unwrap();
+    std::fs::copy(SENTINEL, scratch.0.join("outside.bin")).unwrap();
+    std::os::unix::fs::symlink(scratch.0.join("outside.bin"), inner.join("link.bin")).unwrap();
+    let file = inner.join("s.gltf");
+    std::fs::write(&file, triangle_gltf("link.bin")).unwrap();
+    let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+    assert!(
+        matches!(
+            &err,
+            GltfError::Buffer {
+                reason: BufferError::EscapesFolder { .. },
+                ..
+            }
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn percent_encoded_name_inside_the_folder_loads() {
+    let content = load("valid_percent_encoded.gltf").unwrap();
+    assert_eq!(content.triangle_count(), 1);
+}
+
+#[test]
+fn cyclic_node_graph_is_an_error() {
+    let err = load("cycle.gltf").unwrap_err();
+    assert!(matches!(err, GltfError::Node { node: 0, .. }), "{err}");
+    assert!(err.to_string().contains("cycle"), "{err}");
+}
+
+#[test]
+fn node_chain_deeper_than_the_limit_is_an_error() {
+    let scratch = Scratch::new("deep");
+    let depth = MAX_DEPTH + 10;
+    let nodes: Vec<String> = (0..depth)
+        .map(|i| {
+            if i + 1 < depth {
+                format!(r#"{{"children":[{}]}}"#, i + 1)
+            } else {
+                r#"{"mesh":0}"#.to_owned()
+            }
+        })
+        .collect();
+    let json = triangle_gltf(
+        "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA",
+    )
+    .replace(
+        r#""nodes":[{"mesh":0}]"#,
+        &format!(r#""nodes":[{}]"#, nodes.join(",")),
+    );
+    let file = scratch.0.join("deep.gltf");
+    std::fs::write(&file, json).unwrap();
+    let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+    assert!(
+        matches!(&err, GltfError::Node { node, .. } if *node == MAX_DEPTH),
+        "{err}"
+    );
+}
+
+#[test]
+fn accessor_count_beyond_its_buffer_is_an_error() {
+    let err = load("huge_count.gltf").unwrap_err();
+    assert!(matches!(err, GltfError::Accessor { accessor: 0, .. }), "{err}");
+}
+
+#[test]
+fn index_out_of_range_names_mesh_primitive_and_index() {
+    let err = load("index_out_of_range.gltf").unwrap_err();
+    assert!(
+        matches!(
+            err,
+            GltfError::Primitive {
+                mesh: 0,
+                primitive: 0,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert!(
+        err.to_string()
+            .ends_with("mesh 0 primitive 0: index 255 out of range for 3 vertices"),
+        "{err}"
+    );
+    assert!(err.to_string().contains("index_out_of_range.gltf"), "{err}");
+}
+
+#[test]
+fn non_finite_position_is_an_error() {
+    let err = load("non_finite_position.gltf").unwrap_err();
+    assert!(matches!(err, GltfError::Primitive { .. }), "{err}");
+    assert!(err.to_string().contains("position 1 is not finite"), "{err}");
+}
+
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::new();
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(bin);
+    out
+}
+
+#[test]
+fn glb_with_bin_chunk_loads_and_lying_lengths_are_refused() {
+    let scratch = Scratch::new("glb");
+    let json = triangle_gltf("x").replace(r#","uri":"x""#, "");
+    let bin = std::fs::read(SENTINEL).unwrap();
+    let good = glb(&json, &bin);
+    let file = scratch.0.join("good.glb");
+    std::fs::write(&file, &good).unwrap();
+    let content = read_content(&file, &GltfOptions::default()).unwrap();
+    assert_eq!(content.meshes[0].positions[1], Vec3::X);
+
+    // Header length larger than the file, then a BIN chunk length past the end.
+    let mut lying = good.clone();
+    lying[8..12].copy_from_slice(&u32::MAX.to_le_bytes());
+    let mut chunk = good.clone();
+    let bin_header = good.len() - bin.len() - 8;
+    chunk[bin_header..bin_header + 4].copy_from_slice(&1000u32.to_le_bytes());
+    for (name, bytes) in [
+        ("lying.glb", lying),
+        ("chunk.glb", chunk),
+        ("cut.glb", good[..30].to_vec()),
+    ] {
+        let file = scratch.0.join(name);
+        std::fs::write(&file, bytes).unwrap();
+        let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+        assert!(matches!(err, GltfError::Glb { .. }), "{name}: {err}");
+    }
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() < 1e-5
+}
+
+#[test]
+fn known_scene_maps_transforms_materials_lights_and_camera() {
+    let c = load("known.gltf").unwrap();
+    let tris: Vec<Vec<Vec3>> = c.meshes.iter().map(|m| m.positions.clone()).collect();
+    // Worked out by hand from the node transforms (parent translation (1, 2, 3)).
+    let expected = [
+        [
+            Vec3::new(1., 2., 3.),
+            Vec3::new(3., 2., 3.),
+            Vec3::new(1., 4., 3.),
+        ], // scale 2
+        [
+            Vec3::new(1., 2., 3.),
+            Vec3::new(2., 2., 3.),
+            Vec3::new(1., 2., 4.),
+        ], // 90° about x
+        [
+            Vec3::new(11., 2., 3.),
+            Vec3::new(12., 2., 3.),
+            Vec3::new(11., 3., 3.),
+        ], // matrix
+        [
+            Vec3::new(1., 2., 3.),
+            Vec3::new(0., 2., 3.),
+            Vec3::new(1., 3., 3.),
+        ], // mirrored x
+        [
+            Vec3::new(1., 2., 2.),
+            Vec3::new(2., 2., 2.),
+            Vec3::new(1., 3., 2.),
+        ], // z − 1
+    ];
+    assert_eq!(tris.len(), 5, "the default scene (1), not scene 0, is walked");
+    for (got, want) in tris.iter().zip(&expected) {
+        assert!(
+            got.iter().zip(want).all(|(a, b)| close(*a, *b)),
+            "{got:?} vs {want:?}"
+        );
+    }
+    // The mirroring transform keeps the front face: winding is flipped back.
+    assert_eq!(c.meshes[3].triangles, vec![[0, 2, 1]]);
+    assert_eq!(c.meshes[0].triangles, vec![[0, 1, 2]]);
+
+    let kinds: Vec<SurfaceKind> = c.meshes.iter().map(|m| m.material.kind).collect();
+    assert_eq!(
+        kinds[0],
+        SurfaceKind::Lambertian {
+            albedo: Vec3::new(0.5, 0.25, 0.125)
+        }
+    );
+    assert!(
+        matches!(kinds[1], SurfaceKind::Mirror { reflectance } if close(reflectance, Vec3::new(0.9, 0.8, 0.7)))
+    );
+    assert_eq!(kinds[2], SurfaceKind::Glass { ior: 1.33 });
+    assert_eq!(kinds[3], SurfaceKind::Lambertian { albedo: Vec3::ONE });
+    assert_eq!(c.meshes[3].material.emission, Vec3::new(8.0, 4.0, 2.0));
+    assert_eq!(c.meshes[4].material_index, None);
+    assert!(c.meshes.iter().take(3).all(|m| m.material.emission == Vec3::ZERO));
+
+    // 683 cd of white-ish light is 1 W/sr per unit colour; 68.3 lux is 0.1 W/m².
+    assert_eq!(c.lights.len(), 3);
+    match c.lights[0] {
+        GltfLight::Point { position, intensity } => {
+            assert!(close(position, Vec3::new(0., 3., 0.)));
+            assert!(close(intensity, Vec3::new(1., 0.5, 0.25)));
+        }
+        other => panic!("{other:?}"),
+    }
+    match c.lights[1] {
+        GltfLight::Spot {
+            direction,
+            intensity,
+            inner_cone_angle,
+            outer_cone_angle,
+            ..
+        } => {
+            assert!(
+                close(direction, Vec3::Y),
+                "−Z turned 90° about +x points up: {direction}"
+            );
+            assert!(close(intensity, Vec3::splat(2.0)));
+            assert_eq!((inner_cone_angle, outer_cone_angle), (0.2, 0.4));
+        }
+        other => panic!("{other:?}"),
+    }
+    match c.lights[2] {
+        GltfLight::Directional {
+            direction,
+            irradiance,
+        } => {
+            assert!(close(direction, Vec3::NEG_Y));
+            assert!(close(irradiance, Vec3::splat(0.1)));
+        }
+        other => panic!("{other:?}"),
+    }
+    let scaled = read_content(
+        &Path::new(SCENES).join("known.gltf"),
+        &GltfOptions {
+            light_scale: 683.0,
+            ..GltfOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        matches!(scaled.lights[2], GltfLight::Directional { irradiance, .. } if close(irradiance, Vec3::splat(68.3)))
+    );
+
+    let camera: GltfCamera = c.camera.unwrap();
+    assert!(close(camera.position, Vec3::new(0., 1., 5.)));
+    assert!(close(camera.look_at - camera.position, Vec3::NEG_Z));
+    assert!(close(camera.up, Vec3::Y));
+    assert_eq!(camera.vfov, 0.8);
+}
+
+fn sparse_gltf(sparse_index: u8) -> (Scratch, PathBuf) {
+    let scratch = Scratch::new(&format!("sparse{sparse_index}"));
+    let mut bin = std::fs::read(SENTINEL).unwrap(); // (0,0,0), (1,0,0), (0,1,0)
+    bin.extend_from_slice(&[sparse_index, 0, 0, 0]);
+    for c in [5.0f32, 6.0, 7.0] {
+        bin.extend_from_slice(&c.to_le_bytes());
+    }
+    std::fs::write(scratch.0.join("s.bin"), &bin).unwrap();
+    let json = r#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":52,"uri":"s.bin"}],
+        "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":1},
+                       {"buffer":0,"byteOffset":40,"byteLength":12}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[5,6,7],
+          "sparse":{"count":1,"indices":{"bufferView":1,"componentType":5121},"values":{"bufferView":2}}}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+        "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]}"#;
+    let file = scratch.0.join("s.gltf");
+    std::fs::write(&file, json).unwrap();
+    (scratch, file)
+}
+
+#[test]
+fn sparse_accessor_replaces_the_listed_element() {
+    let (_scratch, file) = sparse_gltf(1);
+    let content = read_content(&file, &GltfOptions::default()).unwrap();
+    assert_eq!(
+        content.meshes[0].positions,
+        vec![Vec3::ZERO, Vec3::new(5.0, 6.0, 7.0), Vec3::Y]
+    );
+    let (_scratch, file) = sparse_gltf(3);
+    let err = read_content(&file, &GltfOptions::default()).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("sparse index 3 out of range for 3 elements"),
+        "{err}"
+    );
+}

@@ -1,0 +1,76 @@
+//! pbrt's analytic scene: inside a closed diffuse sphere of albedo 0.5 with a point light of
+//! intensity π (power 4π² W) at its centre, radiance is exactly 1 everywhere
+//! (direct irradiance π, total π / (1 − 0.5) = 2π, radiance 0.5/π · 2π). Every estimator in
+//! Visualize mode and the path tracer must give an image mean within 3 % of 1.
+
+use glam::Vec3;
+use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
+use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
+use std::f32::consts::PI;
+
+fn furnace_sphere() -> Scene {
+    Scene::builder()
+        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
+        .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
+        .camera(Camera::new(
+            Vec3::new(0.1, 0.2, 0.6),
+            Vec3::new(-0.3, -0.1, -1.0),
+            Vec3::Y,
+            1.4,
+        ))
+        .build()
+        .expect("valid scene")
+}
+
+fn settings(mode: Mode) -> RenderSettings {
+    RenderSettings {
+        width: 48,
+        height: 48,
+        photons: 60_000,
+        mode,
+        seed: 7,
+        ..RenderSettings::default()
+    }
+}
+
+fn assert_mean_is_one(label: &str, mean: Vec3) {
+    for c in mean.to_array() {
+        assert!(
+            (c - 1.0).abs() < 0.03,
+            "{label}: image mean {mean}, want 1 within 3 %"
+        );
+    }
+}
+
+#[test]
+fn every_estimator_sees_radiance_one_inside_the_sphere() {
+    let scene = furnace_sphere();
+    for kind in EstimatorKind::ALL {
+        let out = Renderer::new(kind, settings(Mode::Visualize))
+            .render(&scene, &CreaseAngle::default(), &())
+            .unwrap();
+        assert_mean_is_one(kind.name(), out.image.mean());
+    }
+}
+
+#[test]
+fn path_tracer_sees_radiance_one_inside_the_sphere() {
+    let scene = furnace_sphere();
+    let s = RenderSettings {
+        samples_per_pixel: 8,
+        ..settings(Mode::PathTrace)
+    };
+    let out = Renderer::new(EstimatorKind::Disc, s)
+        .render(&scene, &CreaseAngle::default(), &())
+        .unwrap();
+    assert_mean_is_one("path tracer", out.image.mean());
+}
+
+#[test]
+fn shadow_rays_see_radiance_one_inside_the_sphere() {
+    let scene = furnace_sphere();
+    let out = Renderer::new(EstimatorKind::GeometryBall, settings(Mode::ShadowRays))
+        .render(&scene, &CreaseAngle::default(), &())
+        .unwrap();
+    assert_mean_is_one("shadow rays", out.image.mean());
+}
