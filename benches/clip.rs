@@ -1,12 +1,13 @@
 //! Clipped-area throughput of pm-geom: triangles and quads against cubes from tiny to
 //! enclosing (Sutherland–Hodgman with the inside/outside fast paths) and against balls
-//! (exact polygon ∩ disc). Reports polygons per second.
+//! (exact polygon ∩ disc), and overlap queries on a `PolygonSet`. Reports polygons (or
+//! queries) per second.
 //!
 //! `cargo bench --bench clip -- --warm-up-time 1 --measurement-time 2`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::geom::glam::{Vec3, vec3};
-use photon_maps::geom::{Aabb, Ball, ClipScratch, GatherVolume, polygon_normal};
+use photon_maps::geom::{Aabb, Ball, ClipScratch, GatherVolume, PolygonSet, polygon_normal};
 use std::hint::black_box;
 
 /// Polygons per measured batch.
@@ -98,5 +99,35 @@ fn clip_to_ball(c: &mut Criterion) {
     bench_volume(c, "area_in_ball", Ball::new, &sizes);
 }
 
-criterion_group!(benches, clip_to_cube, clip_to_ball);
+/// Overlap queries on a `PolygonSet` of 16,384 triangles (a 128 × 128 floor grid, each
+/// cell split in two) with cubes of a few cells: the candidate search of the estimator.
+fn polygon_set_queries(c: &mut Criterion) {
+    let mut set = PolygonSet::new();
+    for i in 0..128 {
+        for j in 0..64 {
+            let (x, z) = (i as f32, j as f32 * 2.0);
+            set.push(&[vec3(x, 0., z), vec3(x, 0., z + 1.), vec3(x + 1., 0., z + 1.)]);
+            set.push(&[vec3(x, 0., z), vec3(x + 1., 0., z + 1.), vec3(x + 1., 0., z)]);
+        }
+    }
+    set.build_index();
+    let mut rng = Lcg(3);
+    let queries: Vec<Aabb> = (0..BATCH)
+        .map(|_| Aabb::cube(vec3(rng.next() * 128.0, 0.0, rng.next() * 128.0), 1.5))
+        .collect();
+    let mut group = c.benchmark_group("polygon_set_overlapping");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("16k_triangles_cube_1.5", |b| {
+        b.iter(|| {
+            let mut found = 0u32;
+            for q in &queries {
+                set.for_each_overlapping(black_box(q), |_| found += 1);
+            }
+            black_box(found)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, clip_to_cube, clip_to_ball, polygon_set_queries);
 criterion_main!(benches);

@@ -56,25 +56,39 @@ pub fn polygon_area_in_ball(polygon: &[Vec3], normal: Vec3, ball: &Ball, scratch
     points.clear();
     let mut min = DVec2::INFINITY;
     let mut max = DVec2::NEG_INFINITY;
-    for &p in polygon {
+    let mut farthest2 = 0.0f64;
+    let mut twice_polygon_area = 0.0;
+    let in_plane = |p: Vec3| {
         let w = p.as_dvec3() - center;
-        let q = DVec2::new(w.dot(u), w.dot(v));
+        DVec2::new(w.dot(u), w.dot(v))
+    };
+    let mut prev = in_plane(polygon[polygon.len() - 1]);
+    for &p in polygon {
+        let q = in_plane(p);
         min = min.min(q);
         max = max.max(q);
+        farthest2 = farthest2.max(q.length_squared());
+        twice_polygon_area += prev.perp_dot(q);
         points.push(q);
+        prev = q;
     }
-    // The disc misses the polygon's bounding rectangle: nothing inside.
-    let nearest = DVec2::ZERO.clamp(min, max);
-    if nearest.length_squared().partial_cmp(&rho2) != Some(Less) {
-        return 0.0;
-    }
-    // The intersection never exceeds the polygon or the disc; the clamp also bounds the
-    // rounding residue of huge, degenerate input.
-    let polygon_area = polygon_disc_area(points, f64::INFINITY).abs();
-    let area = polygon_disc_area(points, rho2)
-        .abs()
-        .min(polygon_area)
-        .min(std::f64::consts::PI * rho2) as f32;
+    let polygon_area = (0.5 * twice_polygon_area).abs();
+    let area = if farthest2 <= rho2 {
+        // Every vertex in the disc, so the whole convex polygon is.
+        polygon_area
+    } else {
+        // The disc misses the polygon's bounding rectangle: nothing inside.
+        let nearest = DVec2::ZERO.max(min).min(max);
+        if nearest.length_squared().partial_cmp(&rho2) != Some(Less) {
+            return 0.0;
+        }
+        // The intersection never exceeds the polygon or the disc; the clamp also bounds the
+        // rounding residue of huge, degenerate input.
+        polygon_disc_area(points, rho2)
+            .abs()
+            .min(polygon_area)
+            .min(std::f64::consts::PI * rho2)
+    } as f32;
     if area.is_finite() { area } else { 0.0 }
 }
 

@@ -55,42 +55,54 @@ pub(crate) fn clip_into_scratch<'s>(
         return &a[..];
     }
     a.extend_from_slice(polygon);
-    for axis in 0..3 {
-        for keep_above in [true, false] {
-            let (bound, all_inside) = if keep_above {
-                (aabb.min[axis], bounds.min[axis] >= aabb.min[axis])
-            } else {
-                (aabb.max[axis], bounds.max[axis] <= aabb.max[axis])
-            };
-            if all_inside {
-                continue;
-            }
-            clip_axis(a, b, axis, bound, keep_above);
-            std::mem::swap(a, b);
-            if a.len() < 3 {
-                a.clear();
-                return &a[..];
-            }
+    // Each plane adds at most one vertex.
+    b.reserve(polygon.len() + 6);
+    a.reserve(6);
+    // (polygon already inside this plane, the clipper for it)
+    let steps: [(bool, ClipByPlane); 6] = [
+        (bounds.min.x >= aabb.min.x, clip_axis::<0, true>),
+        (bounds.max.x <= aabb.max.x, clip_axis::<0, false>),
+        (bounds.min.y >= aabb.min.y, clip_axis::<1, true>),
+        (bounds.max.y <= aabb.max.y, clip_axis::<1, false>),
+        (bounds.min.z >= aabb.min.z, clip_axis::<2, true>),
+        (bounds.max.z <= aabb.max.z, clip_axis::<2, false>),
+    ];
+    let planes = [
+        aabb.min.x, aabb.max.x, aabb.min.y, aabb.max.y, aabb.min.z, aabb.max.z,
+    ];
+    for ((all_inside, clip), bound) in steps.into_iter().zip(planes) {
+        if all_inside {
+            continue;
+        }
+        clip(a, b, bound);
+        std::mem::swap(a, b);
+        if a.len() < 3 {
+            a.clear();
+            break;
         }
     }
     &a[..]
 }
 
-/// Keeps the part of `src` with `p[axis] >= bound` (`keep_above`) or `p[axis] <= bound`,
-/// writing it to `dst`.
-fn clip_axis(src: &[Vec3], dst: &mut Vec<Vec3>, axis: usize, bound: f32, keep_above: bool) {
+/// Clips a polygon by one box plane at the given coordinate, from the first buffer into the
+/// second.
+type ClipByPlane = fn(&[Vec3], &mut Vec<Vec3>, f32);
+
+/// Keeps the part of `src` with `p[AXIS] >= bound` (`ABOVE`) or `p[AXIS] <= bound`, writing
+/// it to `dst`. Monomorphised per plane: the axis and side are constants in the loop.
+fn clip_axis<const AXIS: usize, const ABOVE: bool>(src: &[Vec3], dst: &mut Vec<Vec3>, bound: f32) {
     dst.clear();
     let Some(&last) = src.last() else {
         return;
     };
-    let sign = if keep_above { 1.0 } else { -1.0 };
+    let distance = |p: Vec3| if ABOVE { p[AXIS] - bound } else { bound - p[AXIS] };
     let mut prev = last;
-    let mut prev_d = sign * (prev[axis] - bound);
+    let mut prev_d = distance(prev);
     for &cur in src {
-        let cur_d = sign * (cur[axis] - bound);
+        let cur_d = distance(cur);
         if (prev_d > 0.0 && cur_d < 0.0) || (prev_d < 0.0 && cur_d > 0.0) {
             let mut hit = intersect(prev, prev_d, cur, cur_d);
-            hit[axis] = bound;
+            hit[AXIS] = bound;
             dst.push(hit);
         }
         if cur_d >= 0.0 {

@@ -27,8 +27,10 @@ pub struct HalfEdgeId(pub u32);
 /// Build options.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshOptions {
-    /// Vertices closer than this (absolute, metres) are welded into one. Zero welds only
-    /// identical positions.
+    /// Vertices within this distance (absolute, metres) are welded into one: each position
+    /// joins the first earlier vertex within reach (a greedy clustering through a hash grid,
+    /// so a chain of points each just within reach of the next is not merged end to end).
+    /// Zero, negative or NaN welds only identical positions.
     pub weld_tolerance: f32,
 }
 
