@@ -212,7 +212,11 @@ fn run(args: &Args) -> Result<(), String> {
     image
         .write_png(&png_path, args.exposure)
         .map_err(|e| e.to_string())?;
-    say(&format!("wrote {} and {}", exr_path.display(), png_path.display()));
+    say(&format!(
+        "wrote {} and {}",
+        exr_path.display(),
+        png_path.display()
+    ));
     if let Some(path) = &args.stats_json {
         let objects: Vec<String> = records.iter().map(json_object).collect();
         let text = if args.compare {
