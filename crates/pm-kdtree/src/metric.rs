@@ -88,6 +88,9 @@ impl Metric for Chebyshev {
     }
     #[inline]
     fn rank(d: Vec3) -> f32 {
-        d.x.abs().max(d.y.abs()).max(d.z.abs())
+        // Plain comparisons compile to one `maxps` each, unlike `f32::max` and its NaN rules;
+        // queries reject non-finite points before ranking.
+        let larger = |a: f32, b: f32| if a > b { a } else { b };
+        larger(larger(d.x.abs(), d.y.abs()), d.z.abs())
     }
 }

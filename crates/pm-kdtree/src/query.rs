@@ -77,8 +77,8 @@ impl PhotonTree {
     /// A photon at distance exactly `max_distance` counts as within. When fewer than `k`
     /// photons qualify, all of them are returned, [`Neighbours::extent`] is `max_distance` and
     /// [`Neighbours::is_partial`] is true. Edge cases: `k = 0` finds nothing, with extent 0 and
-    /// not partial; a negative or NaN `max_distance` finds nothing (partial, extent
-    /// `max_distance`); an infinite one is allowed. Allocates nothing once `out` holds `k`.
+    /// not partial; a negative or NaN `max_distance` or a non-finite `query` finds nothing
+    /// (partial, extent `max_distance`); an infinite `max_distance` is allowed. Allocates nothing once `out` holds `k`.
     pub fn nearest_k<M: Metric>(
         &self,
         query: Vec3,
@@ -95,7 +95,7 @@ impl PhotonTree {
         }
         out.extent = max_distance;
         out.partial = true;
-        if max_distance.is_nan() || max_distance < 0.0 || self.is_empty() {
+        if max_distance.is_nan() || max_distance < 0.0 || !query.is_finite() || self.is_empty() {
             return;
         }
         out.found.reserve(k);
@@ -123,9 +123,9 @@ impl PhotonTree {
 
     /// Calls `f(index, distance)` for every photon within `radius` of `query` under `M`
     /// (a photon at distance exactly `radius` included), in no particular order. A negative or
-    /// NaN radius visits nothing.
+    /// NaN radius, or a non-finite query, visits nothing.
     pub fn for_each_within<M: Metric>(&self, query: Vec3, radius: f32, mut f: impl FnMut(u32, f32)) {
-        if radius.is_nan() || radius < 0.0 || self.is_empty() {
+        if radius.is_nan() || radius < 0.0 || !query.is_finite() || self.is_empty() {
             return;
         }
         let mut search = Within::<M, _> {

@@ -213,10 +213,18 @@ fn build_serial(photons: &mut [CompactPhoton], node: usize, levels: u32, out: &m
     build_serial(right, 2 * node + 1, levels - 1, out);
 }
 
-/// Chooses the axis of largest extent, moves the median to the middle with everything on
-/// its left at or below it and everything on its right at or above; returns
-/// (axis, split value, middle index).
+/// Moves the median along the chosen axis to the middle, everything on its left at or below
+/// it and everything on its right at or above; returns (axis, split value, middle index).
+///
+/// The axis is the one of largest extent whose median lies strictly inside the node's range
+/// on that axis. A median equal to the range's end (photons on a wall meeting a floor: most
+/// share x = 0) puts equal coordinates on both sides, so a query on that wall must search
+/// both; one such split near the root made cube queries scan hundreds of leaves.
 fn split_node(photons: &mut [CompactPhoton]) -> (u8, f32, usize) {
+    let mid = photons.len() / 2;
+    if photons.is_empty() {
+        return (0, 0.0, 0);
+    }
     let mut lo = [f32::INFINITY; 3];
     let mut hi = [f32::NEG_INFINITY; 3];
     for p in photons.iter() {
@@ -226,20 +234,23 @@ fn split_node(photons: &mut [CompactPhoton]) -> (u8, f32, usize) {
             hi[a] = hi[a].max(pos[a]);
         }
     }
-    let extent = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    let axis = if extent[0] >= extent[1] && extent[0] >= extent[2] {
-        0
-    } else if extent[1] >= extent[2] {
-        1
-    } else {
-        2
-    };
-    let mid = photons.len() / 2;
-    if !photons.is_empty() {
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&a, &b| (hi[b] - lo[b]).total_cmp(&(hi[a] - lo[a])));
+    let select = |photons: &mut [CompactPhoton], axis: usize| {
         photons.select_nth_unstable_by(mid, |a, b| {
             a.position_array()[axis].total_cmp(&b.position_array()[axis])
         });
+        photons[mid].position_array()[axis]
+    };
+    for &axis in &axes {
+        if hi[axis] <= lo[axis] {
+            break;
+        }
+        let split = select(photons, axis);
+        if lo[axis] < split && split < hi[axis] {
+            return (axis as u8, split, mid);
+        }
     }
-    let split = photons.get(mid).map_or(0.0, |p| p.position_array()[axis]);
-    (axis as u8, split, mid)
+    let axis = axes[0];
+    (axis as u8, select(photons, axis), mid)
 }
