@@ -23,7 +23,7 @@ const PARALLEL_MIN: usize = 32 * 1024;
 /// Build it once with [`PhotonTree::build`], then query it from many threads with
 /// [`PhotonTree::nearest_k`] and [`PhotonTree::for_each_within`]. Indices returned by
 /// queries are positions in tree order, for [`PhotonTree::get`].
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct PhotonTree {
     pub(crate) xs: Vec<f32>,
     pub(crate) ys: Vec<f32>,
@@ -35,6 +35,21 @@ pub struct PhotonTree {
     pub(crate) axes: Vec<u8>,
     /// Levels of inner nodes: the tree has `2^depth` leaves.
     pub(crate) depth: u32,
+}
+
+impl Default for PhotonTree {
+    /// An empty tree (one empty leaf), the same as building from no photons.
+    fn default() -> Self {
+        PhotonTree {
+            xs: Vec::new(),
+            ys: Vec::new(),
+            zs: Vec::new(),
+            payload: Vec::new(),
+            splits: vec![0.0],
+            axes: vec![0],
+            depth: 0,
+        }
+    }
 }
 
 /// An invariant of a [`PhotonTree`] that does not hold (from [`PhotonTree::validate`]).

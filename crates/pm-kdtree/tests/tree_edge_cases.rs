@@ -30,6 +30,9 @@ fn empty_tree_finds_nothing_and_reports_the_maximum() {
     let mut visits = 0;
     tree.for_each_within::<Chebyshev>(Vec3::ZERO, 1e9, |_, _| visits += 1);
     assert_eq!(visits, 0);
+    PhotonTree::default()
+        .validate()
+        .expect("the default tree is the empty tree");
 }
 
 #[test]
