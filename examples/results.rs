@@ -181,6 +181,10 @@ struct SceneResult {
     reference_leak: Option<f64>,
     cases: Vec<CaseResult>,
     pixel_classes: String,
+    /// Mean of the reference over the fidelity mask and the channels.
+    reference_mean: f32,
+    /// Pixels in the fidelity mask.
+    masked_pixels: usize,
 }
 
 fn main() -> ExitCode {
@@ -360,6 +364,8 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
         reference_leak,
         cases,
         pixel_classes,
+        reference_mean,
+        masked_pixels: mask.iter().filter(|m| **m).count(),
     })
 }
 
@@ -810,21 +816,17 @@ fn report(results: &[SceneResult], config: &Config, args: &Args, wall: f64) -> S
     let _ = writeln!(w, "\n## Fidelity against the path-traced reference\n");
     let _ = writeln!(
         w,
-        "RMSE is over all pixels and RGB channels of the linear radiance image; relative RMSE divides it by the reference's mean. *Noise* is the case's own per-pixel standard deviation, RMS(I₀ − I₁)/√2 for two renders with photon seeds 0 and 1 (it includes the pixel jitter). Since RMSE² ≈ bias² + noise² + σ_ref², *bias* = √(RMSE² − noise² − σ_ref²) is the systematic part (0 when the subtraction goes negative).\n"
+        "RMSE is over the RGB channels of the linear radiance image, over every pixel except those within two pixels of one whose centre ray sees a light, directly or through the mirror (at one sample per pixel a light's outline is all light or all surround while the reference averages both; that error says nothing about the estimators, which never look at emitters). Relative RMSE divides it by the reference's mean over the same pixels. *Noise* is the case's own per-pixel standard deviation, RMS(I₀ − I₁)/√2 for two images rendered from the same pixel samples over photon maps traced with seeds 0 and 1. σ_ref is the reference's standard error, RMS(A − B)/2 for its two half-sample renders A and B. Since RMSE² ≈ bias² + noise² + σ_ref², *bias* = √(RMSE² − noise² − σ_ref²) is the systematic part (0 when the subtraction goes negative).\n"
     );
     let _ = writeln!(
         w,
-        "| scene | reference spp | σ_ref (RMS) | reference mean |\n|---|---|---|---|"
+        "| scene | reference spp | σ_ref (RMS) | reference mean | pixels counted |\n|---|---|---|---|---|"
     );
     for r in results {
-        let m = r.reference.image.mean();
         let _ = writeln!(
             w,
-            "| {} | {} | {:.4} | {:.4} |",
-            r.spec.title,
-            r.reference.spp,
-            r.reference.sigma,
-            (m.x + m.y + m.z) / 3.0
+            "| {} | {} | {:.4} | {:.4} | {} |",
+            r.spec.title, r.reference.spp, r.reference.sigma, r.reference_mean, r.masked_pixels
         );
     }
     let _ = writeln!(
