@@ -1,3 +1,115 @@
-//! Placeholder benchmark, filled in by its issue.
+//! Irradiance queries per second of the disc, cube and ball estimators on the Cornell box's
+//! photon maps (100,000 photons emitted), with one map for the whole scene and with crease-angle
+//! maps, for k = 50, 100 and 200. The query points are the first diffuse hits of camera rays
+//! through a 64×64 grid of pixel centres, computed once; one thread.
+//!
+//! Run: `cargo bench --bench estimators -- --warm-up-time 1 --measurement-time 2` (add a
+//! filter such as `estimators/crease` to run a part). Criterion prints queries/s as elem/s.
 
-fn main() {}
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use photon_maps::render::{
+    Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, SurfacePoint,
+};
+use photon_maps::trace::{
+    CreaseAngle, Material, Partitioner, PhotonMaps, RayKind, Scene, SingleMap, TraceOptions, scenes,
+    trace_photons,
+};
+use std::hint::black_box;
+use std::time::Duration;
+
+const GRID: u32 = 64;
+
+/// A query: the point and the map of the surface it lies on.
+struct Query {
+    at: SurfacePoint,
+    map: usize,
+}
+
+fn maps(scene: &Scene, partitioner: &dyn Partitioner) -> PhotonMaps {
+    let assignment = partitioner.partition(scene);
+    let options = TraceOptions {
+        photons: 100_000,
+        seed: 0,
+        ..TraceOptions::default()
+    };
+    let traced = trace_photons(scene, &assignment, &options).expect("the Cornell box traces");
+    PhotonMaps::build(scene, &assignment, traced).expect("the Cornell box's maps build")
+}
+
+/// First hits on diffuse surfaces of camera rays through a grid of pixel centres.
+fn queries(scene: &Scene, maps: &PhotonMaps) -> Vec<Query> {
+    let mut out = Vec::new();
+    for y in 0..GRID {
+        for x in 0..GRID {
+            let (u, v) = ((x as f32 + 0.5) / GRID as f32, (y as f32 + 0.5) / GRID as f32);
+            let ray = scene.camera().ray(u, v, 1.0);
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
+                continue;
+            };
+            if !matches!(scene.material(&hit), Material::Lambertian { .. }) {
+                continue;
+            }
+            out.push(Query {
+                at: SurfacePoint {
+                    position: hit.position,
+                    normal: hit.normal,
+                    front_face: hit.front_face,
+                },
+                map: maps.map_of(hit.part) as usize,
+            });
+        }
+    }
+    out
+}
+
+fn run<E: Estimator>(
+    estimator: &E,
+    maps: &PhotonMaps,
+    queries: &[Query],
+    options: &EstimatorOptions,
+    scratch: &mut EstimatorScratch,
+) -> f32 {
+    let mut sum = 0.0;
+    for q in queries {
+        let map = maps.map(q.map as u32);
+        let view = MapView {
+            tree: map.tree(),
+            polygons: map.geometry(),
+        };
+        sum += estimator.irradiance(q.at, view, options, scratch).x;
+    }
+    sum
+}
+
+fn estimators(c: &mut Criterion) {
+    let scene = scenes::build("cornell-box").expect("built-in scene");
+    let partitions: [(&str, &dyn Partitioner); 2] =
+        [("single", &SingleMap), ("crease", &CreaseAngle::default())];
+    let mut group = c.benchmark_group("estimators");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(2));
+    for (name, partitioner) in partitions {
+        let maps = maps(&scene, partitioner);
+        let queries = queries(&scene, &maps);
+        group.throughput(Throughput::Elements(queries.len() as u64));
+        for k in [50, 100, 200] {
+            let mut options = EstimatorOptions::for_scene(&scene.bounds());
+            options.k = k;
+            let mut scratch = EstimatorScratch::new();
+            let mut bench = |label: &str, f: &mut dyn FnMut(&mut EstimatorScratch) -> f32| {
+                group.bench_function(BenchmarkId::new(format!("{name}/{label}"), k), |b| {
+                    b.iter(|| black_box(f(&mut scratch)))
+                });
+            };
+            bench("disc", &mut |s| run(&Disc, &maps, &queries, &options, s));
+            bench("cube", &mut |s| run(&GeometryCube, &maps, &queries, &options, s));
+            bench("ball", &mut |s| run(&GeometryBall, &maps, &queries, &options, s));
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, estimators);
+criterion_main!(benches);
