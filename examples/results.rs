@@ -66,20 +66,20 @@ const SCENES: [SceneSpec; 4] = [
         title: "accordion",
         paper_seconds: [53.4, 34.7, 46.9, 29.2],
         reference_spp: 512,
-        exposure: -1.5,
+        exposure: -2.5,
     },
     SceneSpec {
         name: "lit-unlit-rooms",
         title: "lit and unlit rooms",
         paper_seconds: [1412.8, 137.3, 1343.5, 119.7],
-        reference_spp: 256,
+        reference_spp: 1024,
         exposure: -4.5,
     },
     SceneSpec {
         name: "colored-rooms",
         title: "coloured rooms",
         paper_seconds: [384.3, 256.1, 325.9, 218.7],
-        reference_spp: 256,
+        reference_spp: 1024,
         exposure: -3.0,
     },
 ];
