@@ -7,9 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use pm_trace::gltf::{
-    BufferError, GltfCamera, GltfError, GltfLight, GltfOptions, MAX_DEPTH, SurfaceKind, read_content,
-};
+use pm_trace::Material;
+use pm_trace::gltf::{BufferError, GltfCamera, GltfError, GltfLight, GltfOptions, MAX_DEPTH, read_content};
 
 const SCENES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gltf/scenes");
 const SENTINEL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gltf/sentinel.bin");
@@ -337,18 +336,18 @@ fn known_scene_maps_transforms_materials_lights_and_camera() {
     assert_eq!(c.meshes[3].triangles, vec![[0, 2, 1]]);
     assert_eq!(c.meshes[0].triangles, vec![[0, 1, 2]]);
 
-    let kinds: Vec<SurfaceKind> = c.meshes.iter().map(|m| m.material.kind).collect();
+    let kinds: Vec<Material> = c.meshes.iter().map(|m| m.material.kind).collect();
     assert_eq!(
         kinds[0],
-        SurfaceKind::Lambertian {
+        Material::Lambertian {
             albedo: Vec3::new(0.5, 0.25, 0.125)
         }
     );
     assert!(
-        matches!(kinds[1], SurfaceKind::Mirror { reflectance } if close(reflectance, Vec3::new(0.9, 0.8, 0.7)))
+        matches!(kinds[1], Material::Mirror { reflectance } if close(reflectance, Vec3::new(0.9, 0.8, 0.7)))
     );
-    assert_eq!(kinds[2], SurfaceKind::Glass { ior: 1.33 });
-    assert_eq!(kinds[3], SurfaceKind::Lambertian { albedo: Vec3::ONE });
+    assert_eq!(kinds[2], Material::Glass { ior: 1.33 });
+    assert_eq!(kinds[3], Material::Lambertian { albedo: Vec3::ONE });
     assert_eq!(c.meshes[3].material.emission, Vec3::new(8.0, 4.0, 2.0));
     assert_eq!(c.meshes[4].material_index, None);
     assert!(c.meshes.iter().take(3).all(|m| m.material.emission == Vec3::ZERO));

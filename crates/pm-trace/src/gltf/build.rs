@@ -12,8 +12,7 @@ use super::camera::frame_bounds;
 use super::content::GltfContent;
 use super::error::GltfError;
 use super::light::GltfLight;
-use super::material::SurfaceKind;
-use crate::{AreaLight, Camera, DirectionalLight, Material, PointLight, Scene, SpotLight, Surface};
+use crate::{AreaLight, Camera, DirectionalLight, PointLight, Scene, SpotLight, Surface};
 
 /// Builds a scene from content read by [`read_content`](super::read_content). `file` only
 /// names the source in errors.
@@ -30,11 +29,7 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
     for mesh in content.meshes.iter().filter(|m| !m.triangles.is_empty()) {
         let material = mesh.material;
         let surface = Surface {
-            material: match material.kind {
-                SurfaceKind::Lambertian { albedo } => Material::Lambertian { albedo },
-                SurfaceKind::Mirror { reflectance } => Material::Mirror { reflectance },
-                SurfaceKind::Glass { ior } => Material::Glass { ior },
-            },
+            material: material.kind,
             emission: material.emission,
             camera_visible: true,
         };

@@ -5,41 +5,22 @@ use glam::Vec3;
 use gltf::json;
 
 use super::GltfOptions;
-
-/// How a surface scatters light, as this loader reads a glTF material.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SurfaceKind {
-    /// Diffuse reflection with this albedo (linear RGB, each channel in `[0, 1]`).
-    Lambertian {
-        /// Diffuse reflectance.
-        albedo: Vec3,
-    },
-    /// Perfect specular reflection with this reflectance.
-    Mirror {
-        /// Specular reflectance.
-        reflectance: Vec3,
-    },
-    /// Smooth dielectric with this index of refraction.
-    Glass {
-        /// Index of refraction.
-        ior: f32,
-    },
-}
+use crate::Material;
 
 /// A glTF material as this loader reads it.
 ///
-/// - `KHR_materials_transmission` with `transmissionFactor ≥ 0.5` → [`SurfaceKind::Glass`]
+/// - `KHR_materials_transmission` with `transmissionFactor ≥ 0.5` → [`Material::Glass`]
 ///   with `KHR_materials_ior` (default 1.5; values below 1 also give 1.5);
-/// - else `metallicFactor ≥ 0.9` and `roughnessFactor ≤ 0.1` → [`SurfaceKind::Mirror`] with
+/// - else `metallicFactor ≥ 0.9` and `roughnessFactor ≤ 0.1` → [`Material::Mirror`] with
 ///   the base colour as reflectance;
-/// - else [`SurfaceKind::Lambertian`] with the base colour factor as albedo.
+/// - else [`Material::Lambertian`] with the base colour factor as albedo.
 ///
 /// Textures are ignored. `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfMaterial {
     /// How the surface scatters light.
-    pub kind: SurfaceKind,
+    pub kind: Material,
     /// Emitted radiance in W/(m²·sr); zero for a surface that does not glow.
     pub emission: Vec3,
     /// The glTF `doubleSided` flag (an emissive surface emits from both sides when set).
@@ -68,7 +49,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     let Some(m) = material else {
         // The glTF default material: white base colour, metallic 1, roughness 1.
         return GltfMaterial {
-            kind: SurfaceKind::Lambertian { albedo: Vec3::ONE },
+            kind: Material::Lambertian { albedo: Vec3::ONE },
             emission: Vec3::ZERO,
             double_sided: false,
         };
@@ -100,11 +81,11 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     )
     .max(Vec3::ZERO);
     let kind = if transmission >= GLASS_MIN_TRANSMISSION {
-        SurfaceKind::Glass { ior }
+        Material::Glass { ior }
     } else if metallic >= MIRROR_MIN_METALLIC && roughness <= MIRROR_MAX_ROUGHNESS {
-        SurfaceKind::Mirror { reflectance: base }
+        Material::Mirror { reflectance: base }
     } else {
-        SurfaceKind::Lambertian { albedo: base }
+        Material::Lambertian { albedo: base }
     };
     GltfMaterial {
         kind,
@@ -117,7 +98,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
 mod tests {
     use super::*;
 
-    fn kind_of(json: &str) -> SurfaceKind {
+    fn kind_of(json: &str) -> Material {
         let m: json::Material = material_from(json);
         map_material(Some(&m), &GltfOptions::default()).kind
     }
@@ -131,23 +112,20 @@ mod tests {
         let pbr = |m: f32, r: f32| {
             format!(r#"{{"pbrMetallicRoughness":{{"metallicFactor":{m},"roughnessFactor":{r}}}}}"#)
         };
-        assert!(matches!(kind_of(&pbr(0.9, 0.1)), SurfaceKind::Mirror { .. }));
-        assert!(matches!(kind_of(&pbr(0.89, 0.1)), SurfaceKind::Lambertian { .. }));
-        assert!(matches!(kind_of(&pbr(1.0, 0.11)), SurfaceKind::Lambertian { .. }));
+        assert!(matches!(kind_of(&pbr(0.9, 0.1)), Material::Mirror { .. }));
+        assert!(matches!(kind_of(&pbr(0.89, 0.1)), Material::Lambertian { .. }));
+        assert!(matches!(kind_of(&pbr(1.0, 0.11)), Material::Lambertian { .. }));
         // The glTF defaults are metallic 1, roughness 1: diffuse, white.
-        assert_eq!(kind_of("{}"), SurfaceKind::Lambertian { albedo: Vec3::ONE });
+        assert_eq!(kind_of("{}"), Material::Lambertian { albedo: Vec3::ONE });
         let glass = |t: f32, ior: &str| {
             format!(r#"{{"extensions":{{"KHR_materials_transmission":{{"transmissionFactor":{t}}}{ior}}}}}"#)
         };
-        assert_eq!(kind_of(&glass(0.5, "")), SurfaceKind::Glass { ior: 1.5 });
+        assert_eq!(kind_of(&glass(0.5, "")), Material::Glass { ior: 1.5 });
         assert_eq!(
             kind_of(&glass(1.0, r#","KHR_materials_ior":{"ior":2.4}"#)),
-            SurfaceKind::Glass { ior: 2.4 }
+            Material::Glass { ior: 2.4 }
         );
-        assert!(matches!(
-            kind_of(&glass(0.49, "")),
-            SurfaceKind::Lambertian { .. }
-        ));
+        assert!(matches!(kind_of(&glass(0.49, "")), Material::Lambertian { .. }));
     }
 
     #[test]
@@ -171,7 +149,7 @@ mod tests {
         assert_eq!(mapped.emission, Vec3::splat(0.25));
         assert_eq!(
             mapped.kind,
-            SurfaceKind::Lambertian {
+            Material::Lambertian {
                 albedo: Vec3::new(1.0, 0.5, 0.0)
             }
         );

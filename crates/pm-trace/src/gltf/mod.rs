@@ -80,7 +80,7 @@ pub use content::{GltfContent, GltfMesh, read_content};
 pub use error::{BufferError, GltfError};
 pub use graph::MAX_DEPTH;
 pub use light::{GltfLight, LUMENS_PER_WATT};
-pub use material::{GltfMaterial, SurfaceKind};
+pub use material::GltfMaterial;
 
 use std::path::Path;
 
