@@ -110,7 +110,10 @@ impl PhotonTree {
             found: &mut out.found,
             metric: std::marker::PhantomData,
         };
-        search.visit(1, 0, self.len(), 0, 0.0, [0.0; 3]);
+        let (bound, offsets) = self.root_bound::<M>(query);
+        if bound <= max_rank {
+            search.visit(1, 0, self.len(), 0, bound, offsets);
+        }
         for n in out.found.iter_mut() {
             n.distance = M::rank_to_distance(n.distance);
         }
@@ -135,7 +138,28 @@ impl PhotonTree {
             f: &mut f,
             metric: std::marker::PhantomData,
         };
-        search.visit(1, 0, self.len(), 0, 0.0, [0.0; 3]);
+        let (bound, offsets) = self.root_bound::<M>(query);
+        if bound <= search.limit {
+            search.visit(1, 0, self.len(), 0, bound, offsets);
+        }
+    }
+
+    /// The lower bound on the rank of every photon from `query`, and its per-axis offsets:
+    /// the distance from `query` to the photons' bounding box. Without it a query outside the
+    /// box (a dark room beside a lit one in a single map) would prune nothing along the axes
+    /// it lies outside on, and visit every leaf in a slab through the whole tree.
+    #[inline]
+    fn root_bound<M: Metric>(&self, query: Vec3) -> (f32, [f32; 3]) {
+        let [lo, hi] = self.bounds;
+        let mut offsets = [0.0; 3];
+        let mut bound = 0.0;
+        for (axis, offset) in offsets.iter_mut().enumerate() {
+            let q = query[axis];
+            let outside = (lo[axis] - q).max(q - hi[axis]).max(0.0);
+            *offset = M::axis_rank(outside);
+            bound = M::grow_bound(bound, 0.0, *offset);
+        }
+        (bound, offsets)
     }
 
     /// Ranks of the photons `lo..hi` (at most [`LEAF_CAPACITY`]) from `query`, into `ranks`.

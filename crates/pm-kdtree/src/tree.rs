@@ -35,6 +35,9 @@ pub struct PhotonTree {
     pub(crate) axes: Vec<u8>,
     /// Levels of inner nodes: the tree has `2^depth` leaves.
     pub(crate) depth: u32,
+    /// Smallest and largest photon coordinates: the root cell, so that a query outside the
+    /// photons' bounds starts with the right distance bound instead of zero.
+    pub(crate) bounds: [[f32; 3]; 2],
 }
 
 impl Default for PhotonTree {
@@ -48,6 +51,7 @@ impl Default for PhotonTree {
             splits: vec![0.0],
             axes: vec![0],
             depth: 0,
+            bounds: [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]],
         }
     }
 }
@@ -97,9 +101,14 @@ impl PhotonTree {
             splits,
             axes,
             depth,
+            bounds: [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]],
         };
         for p in &photons {
             let [x, y, z] = p.position_array();
+            for (axis, c) in [x, y, z].into_iter().enumerate() {
+                tree.bounds[0][axis] = tree.bounds[0][axis].min(c);
+                tree.bounds[1][axis] = tree.bounds[1][axis].max(c);
+            }
             tree.xs.push(x);
             tree.ys.push(y);
             tree.zs.push(z);
@@ -151,6 +160,10 @@ impl PhotonTree {
         let whole = |what: String| Err(InvariantError { node: 0, what });
         if self.ys.len() != n || self.zs.len() != n || self.payload.len() != n {
             return whole("position and payload arrays differ in length".into());
+        }
+        let outside = |p: [f32; 3]| (0..3).any(|a| p[a] < self.bounds[0][a] || p[a] > self.bounds[1][a]);
+        if (0..n).any(|i| outside([self.xs[i], self.ys[i], self.zs[i]])) {
+            return whole("a photon lies outside the recorded bounds".into());
         }
         let inner = 1usize << self.depth;
         if self.splits.len() != inner || self.axes.len() != inner {

@@ -21,9 +21,10 @@ fn check_cloud<M: Metric>(
     let mut out = Neighbours::new();
     let mut seen = vec![false; tree.len()];
     for q in 0..queries {
-        // Half the queries anywhere around the cloud, half exactly on a photon.
+        // Half the queries anywhere around the cloud (up to half its size outside its bounds, where
+        // the search starts from the distance to the bounds), half exactly on a photon.
         let query = if q % 2 == 0 || points.is_empty() {
-            rng.vec3() * 1.2 - Vec3::splat(0.1)
+            rng.vec3() * 2.0 - Vec3::splat(0.5)
         } else {
             points[rng.below(points.len())]
         };
