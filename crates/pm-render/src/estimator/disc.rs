@@ -32,8 +32,14 @@ impl Estimator for Disc {
         if r <= 0.0 {
             return Vec3::ZERO;
         }
-        gather_found(at, map.tree, options, scratch);
-        let total: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
+        let total: Vec3 = if options.reject_behind {
+            gather_found(at, map.tree, options, scratch);
+            scratch.photons.iter().map(|p| p.power).sum()
+        } else {
+            // Directions are only needed to reject photons from behind: skip decoding them.
+            let found = scratch.neighbours.as_slice();
+            found.iter().map(|n| map.tree.get(n.index).power()).sum()
+        };
         total / (PI * r * r)
     }
 }
