@@ -2,9 +2,33 @@
 //! or around creases, and does not darken or brighten edges.
 //!
 //! This facade re-exports the four crates of the workspace:
-//! [`geom`] (polygons, clipping, half-edge mesh), [`kdtree`] (compact photons, kd-tree),
-//! [`trace`] (scenes, lights, photon tracing, map partitions) and [`render`] (estimators,
-//! renderer, images).
+//!
+//! - [`geom`]: polygons, clipping to a cube and a ball, exact areas, the half-edge mesh, and
+//!   contact splitting;
+//! - [`kdtree`]: 20-byte compact photons and a kd-tree with k-nearest queries in a sphere or a
+//!   cube;
+//! - [`trace`]: scenes, lights, the watertight BVH, deterministic photon tracing, photon-map
+//!   partitions (one map, crease angle, contact-aware), built-in scenes and glTF loading;
+//! - [`render`]: the radiance estimators (disc, geometry cube, geometry ball), render modes, the
+//!   tiled renderer, images and metrics.
+//!
+//! Conventions everywhere: metres, watts, `f32`, right-handed with +y up, linear Rec. 709 RGB.
+//! A light's power is its total emitted flux in watts per channel; with N photons emitted each
+//! starts with `Φ / N`.
+//!
+//! ```
+//! use photon_maps::prelude::*;
+//!
+//! // The two rooms whose floor runs under the dividing wall: crease maps leak along the floor,
+//! // contact maps do not.
+//! let contact = Contact::default();
+//! let scene = contact.prepare_scene(scenes::build("touching-rooms")?)?;
+//! let settings = RenderSettings { width: 48, height: 24, photons: 10_000, ..Default::default() };
+//! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&scene, &contact, &())?;
+//! assert!(out.stats.map_count > 10, "the floor is split at the wall");
+//! println!("mean radiance {:?}, {} maps", out.image.mean(), out.stats.map_count);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub use pm_geom as geom;
 pub use pm_kdtree as kdtree;
@@ -16,4 +40,8 @@ pub mod prelude {
     pub use glam::{Vec3, vec3};
     pub use pm_geom::{Aabb, Ball, HalfEdgeMesh};
     pub use pm_kdtree::{Photon, PhotonKind, PhotonTree};
+    pub use pm_render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+    pub use pm_trace::{
+        Camera, Contact, CreaseAngle, Partitioner, PointLight, Scene, SingleMap, Surface, scenes,
+    };
 }
