@@ -24,6 +24,8 @@ const SCAN_MAX_PRIMITIVES: usize = 64;
 pub(crate) enum Primitive {
     Triangle {
         v: [Vec3; 3],
+        /// Unit geometric normal (counter-clockwise winding), computed once at build.
+        normal: Vec3,
         part: PartId,
     },
     Sphere {
@@ -38,6 +40,12 @@ pub(crate) enum Primitive {
 }
 
 impl Primitive {
+    /// A triangle with its unit normal (counter-clockwise winding).
+    pub(crate) fn triangle(v: [Vec3; 3], part: PartId) -> Self {
+        let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+        Primitive::Triangle { v, normal, part }
+    }
+
     pub(crate) fn part(&self) -> PartId {
         match *self {
             Primitive::Triangle { part, .. }
@@ -69,7 +77,7 @@ impl Primitive {
     /// Unit geometric normal at `p` (triangles: counter-clockwise winding).
     pub(crate) fn normal_at(&self, p: Vec3) -> Vec3 {
         match self {
-            Primitive::Triangle { v, .. } => (v[1] - v[0]).cross(v[2] - v[0]).normalize(),
+            Primitive::Triangle { normal, .. } => *normal,
             Primitive::Sphere { sphere, .. } => sphere.normal_at(p),
             Primitive::RingSide { ring, side, .. } => ring.side_normal(*side, p),
         }
