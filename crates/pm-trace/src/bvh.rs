@@ -92,12 +92,17 @@ impl Boundable for Bounded {
     }
 }
 
-/// A ray prepared for the watertight test: the axis permutation and shear constants.
+/// A ray prepared for the watertight test: the axis permutation and shear folded into three
+/// row vectors, so a vertex `a` maps to `(a·x_row, a·y_row, a·z_row)` without indexing by a
+/// per-ray axis (which compiled to unpredictable branches). Each row has one or two non-zero
+/// entries (1 and −shear, or the z scale), so the dot products round exactly like the
+/// permute-then-shear formulation.
 pub(crate) struct WatertightRay {
     origin: Vec3,
     direction: Vec3,
-    k: [usize; 3],
-    shear: Vec3,
+    x_row: Vec3,
+    y_row: Vec3,
+    z_row: Vec3,
 }
 
 impl WatertightRay {
@@ -116,29 +121,33 @@ impl WatertightRay {
             std::mem::swap(&mut kx, &mut ky);
         }
         let dz = direction[kz];
-        let shear = Vec3::new(direction[kx] / dz, direction[ky] / dz, 1.0 / dz);
+        let (sx, sy, sz) = (direction[kx] / dz, direction[ky] / dz, 1.0 / dz);
+        let mut x_row = Vec3::ZERO;
+        x_row[kx] = 1.0;
+        x_row[kz] = -sx;
+        let mut y_row = Vec3::ZERO;
+        y_row[ky] = 1.0;
+        y_row[kz] = -sy;
+        let mut z_row = Vec3::ZERO;
+        z_row[kz] = sz;
         WatertightRay {
             origin,
             direction,
-            k: [kx, ky, kz],
-            shear,
+            x_row,
+            y_row,
+            z_row,
         }
     }
 
     /// Woop–Benthin–Wald watertight ray–triangle intersection (no backface culling).
     #[inline]
     pub(crate) fn intersect_triangle(&self, v: &[Vec3; 3], t_min: f32, t_max: f32) -> f32 {
-        let [kx, ky, kz] = self.k;
-        let s = self.shear;
         let a = v[0] - self.origin;
         let b = v[1] - self.origin;
         let c = v[2] - self.origin;
-        let ax = a[kx] - s.x * a[kz];
-        let ay = a[ky] - s.y * a[kz];
-        let bx = b[kx] - s.x * b[kz];
-        let by = b[ky] - s.y * b[kz];
-        let cx = c[kx] - s.x * c[kz];
-        let cy = c[ky] - s.y * c[kz];
+        let (ax, ay) = (a.dot(self.x_row), a.dot(self.y_row));
+        let (bx, by) = (b.dot(self.x_row), b.dot(self.y_row));
+        let (cx, cy) = (c.dot(self.x_row), c.dot(self.y_row));
         let mut u = cx * by - cy * bx;
         let mut vv = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
@@ -155,9 +164,9 @@ impl WatertightRay {
         if det == 0.0 {
             return f32::INFINITY;
         }
-        let az = s.z * a[kz];
-        let bz = s.z * b[kz];
-        let cz = s.z * c[kz];
+        let az = a.dot(self.z_row);
+        let bz = b.dot(self.z_row);
+        let cz = c.dot(self.z_row);
         let t = (u * az + vv * bz + w * cz) / det;
         if t > t_min && t < t_max { t } else { f32::INFINITY }
     }
