@@ -11,11 +11,18 @@ use glam::Vec3;
 /// Primitives per slab-test batch.
 const LANES: usize = 8;
 
-/// Padded bounds of the primitives, by coordinate, padded with empty boxes to whole batches.
+/// Padded bounds of eight primitives, by coordinate (structure of arrays).
+#[derive(Clone, Copy, Debug)]
+struct Batch {
+    min: [[f32; LANES]; 3],
+    max: [[f32; LANES]; 3],
+}
+
+/// Padded bounds of the primitives in batches of [`LANES`]; the last batch's unused lanes
+/// are masked off.
 #[derive(Debug)]
 pub(crate) struct BoundsScan {
-    min: [Vec<f32>; 3],
-    max: [Vec<f32>; 3],
+    batches: Vec<Batch>,
     len: usize,
 }
 
@@ -50,32 +57,26 @@ impl BoundsScan {
             s.max(lo.abs().max_element()).max(hi.abs().max_element())
         });
         let pad = Vec3::splat(1e-4 * scale);
-        let padded_len = bounds.len().div_ceil(LANES) * LANES;
-        let mut min = [
-            vec![f32::INFINITY; padded_len],
-            vec![f32::INFINITY; padded_len],
-            vec![f32::INFINITY; padded_len],
-        ];
-        let mut max = [
-            vec![f32::NEG_INFINITY; padded_len],
-            vec![f32::NEG_INFINITY; padded_len],
-            vec![f32::NEG_INFINITY; padded_len],
-        ];
+        let empty = Batch {
+            min: [[f32::INFINITY; LANES]; 3],
+            max: [[f32::NEG_INFINITY; LANES]; 3],
+        };
+        let mut batches = vec![empty; bounds.len().div_ceil(LANES)];
         for (i, (lo, hi)) in bounds.iter().enumerate() {
             let (lo, hi) = (*lo - pad, *hi + pad);
+            let batch = &mut batches[i / LANES];
             for axis in 0..3 {
-                min[axis][i] = lo[axis];
-                max[axis][i] = hi[axis];
+                batch.min[axis][i % LANES] = lo[axis];
+                batch.max[axis][i % LANES] = hi[axis];
             }
         }
         BoundsScan {
-            min,
-            max,
+            batches,
             len: bounds.len(),
         }
     }
 
-    /// Calls `visit(i, t_near)` for each primitive `i` (in index order) whose padded box the
+    /// Calls `visit(i)` for each primitive `i` (in index order) whose padded box the
     /// ray meets at some `t` in `[t_min, limit()]`, where `limit` is re-read before each call
     /// so a closest-hit search can shrink it. `visit` returns false to stop the scan.
     #[inline]
@@ -88,15 +89,9 @@ impl BoundsScan {
     ) {
         let [ox, oy, oz] = ray.origin;
         let [ix, iy, iz] = ray.inv;
-        let batches = self.min[0].len() / LANES;
-        for b in 0..batches {
-            let r = b * LANES..(b + 1) * LANES;
-            let (x0, y0, z0) = (
-                &self.min[0][r.clone()],
-                &self.min[1][r.clone()],
-                &self.min[2][r.clone()],
-            );
-            let (x1, y1, z1) = (&self.max[0][r.clone()], &self.max[1][r.clone()], &self.max[2][r]);
+        for (b, batch) in self.batches.iter().enumerate() {
+            let [x0, y0, z0] = &batch.min;
+            let [x1, y1, z1] = &batch.max;
             let mut near = [0.0f32; LANES];
             let mut far = [0.0f32; LANES];
             for l in 0..LANES {
@@ -106,12 +101,20 @@ impl BoundsScan {
                 near[l] = fmax(fmax(fmin(ax, bx), fmin(ay, by)), fmax(fmin(az, bz), t_min));
                 far[l] = fmin(fmin(fmax(ax, bx), fmax(ay, by)), fmax(az, bz));
             }
+            // One bit per candidate lane, so the visit loop branches once per candidate.
+            let t_max = limit();
+            let mut mask = 0u32;
             for l in 0..LANES {
-                let i = b * LANES + l;
-                if i >= self.len {
-                    return;
-                }
-                if near[l] <= far[l] && near[l] <= limit() && !visit(i) {
+                mask |= (((near[l] <= far[l]) & (near[l] <= t_max)) as u32) << l;
+            }
+            let used = self.len - b * LANES;
+            if used < LANES {
+                mask &= (1u32 << used) - 1;
+            }
+            while mask != 0 {
+                let l = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if near[l] <= limit() && !visit(b * LANES + l) {
                     return;
                 }
             }
