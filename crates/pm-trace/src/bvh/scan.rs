@@ -6,7 +6,7 @@
 //! exact test would hit: the padding is 1e-4 of the scene's coordinate scale, far above the
 //! slab test's relative error of a few ulps.
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// Primitives per slab-test batch.
 const LANES: usize = 8;
@@ -34,7 +34,9 @@ pub(crate) struct SlabRay {
 
 impl SlabRay {
     /// `direction` need not be normalised; zero components give a huge finite inverse, so
-    /// `0 · inverse` stays 0 instead of NaN.
+    /// `0 · inverse` stays 0 instead of NaN. With a finite ray no NaN arises in the slab test
+    /// (the bounds are finite, or infinite in unused lanes, which are masked off), so SIMD
+    /// min/max need no NaN handling; a NaN ray fails `near <= far` and is culled.
     #[inline]
     pub(crate) fn new(origin: Vec3, direction: Vec3) -> Self {
         let inv = |d: f32| (1.0 / d).clamp(-1e30, 1e30);
@@ -87,25 +89,26 @@ impl BoundsScan {
         mut limit: impl FnMut() -> f32,
         mut visit: impl FnMut(usize) -> bool,
     ) {
-        let [ox, oy, oz] = ray.origin;
-        let [ix, iy, iz] = ray.inv;
+        let [ox, oy, oz] = ray.origin.map(Vec4::splat);
+        let [ix, iy, iz] = ray.inv.map(Vec4::splat);
+        let t_min = Vec4::splat(t_min);
         for (b, batch) in self.batches.iter().enumerate() {
             let [x0, y0, z0] = &batch.min;
             let [x1, y1, z1] = &batch.max;
+            let t_max = Vec4::splat(limit());
             let mut near = [0.0f32; LANES];
-            let mut far = [0.0f32; LANES];
-            for l in 0..LANES {
-                let (ax, bx) = ((x0[l] - ox) * ix, (x1[l] - ox) * ix);
-                let (ay, by) = ((y0[l] - oy) * iy, (y1[l] - oy) * iy);
-                let (az, bz) = ((z0[l] - oz) * iz, (z1[l] - oz) * iz);
-                near[l] = fmax(fmax(fmin(ax, bx), fmin(ay, by)), fmax(fmin(az, bz), t_min));
-                far[l] = fmin(fmin(fmax(ax, bx), fmax(ay, by)), fmax(az, bz));
-            }
-            // One bit per candidate lane, so the visit loop branches once per candidate.
-            let t_max = limit();
             let mut mask = 0u32;
-            for l in 0..LANES {
-                mask |= (((near[l] <= far[l]) & (near[l] <= t_max)) as u32) << l;
+            // Two groups of four lanes in SIMD registers; one bit per candidate lane, so the
+            // visit loop below branches once per candidate.
+            for half in [0, 4] {
+                let load = |a: &[f32; LANES]| Vec4::from_slice(&a[half..half + 4]);
+                let (ax, bx) = ((load(x0) - ox) * ix, (load(x1) - ox) * ix);
+                let (ay, by) = ((load(y0) - oy) * iy, (load(y1) - oy) * iy);
+                let (az, bz) = ((load(z0) - oz) * iz, (load(z1) - oz) * iz);
+                let n = ax.min(bx).max(ay.min(by)).max(az.min(bz).max(t_min));
+                let f = ax.max(bx).min(ay.max(by)).min(az.max(bz));
+                near[half..half + 4].copy_from_slice(&n.to_array());
+                mask |= ((n.cmple(f) & n.cmple(t_max)).bitmask()) << half;
             }
             let used = self.len - b * LANES;
             if used < LANES {
@@ -120,20 +123,6 @@ impl BoundsScan {
             }
         }
     }
-}
-
-/// `min` without NaN handling (vectorises to one instruction). No NaN arises for a finite
-/// ray: the inverse direction is finite and non-zero, the bounds finite or (batch padding)
-/// infinite; a NaN ray fails `near <= far` and is culled.
-#[inline(always)]
-fn fmin(a: f32, b: f32) -> f32 {
-    if a < b { a } else { b }
-}
-
-/// `max` counterpart of [`fmin`].
-#[inline(always)]
-fn fmax(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
 }
 
 #[cfg(test)]
