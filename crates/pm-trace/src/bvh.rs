@@ -115,21 +115,23 @@ impl WatertightRay {
         } else {
             2
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if direction[kz] < 0.0 {
+        // Arrays, not Vec3 indexing (a match, so unpredictable branches per ray).
+        let d = direction.to_array();
+        let dz = d[kz];
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        if dz < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
-        let dz = direction[kz];
-        let (sx, sy, sz) = (direction[kx] / dz, direction[ky] / dz, 1.0 / dz);
-        let mut x_row = Vec3::ZERO;
+        let (sx, sy, sz) = (d[kx] / dz, d[ky] / dz, 1.0 / dz);
+        let mut x_row = [0.0f32; 3];
         x_row[kx] = 1.0;
         x_row[kz] = -sx;
-        let mut y_row = Vec3::ZERO;
+        let mut y_row = [0.0f32; 3];
         y_row[ky] = 1.0;
         y_row[kz] = -sy;
-        let mut z_row = Vec3::ZERO;
+        let mut z_row = [0.0f32; 3];
         z_row[kz] = sz;
+        let (x_row, y_row, z_row) = (Vec3::from(x_row), Vec3::from(y_row), Vec3::from(z_row));
         WatertightRay {
             origin,
             direction,
