@@ -15,7 +15,7 @@ mod scan;
 use scan::{BoundsScan, SlabRay};
 
 /// Scenes with at most this many primitives are searched by a flat scan of padded bounds
-/// instead of the BVH. Measured faster on `cornell-box` (17 primitives); the bound of 64 is
+/// instead of the BVH. Measured faster on `cornell-box` (under 20 primitives); the bound of 64 is
 /// not measured (a 64-primitive scan costs about 8 slab batches per ray).
 const SCAN_MAX_PRIMITIVES: usize = 64;
 
