@@ -256,10 +256,10 @@ impl SceneBuilder {
                 polygon.clear();
                 polygon.extend(mesh.face_polygon(face));
                 for i in 1..polygon.len().saturating_sub(1) {
-                    prims.push(Primitive::Triangle {
-                        v: [polygon[0], polygon[i], polygon[i + 1]],
+                    prims.push(Primitive::triangle(
+                        [polygon[0], polygon[i], polygon[i + 1]],
                         part,
-                    });
+                    ));
                 }
             }
             meshes.push(SceneMesh { mesh, first_part });
