@@ -334,6 +334,44 @@ mod tests {
         vec![a, b, c, d]
     }
 
+    /// A 3 × 3 floor in y = 0 and the four sides of a unit box standing on its middle.
+    fn floor_with_box() -> Vec<Vec<Vec3>> {
+        let floor = quad(
+            vec3(0.0, 0.0, 0.0),
+            vec3(0.0, 0.0, 3.0),
+            vec3(3.0, 0.0, 3.0),
+            vec3(3.0, 0.0, 0.0),
+        );
+        let (lo, hi) = (1.0, 2.0);
+        vec![
+            floor,
+            quad(
+                vec3(lo, 0.0, lo),
+                vec3(lo, 0.0, hi),
+                vec3(lo, 1.0, hi),
+                vec3(lo, 1.0, lo),
+            ),
+            quad(
+                vec3(hi, 0.0, lo),
+                vec3(hi, 1.0, lo),
+                vec3(hi, 1.0, hi),
+                vec3(hi, 0.0, hi),
+            ),
+            quad(
+                vec3(lo, 0.0, lo),
+                vec3(lo, 1.0, lo),
+                vec3(hi, 1.0, lo),
+                vec3(hi, 0.0, lo),
+            ),
+            quad(
+                vec3(lo, 0.0, hi),
+                vec3(hi, 0.0, hi),
+                vec3(hi, 1.0, hi),
+                vec3(lo, 1.0, hi),
+            ),
+        ]
+    }
+
     /// A floor 2 × 1 in y = 0 facing up, and a wall in x = 1 standing on it over `z0..z1`.
     fn floor_and_wall(z0: f32, z1: f32) -> Vec<Vec<Vec3>> {
         let floor = quad(
@@ -407,41 +445,7 @@ mod tests {
 
     #[test]
     fn box_on_a_floor_cuts_nine_pieces_and_keeps_the_area() {
-        let floor = quad(
-            vec3(0.0, 0.0, 0.0),
-            vec3(0.0, 0.0, 3.0),
-            vec3(3.0, 0.0, 3.0),
-            vec3(3.0, 0.0, 0.0),
-        );
-        let (lo, hi) = (1.0, 2.0);
-        let sides = vec![
-            quad(
-                vec3(lo, 0.0, lo),
-                vec3(lo, 0.0, hi),
-                vec3(lo, 1.0, hi),
-                vec3(lo, 1.0, lo),
-            ),
-            quad(
-                vec3(hi, 0.0, lo),
-                vec3(hi, 1.0, lo),
-                vec3(hi, 1.0, hi),
-                vec3(hi, 0.0, hi),
-            ),
-            quad(
-                vec3(lo, 0.0, lo),
-                vec3(lo, 1.0, lo),
-                vec3(hi, 1.0, lo),
-                vec3(hi, 0.0, lo),
-            ),
-            quad(
-                vec3(lo, 0.0, hi),
-                vec3(hi, 0.0, hi),
-                vec3(hi, 1.0, hi),
-                vec3(lo, 1.0, hi),
-            ),
-        ];
-        let mut input = vec![floor];
-        input.extend(sides);
+        let input = floor_with_box();
         let split = split_polygons_at_contacts(&input, 1e-5);
         let floor_pieces: Vec<&Vec<Vec3>> = split
             .polygons
@@ -594,40 +598,7 @@ mod tests {
 
     #[test]
     fn box_on_a_floor_cuts_out_its_footprint_only() {
-        let floor = quad(
-            vec3(0.0, 0.0, 0.0),
-            vec3(0.0, 0.0, 3.0),
-            vec3(3.0, 0.0, 3.0),
-            vec3(3.0, 0.0, 0.0),
-        );
-        let (lo, hi) = (1.0, 2.0);
-        let input = vec![
-            floor,
-            quad(
-                vec3(lo, 0.0, lo),
-                vec3(lo, 0.0, hi),
-                vec3(lo, 1.0, hi),
-                vec3(lo, 1.0, lo),
-            ),
-            quad(
-                vec3(hi, 0.0, lo),
-                vec3(hi, 1.0, lo),
-                vec3(hi, 1.0, hi),
-                vec3(hi, 0.0, hi),
-            ),
-            quad(
-                vec3(lo, 0.0, lo),
-                vec3(lo, 1.0, lo),
-                vec3(hi, 1.0, lo),
-                vec3(hi, 0.0, lo),
-            ),
-            quad(
-                vec3(lo, 0.0, hi),
-                vec3(hi, 0.0, hi),
-                vec3(hi, 1.0, hi),
-                vec3(lo, 1.0, hi),
-            ),
-        ];
+        let input = floor_with_box();
         let split = split_polygons_at_contacts(&input, 1e-5);
         // The pieces around the box are one group; the footprint is cut out.
         let around = [
