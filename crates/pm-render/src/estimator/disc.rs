@@ -1,6 +1,8 @@
 //! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere.
 
-use super::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, gather_found};
+use super::{
+    Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, find_nearest, gather_found,
+};
 use glam::Vec3;
 use pm_kdtree::Euclidean;
 use std::f32::consts::PI;
@@ -18,20 +20,9 @@ impl Estimator for Disc {
         options: &EstimatorOptions,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        if map.tree.is_empty() {
+        let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
-        }
-        map.tree.nearest_k::<Euclidean>(
-            at.position,
-            options.k,
-            options.max_distance,
-            options.kinds,
-            &mut scratch.neighbours,
-        );
-        let r = scratch.neighbours.extent();
-        if r <= 0.0 {
-            return Vec3::ZERO;
-        }
+        };
         let total: Vec3 = if options.reject_behind {
             gather_found(at, map.tree, options, scratch);
             scratch.photons.iter().map(|p| p.power).sum()

@@ -2,7 +2,8 @@
 //! the area of the same map's surfaces inside the gather volume that faces it.
 
 use super::{
-    Estimator, EstimatorOptions, EstimatorScratch, GatheredPhoton, MapView, SurfacePoint, gather_found,
+    Estimator, EstimatorOptions, EstimatorScratch, GatheredPhoton, MapView, SurfacePoint, find_nearest,
+    gather_found,
 };
 use glam::Vec3;
 use pm_geom::{Aabb, Ball, ClipScratch, GatherVolume, PolygonSet};
@@ -70,20 +71,9 @@ fn geometry_irradiance<M: VolumeMetric>(
     options: &EstimatorOptions,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    if map.tree.is_empty() {
+    let Some(extent) = find_nearest::<M>(at, map, options, scratch) else {
         return Vec3::ZERO;
-    }
-    map.tree.nearest_k::<M>(
-        at.position,
-        options.k,
-        options.max_distance,
-        options.kinds,
-        &mut scratch.neighbours,
-    );
-    let extent = scratch.neighbours.extent();
-    if extent <= 0.0 {
-        return Vec3::ZERO;
-    }
+    };
     gather_found(at, map.tree, options, scratch);
     let volume = M::volume(at.position, extent);
     let EstimatorScratch {

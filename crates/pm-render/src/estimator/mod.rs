@@ -102,6 +102,29 @@ impl<E: Estimator + ?Sized> Estimator for &E {
     }
 }
 
+/// Runs the k-nearest query of an estimator under metric `M` into `scratch.neighbours` and
+/// returns the search extent, or `None` when the map is empty or the extent is zero (nothing
+/// to estimate from).
+pub(crate) fn find_nearest<M: pm_kdtree::Metric>(
+    at: SurfacePoint,
+    map: MapView<'_>,
+    options: &EstimatorOptions,
+    scratch: &mut EstimatorScratch,
+) -> Option<f32> {
+    if map.tree.is_empty() {
+        return None;
+    }
+    map.tree.nearest_k::<M>(
+        at.position,
+        options.k,
+        options.max_distance,
+        options.kinds,
+        &mut scratch.neighbours,
+    );
+    let extent = scratch.neighbours.extent();
+    (extent > 0.0).then_some(extent)
+}
+
 /// Decodes the neighbours found by the last query into `scratch.photons`, dropping photons
 /// that arrive from behind the surface when `options.reject_behind` is set.
 pub(crate) fn gather_found(

@@ -5,7 +5,6 @@
 mod direct;
 mod path_trace;
 mod scatter;
-mod shadow_rays;
 mod visualize;
 
 pub use direct::direct_irradiance;
@@ -105,8 +104,8 @@ impl<E: Estimator> Lighting<'_, E> {
     #[inline]
     pub fn radiance(&self, mode: Mode, ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
         match mode {
-            Mode::Visualize => visualize::radiance(self, ray, rng, scratch),
-            Mode::ShadowRays => shadow_rays::radiance(self, ray, rng, scratch),
+            Mode::Visualize => visualize::radiance(self, ray, rng, scratch, false),
+            Mode::ShadowRays => visualize::radiance(self, ray, rng, scratch, true),
             Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
         }
     }

@@ -1,18 +1,21 @@
-//! Visualize: specular bounces from the eye, then the photon-map estimate at the first
-//! diffuse hit.
+//! Visualize and ShadowRays: specular bounces from the eye, then at the first diffuse hit the
+//! photon-map estimate, plus (for ShadowRays) direct light by shadow rays.
 
-use super::Lighting;
 use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
+use super::{Lighting, direct_irradiance};
 use crate::{Estimator, EstimatorScratch};
 use glam::Vec3;
 use pm_trace::{Material, Ray, RayKind, Rng};
 use std::f32::consts::FRAC_1_PI;
 
+/// Radiance along a camera ray. With `shadow_rays` the direct light comes from shadow rays to
+/// the lights, and the caller's options must exclude direct photons (`KindMask::NOT_DIRECT`).
 pub(super) fn radiance<E: Estimator>(
     lighting: &Lighting<'_, E>,
     mut ray: Ray,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
+    shadow_rays: bool,
 ) -> Vec3 {
     let scene = lighting.scene;
     let mut throughput = Vec3::ONE;
@@ -21,7 +24,10 @@ pub(super) fn radiance<E: Estimator>(
             break;
         };
         if let Material::Lambertian { albedo } = *scene.material(&hit) {
-            let e = lighting.photon_irradiance(&hit, scratch);
+            let mut e = lighting.photon_irradiance(&hit, scratch);
+            if shadow_rays {
+                e += direct_irradiance(scene, &hit, rng);
+            }
             return throughput * (scene.emission(&hit) + albedo * FRAC_1_PI * e);
         }
         let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {

@@ -64,3 +64,30 @@ pub trait Light: Send + Sync + std::fmt::Debug {
         let _ = scene_bounds;
     }
 }
+
+/// A photon leaving a point light at `origin` along `direction`, at the light's full weight.
+pub(crate) fn ray_from_point(origin: Vec3, direction: Vec3) -> EmittedRay {
+    EmittedRay {
+        ray: Ray { origin, direction },
+        weight: Vec3::ONE,
+    }
+}
+
+/// The shadow-ray sample of a point light at `position` seen from `point`, for a light of
+/// `intensity(direction towards the light)` watts per steradian: `radiance_over_pdf` is the
+/// irradiance `I / d²` on a surface facing the light. `None` at the light itself.
+pub(crate) fn sample_point_light(
+    position: Vec3,
+    point: Vec3,
+    intensity: impl FnOnce(Vec3) -> Option<Vec3>,
+) -> Option<LightSample> {
+    let to = position - point;
+    let d2 = to.length_squared();
+    let distance = d2.sqrt();
+    let direction = (to / distance).try_normalize()?;
+    Some(LightSample {
+        direction,
+        distance,
+        radiance_over_pdf: intensity(direction)? / d2,
+    })
+}

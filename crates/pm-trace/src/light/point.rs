@@ -1,8 +1,8 @@
 //! The isotropic point light.
 
-use super::{EmittedRay, Light, LightSample};
+use super::{EmittedRay, Light, LightSample, ray_from_point, sample_point_light};
+use crate::Rng;
 use crate::sampling::uniform_sphere;
-use crate::{Ray, Rng};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -29,24 +29,10 @@ impl Light for PointLight {
 
     fn emit(&self, rng: &mut Rng) -> EmittedRay {
         let d = uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
-        EmittedRay {
-            ray: Ray {
-                origin: self.position,
-                direction: d,
-            },
-            weight: Vec3::ONE,
-        }
+        ray_from_point(self.position, d)
     }
 
     fn sample_incident(&self, point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
-        let to = self.position - point;
-        let d2 = to.length_squared();
-        let distance = d2.sqrt();
-        let direction = (to / distance).try_normalize()?;
-        Some(LightSample {
-            direction,
-            distance,
-            radiance_over_pdf: self.power / (4.0 * PI * d2),
-        })
+        sample_point_light(self.position, point, |_| Some(self.power / (4.0 * PI)))
     }
 }

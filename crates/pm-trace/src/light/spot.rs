@@ -1,8 +1,8 @@
 //! The spot light: a point light restricted to a cone, with uniform intensity inside.
 
-use super::{EmittedRay, Light, LightSample};
+use super::{EmittedRay, Light, LightSample, ray_from_point, sample_point_light};
+use crate::Rng;
 use crate::sampling::uniform_cone;
-use crate::{Ray, Rng};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -42,34 +42,15 @@ impl Light for SpotLight {
     }
 
     fn emit(&self, rng: &mut Rng) -> EmittedRay {
-        let d = uniform_cone(
-            self.direction,
-            self.cos_max(),
-            Vec2::new(rng.next_f32(), rng.next_f32()),
-        );
-        EmittedRay {
-            ray: Ray {
-                origin: self.position,
-                direction: d,
-            },
-            weight: Vec3::ONE,
-        }
+        let cos_max = self.cos_max();
+        let d = uniform_cone(self.direction, cos_max, Vec2::new(rng.next_f32(), rng.next_f32()));
+        ray_from_point(self.position, d)
     }
 
     fn sample_incident(&self, point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
-        let to = self.position - point;
-        let d2 = to.length_squared();
-        let distance = d2.sqrt();
-        let direction = (to / distance).try_normalize()?;
         let cos_max = self.cos_max();
-        if (-direction).dot(self.direction) < cos_max {
-            return None;
-        }
-        let intensity = self.power / (2.0 * PI * (1.0 - cos_max));
-        Some(LightSample {
-            direction,
-            distance,
-            radiance_over_pdf: intensity / d2,
+        sample_point_light(self.position, point, |direction| {
+            ((-direction).dot(self.direction) >= cos_max).then(|| self.power / (2.0 * PI * (1.0 - cos_max)))
         })
     }
 }
