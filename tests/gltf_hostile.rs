@@ -443,3 +443,40 @@ fn sparse_accessor_replaces_the_listed_element() {
         "{err}"
     );
 }
+
+#[test]
+fn instancing_past_the_triangle_budget_is_an_error_not_an_allocation() {
+    // A few kilobytes of JSON: one triangle placed by 2,000 nodes. With a budget below that the
+    // load stops with an error; with room to spare every placement is there.
+    let scratch = Scratch::new("instancing");
+    std::fs::copy(Path::new(SCENES).join("tri.bin"), scratch.0.join("tri.bin")).unwrap();
+    let nodes: Vec<String> = (0..2000).map(|_| r#"{"mesh":0}"#.to_string()).collect();
+    let roots: Vec<String> = (0..2000).map(|i| i.to_string()).collect();
+    let text = triangle_gltf("tri.bin").replace(
+        r#""nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]"#,
+        &format!(
+            r#""nodes":[{}],"scenes":[{{"nodes":[{}]}}]"#,
+            nodes.join(","),
+            roots.join(",")
+        ),
+    );
+    let path = scratch.0.join("instanced.gltf");
+    std::fs::write(&path, text).unwrap();
+    let tight = GltfOptions {
+        max_triangles: 1999,
+        ..GltfOptions::default()
+    };
+    match read_content(&path, &tight) {
+        Err(GltfError::Node { reason, .. }) => assert!(reason.contains("max_triangles"), "{reason}"),
+        other => panic!("expected the triangle budget to stop the load, got {other:?}"),
+    }
+    let roomy = GltfOptions {
+        max_triangles: 2000,
+        ..GltfOptions::default()
+    };
+    let content = read_content(&path, &roomy).unwrap();
+    assert_eq!(
+        content.meshes.iter().map(|m| m.triangles.len()).sum::<usize>(),
+        2000
+    );
+}

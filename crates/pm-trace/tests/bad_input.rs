@@ -177,3 +177,21 @@ fn rays_with_non_finite_input_miss_instead_of_panicking() {
     }
     assert!(!scene.occluded(Vec3::splat(f32::NAN), Vec3::ONE));
 }
+
+#[test]
+fn map_assignments_with_impossible_counts_are_refused() {
+    use pm_trace::MapAssignment;
+    assert!(MapAssignment::new(vec![0, 1, 1], 2).is_some());
+    assert!(
+        MapAssignment::new(vec![0, 2], 2).is_none(),
+        "an id past the count"
+    );
+    assert!(
+        MapAssignment::new(vec![0; 3], u32::MAX).is_none(),
+        "more maps than parts"
+    );
+    assert!(
+        MapAssignment::new(Vec::new(), 1).is_some(),
+        "no parts, one empty map"
+    );
+}

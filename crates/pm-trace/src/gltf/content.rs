@@ -86,6 +86,7 @@ fn flatten(
     let roots = root_nodes(file, root)?;
     let placed = walk(file, root, &roots)?;
     let mut content = GltfContent::default();
+    let mut triangle_count = 0u64;
     for p in &placed {
         let node = &root.nodes[p.index];
         let missing = |what: &str, index: usize, len: usize| GltfError::Node {
@@ -113,15 +114,29 @@ fn flatten(
                     None => None,
                 };
                 match read_primitive(file, &reader, (mesh_index, primitive), prim, p.world)? {
-                    PrimitiveGeometry::Triangles { positions, triangles } => content.meshes.push(GltfMesh {
-                        node: p.index,
-                        mesh: mesh_index,
-                        primitive,
-                        material_index,
-                        positions,
-                        triangles,
-                        material: map_material(material, options),
-                    }),
+                    PrimitiveGeometry::Triangles { positions, triangles } => {
+                        // Each placement decodes its accessors again: count what instancing adds.
+                        triangle_count += triangles.len() as u64;
+                        if triangle_count > options.max_triangles {
+                            return Err(GltfError::Node {
+                                file: file.to_path_buf(),
+                                node: p.index,
+                                reason: format!(
+                                    "the scene places more than {} triangles (GltfOptions::max_triangles)",
+                                    options.max_triangles
+                                ),
+                            });
+                        }
+                        content.meshes.push(GltfMesh {
+                            node: p.index,
+                            mesh: mesh_index,
+                            primitive,
+                            material_index,
+                            positions,
+                            triangles,
+                            material: map_material(material, options),
+                        })
+                    }
                     PrimitiveGeometry::NotTriangles => content.skipped_non_triangle += 1,
                     PrimitiveGeometry::NoPositions => content.skipped_without_positions += 1,
                 }

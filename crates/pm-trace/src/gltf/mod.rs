@@ -10,8 +10,9 @@
 //! `file:` and every other scheme, escapes such as `..%2F`, invalid escapes such as `%FF`,
 //! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
 //! buffer. A GLB container's length fields are checked against the file before parsing.
-//! Images are never read (textures are not used). Memory is bounded by the file sizes: no
-//! accessor may describe more bytes than the file's buffers hold.
+//! Images are never read (textures are not used). Memory is bounded: no accessor may describe
+//! more bytes than the file's buffers hold, and the instanced scene may hold at most
+//! [`GltfOptions::max_triangles`] triangles (many nodes may place one mesh).
 //!
 //! The gltf crate panics on some malformed files; the loader checks what it can first (GLB
 //! lengths, `POSITION` accessor indices, accessor and buffer-view bounds, vertex indices)
@@ -99,6 +100,10 @@ pub struct GltfOptions {
     /// When the file has neither punctual lights nor emissive surfaces, add a point light at
     /// the camera (a "headlight") so the scene still renders (on by default).
     pub default_light: bool,
+    /// The most triangles the scene may hold after instancing (20 million by default, about
+    /// 1 GB of geometry). Many nodes may place the same mesh, so a small file can describe a
+    /// huge scene; past this limit loading stops with an error instead of exhausting memory.
+    pub max_triangles: u64,
 }
 
 /// Loads a `.gltf` or `.glb` file into a [`Scene`] with [`GltfOptions::default`].
@@ -121,12 +126,14 @@ pub fn load_scene_with(path: &Path, options: &GltfOptions) -> Result<Scene, Gltf
 }
 
 impl GltfOptions {
-    /// The glTF units as written, a 1 GiB limit, a headlight for unlit files.
+    /// The glTF units as written, a 1 GiB file limit, 20 million triangles, a headlight for
+    /// unlit files.
     pub const DEFAULT: Self = Self {
         light_scale: 1.0,
         emission_scale: 1.0,
         max_file_bytes: 1 << 30,
         default_light: true,
+        max_triangles: 20_000_000,
     };
 }
 

@@ -17,15 +17,15 @@ pub struct MapAssignment {
 }
 
 impl MapAssignment {
-    /// An assignment from the map of each part (ids must be `< map_count`; `None` otherwise).
+    /// An assignment from the map of each part. `None` unless every id is `< map_count` and
+    /// `map_count` is at most the number of parts (at least 1): a map without parts could hold
+    /// no photons, and a huge count would only make tracing allocate per-map tables for it.
     pub fn new(map_of_part: Vec<u32>, map_count: u32) -> Option<Self> {
-        map_of_part
-            .iter()
-            .all(|&m| m < map_count)
-            .then_some(MapAssignment {
-                map_of_part,
-                map_count,
-            })
+        let plausible = map_count as usize <= map_of_part.len().max(1);
+        (plausible && map_of_part.iter().all(|&m| m < map_count)).then_some(MapAssignment {
+            map_of_part,
+            map_count,
+        })
     }
 
     /// The map of `part`.
