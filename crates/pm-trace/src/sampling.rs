@@ -78,6 +78,17 @@ pub fn uniform_cone(axis: Vec3, cos_max: f32, u: Vec2) -> Vec3 {
     (t * (r * phi.cos()) + b * (r * phi.sin()) + axis * z).normalize()
 }
 
+/// The index `i` of the interval of a cumulative table (`cumulative[i]` is the sum of weights
+/// `0..=i`, non-decreasing, non-empty) that `u · total` falls in, for `u` in `[0, 1)`: index `i`
+/// is drawn with probability `weight[i] / total`.
+pub fn pick_cumulative(cumulative: &[f32], u: f32) -> usize {
+    let total = cumulative.last().copied().unwrap_or(0.0);
+    let x = u * total;
+    cumulative
+        .partition_point(|&c| c <= x)
+        .min(cumulative.len().saturating_sub(1))
+}
+
 /// A uniform point on the triangle `(a, b, c)` from `u ∈ [0,1)²`.
 #[inline]
 pub fn uniform_triangle(a: Vec3, b: Vec3, c: Vec3, u: Vec2) -> Vec3 {

@@ -2,7 +2,7 @@
 //! (counter-clockwise winding), cosine-distributed.
 
 use super::{EmittedRay, Light, LightSample};
-use crate::sampling::{cosine_hemisphere, uniform_triangle};
+use crate::sampling::{cosine_hemisphere, pick_cumulative, uniform_triangle};
 use crate::{Ray, Rng};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -70,11 +70,7 @@ impl AreaLight {
         if total <= 0.0 {
             return None;
         }
-        let x = rng.next_f32() * total;
-        let i = self
-            .cumulative
-            .partition_point(|&c| c <= x)
-            .min(self.triangles.len() - 1);
+        let i = pick_cumulative(&self.cumulative, rng.next_f32());
         let t = &self.triangles[i];
         Some((
             uniform_triangle(t[0], t[1], t[2], Vec2::new(rng.next_f32(), rng.next_f32())),

@@ -3,7 +3,7 @@
 //! stored photons are bit-identical for any thread count.
 
 use super::scatter::{fresnel_dielectric, reflect, refract};
-use crate::sampling::cosine_hemisphere;
+use crate::sampling::{cosine_hemisphere, pick_cumulative};
 use crate::{MapAssignment, Material, Ray, RayKind, Rng, Scene, TraceError};
 use glam::Vec2;
 use pm_kdtree::{Photon, PhotonKind};
@@ -118,11 +118,7 @@ impl LightPicker {
 
     /// Index and selection probability.
     fn pick(&self, rng: &mut Rng) -> (usize, f32) {
-        let x = rng.next_f32() * self.total;
-        let i = self
-            .cumulative
-            .partition_point(|&c| c <= x)
-            .min(self.cumulative.len() - 1);
+        let i = pick_cumulative(&self.cumulative, rng.next_f32());
         let lo = if i == 0 { 0.0 } else { self.cumulative[i - 1] };
         (i, (self.cumulative[i] - lo) / self.total)
     }
