@@ -84,3 +84,72 @@ fn unwritable_output_is_an_error_naming_the_path() {
     let err = image.write_exr("/proc/no-such-dir/out.exr").unwrap_err();
     assert!(err.to_string().contains("/proc/no-such-dir/out.exr"), "{err}");
 }
+
+#[test]
+fn huge_images_and_maps_of_another_scene_are_typed_errors() {
+    let huge = RenderSettings {
+        width: u32::MAX,
+        height: u32::MAX,
+        ..RenderSettings::default()
+    };
+    assert!(matches!(huge.validate(), Err(RenderError::ImageTooLarge { .. })));
+    assert!(matches!(
+        Image::new(1 << 16, 1 << 16),
+        Err(RenderError::ImageTooLarge { .. })
+    ));
+
+    // Maps of the Cornell box (11+ parts) used for the accordion (8 parts).
+    use photon_maps::render::RenderStats;
+    use photon_maps::trace::{CreaseAngle, Partitioner};
+    let cornell = scenes::build("cornell-box").unwrap();
+    let renderer = photon_maps::render::Renderer::new(
+        EstimatorKind::Disc,
+        RenderSettings {
+            width: 8,
+            height: 8,
+            photons: 1000,
+            ..RenderSettings::default()
+        },
+    );
+    let maps = renderer
+        .build_maps(
+            &cornell,
+            &CreaseAngle::default().partition(&cornell),
+            &(),
+            &mut RenderStats::default(),
+        )
+        .unwrap();
+    let accordion = scenes::build("accordion").unwrap();
+    assert!(matches!(
+        renderer.render_image(&accordion, Some(&maps), &()),
+        Err(RenderError::MapsForAnotherScene { .. })
+    ));
+}
+
+#[test]
+fn an_exr_claiming_a_billion_pixels_is_refused_before_allocating() {
+    // A valid small EXR, then its data window widened in the header to 40000 x 40000.
+    let dir = std::env::temp_dir().join(format!("pm-exr-huge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("small.exr");
+    Image::new(4, 4).unwrap().write_exr(&path).unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    let name = b"dataWindow\0box2i\0";
+    let at = bytes
+        .windows(name.len())
+        .position(|w| w == name)
+        .expect("a dataWindow attribute")
+        + name.len()
+        + 4;
+    // box2i: xMin, yMin, xMax, yMax as i32.
+    bytes[at + 8..at + 12].copy_from_slice(&39_999i32.to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&39_999i32.to_le_bytes());
+    let huge = dir.join("huge.exr");
+    std::fs::write(&huge, bytes).unwrap();
+    let result = Image::read_exr(&huge);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        result.is_err(),
+        "a 40000x40000 EXR with 16 pixels of data must not load"
+    );
+}

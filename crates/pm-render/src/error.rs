@@ -21,6 +21,22 @@ pub enum RenderError {
         /// Height asked for.
         height: u32,
     },
+    /// An image with more than [`crate::image::MAX_PIXELS`] pixels.
+    #[error("image size {width}x{height}: more than {max} pixels", max = crate::image::MAX_PIXELS)]
+    ImageTooLarge {
+        /// Width asked for.
+        width: u64,
+        /// Height asked for.
+        height: u64,
+    },
+    /// Photon maps built for another scene (their part count differs from the scene's).
+    #[error("photon maps cover {maps} parts but the scene has {scene}: they were built for another scene")]
+    MapsForAnotherScene {
+        /// Parts the maps were built for.
+        maps: usize,
+        /// Parts of the scene rendered.
+        scene: usize,
+    },
     /// Zero photons for a mode that reads photon maps.
     #[error("photons must be at least 1")]
     ZeroPhotons,

@@ -112,7 +112,7 @@ impl<E: Estimator> Renderer<E> {
     }
 
     /// Renders the image from already built maps (`None` is fine for path tracing) in the
-    /// current rayon pool.
+    /// current rayon pool. Maps built for another scene are an error.
     pub fn render_image(
         &self,
         scene: &Scene,
@@ -120,6 +120,12 @@ impl<E: Estimator> Renderer<E> {
         progress: &dyn Progress,
     ) -> Result<Image, RenderError> {
         self.settings.validate()?;
+        if let Some(maps) = maps {
+            let (maps, scene) = (maps.assignment().part_count(), scene.part_count());
+            if maps != scene {
+                return Err(RenderError::MapsForAnotherScene { maps, scene });
+            }
+        }
         let s = &self.settings;
         let options = s.estimator_options(&scene.bounds());
         options.validate()?;

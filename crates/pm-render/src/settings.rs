@@ -54,12 +54,7 @@ impl Default for RenderSettings {
 impl RenderSettings {
     /// Checks sizes, counts and distances; the error names the bad setting.
     pub fn validate(&self) -> Result<(), RenderError> {
-        if self.width == 0 || self.height == 0 {
-            return Err(RenderError::EmptyImage {
-                width: self.width,
-                height: self.height,
-            });
-        }
+        crate::image::check_image_size(self.width, self.height)?;
         if self.samples_per_pixel == 0 {
             return Err(RenderError::ZeroSamples);
         }

@@ -35,6 +35,22 @@ impl Image {
     /// Reads the first RGB(A) layer of an EXR file (alpha is dropped).
     pub fn read_exr(path: impl AsRef<Path>) -> Result<Image, RenderError> {
         let path = path.as_ref();
+        // Check the declared size before the reader allocates for it: a tiny file can claim a
+        // billion pixels on a side.
+        let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| io_error(path, e))?;
+        for header in meta.headers.iter() {
+            let size = header.layer_size;
+            let (w, h) = (u32::try_from(size.width()), u32::try_from(size.height()));
+            match (w, h) {
+                (Ok(w), Ok(h)) => super::check_image_size(w, h)?,
+                _ => {
+                    return Err(RenderError::ImageTooLarge {
+                        width: size.width() as u64,
+                        height: size.height() as u64,
+                    });
+                }
+            }
+        }
         let img = exr::prelude::read_first_rgba_layer_from_file(
             path,
             |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),

@@ -32,9 +32,7 @@ impl Image {
         height: u32,
         mut f: impl FnMut(u32, u32) -> Vec3,
     ) -> Result<Self, RenderError> {
-        if width == 0 || height == 0 {
-            return Err(RenderError::EmptyImage { width, height });
-        }
+        check_image_size(width, height)?;
         let mut pixels = Vec::with_capacity(width as usize * height as usize);
         for y in 0..height {
             for x in 0..width {
@@ -121,6 +119,24 @@ pub(crate) fn check_same_size(a: &Image, b: &Image) -> Result<(), RenderError> {
             a_height: a.height,
             b_width: b.width,
             b_height: b.height,
+        });
+    }
+    Ok(())
+}
+
+/// The most pixels an image may have (2²⁸, 3 GiB of linear RGB): larger sizes are refused with
+/// [`RenderError::ImageTooLarge`] instead of exhausting memory.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+/// Both sides at least 1 and at most [`MAX_PIXELS`] pixels in all.
+pub(crate) fn check_image_size(width: u32, height: u32) -> Result<(), RenderError> {
+    if width == 0 || height == 0 {
+        return Err(RenderError::EmptyImage { width, height });
+    }
+    if width as u64 * height as u64 > MAX_PIXELS {
+        return Err(RenderError::ImageTooLarge {
+            width: width as u64,
+            height: height as u64,
         });
     }
     Ok(())
