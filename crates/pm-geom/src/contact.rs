@@ -9,6 +9,7 @@
 //! Where the cut line runs beyond the contact (a doorway, the floor around a box), the pieces of
 //! *B* share ordinary two-face edges and stay connected.
 
+use crate::bounds_bvh::BoundsBvh;
 use crate::{Aabb, polygon_vector_area};
 use glam::Vec3;
 
@@ -48,8 +49,9 @@ struct FaceFrame {
 /// Degenerate polygons (zero area) are passed through unchanged and never touched. The total
 /// area of each input polygon is preserved by its pieces (up to float rounding).
 ///
-/// Candidate pairs are found by sweeping polygon bounds along x, so the cost grows with the
-/// number of overlapping bounds, not with the square of the polygon count.
+/// Candidate pairs are found through a bounding-volume hierarchy over the polygon bounds, so
+/// the cost grows with the number of overlapping bounds, not with the square of the polygon
+/// count.
 pub fn split_polygons_at_contacts<P: AsRef<[Vec3]>>(polygons: &[P], tolerance: f32) -> ContactSplit {
     let tolerance = tolerance.max(0.0);
     let frames: Vec<Option<FaceFrame>> = polygons
@@ -145,24 +147,27 @@ fn face_frame(polygon: &[Vec3], tolerance: f32) -> Option<FaceFrame> {
     })
 }
 
-/// Pairs `(i, j)`, `i < j`, of non-degenerate faces whose padded bounds overlap (sweep on x).
+/// Pairs `(i, j)`, `i < j`, of non-degenerate faces whose padded bounds overlap, found through
+/// a bounding-volume hierarchy over the bounds (a sweep along one axis degrades to all pairs
+/// for a finely tessellated wall in a plane of that axis).
 fn overlapping_pairs(frames: &[Option<FaceFrame>]) -> Vec<(usize, usize)> {
-    let mut order: Vec<usize> = (0..frames.len()).filter(|&i| frames[i].is_some()).collect();
-    let bounds = |i: usize| frames[i].map(|f| f.bounds).unwrap_or(Aabb::EMPTY);
-    order.sort_by(|&i, &j| bounds(i).min.x.total_cmp(&bounds(j).min.x));
+    let faces: Vec<(usize, Aabb)> = frames
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| f.map(|f| (i, f.bounds)))
+        .collect();
+    let boxes: Vec<Aabb> = faces.iter().map(|&(_, b)| b).collect();
+    let bvh = BoundsBvh::build(&boxes);
     let mut pairs = Vec::new();
-    for (n, &i) in order.iter().enumerate() {
-        let bi = bounds(i);
-        for &j in &order[n + 1..] {
-            let bj = bounds(j);
-            if bj.min.x > bi.max.x {
-                break;
-            }
-            if bi.overlaps(&bj) {
+    for (n, &(i, bounds)) in faces.iter().enumerate() {
+        bvh.for_each_candidate(&bounds, |m| {
+            let (j, other) = faces[m as usize];
+            if m as usize > n && bounds.overlaps(&other) {
                 pairs.push((i.min(j), i.max(j)));
             }
-        }
+        });
     }
+    pairs.sort_unstable();
     pairs
 }
 

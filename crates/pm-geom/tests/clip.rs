@@ -244,3 +244,35 @@ fn clipping_is_allocation_free_once_warm() {
     assert_eq!(first, again, "the result buffer was reallocated");
     assert!((aabb.polygon_area_inside(&square, Vec3::Y, &mut scratch) - 1.0).abs() < 1e-6);
 }
+
+/// The property above only checks points that land on the shared edge; this case makes sure
+/// some do: the diagonal of a quad crosses the box on two of its faces.
+#[test]
+fn shared_diagonal_crossing_the_box_is_cut_at_identical_points() {
+    let (a, b, c, d) = (
+        vec3(0.1, 0.3, 0.05),
+        vec3(1.93, 0.2, 0.11),
+        vec3(1.9, 1.7, 0.2),
+        vec3(0.15, 1.8, 0.13),
+    );
+    let aabb = Aabb::new(vec3(0.55, 0.0, -1.0), vec3(1.45, 2.0, 1.0));
+    let mut scratch = ClipScratch::new();
+    let first = clip_polygon_to_aabb(&[a, b, c], &aabb, &mut scratch).to_vec();
+    let second = clip_polygon_to_aabb(&[c, d, a], &aabb, &mut scratch).to_vec();
+    let on_diagonal: Vec<Vec3> = first
+        .iter()
+        .copied()
+        .filter(|&p| {
+            let t = (p - a).dot(c - a) / (c - a).length_squared();
+            (a + (c - a) * t).distance(p) < 1e-5
+        })
+        .collect();
+    assert_eq!(
+        on_diagonal.len(),
+        2,
+        "the diagonal enters and leaves the box: {first:?}"
+    );
+    for p in on_diagonal {
+        assert!(second.contains(&p), "{p:?} missing from {second:?}");
+    }
+}

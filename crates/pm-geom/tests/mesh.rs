@@ -315,3 +315,30 @@ proptest! {
         prop_assert_eq!(mesh.crease_angle(mesh.twin(hinge).unwrap()), Some(angle));
     }
 }
+
+#[test]
+fn vertices_beyond_the_weld_grid_weld_only_when_identical() {
+    // At 1e13 m the weld grid's cells no longer fit an i64; such vertices weld exactly when
+    // they are equal. A strip of 20,000 triangles shares each vertex among three triangles.
+    let n = 20_000u32;
+    let positions: Vec<Vec3> = (0..n + 2)
+        .map(|i| Vec3::new(1e13 + (i / 2) as f32 * 1e7, 1e13 + (i % 2) as f32 * 1e7, 0.0))
+        .collect();
+    // Each triangle repeats its vertices as a separate copy, as a soup would.
+    let mut soup = Vec::new();
+    let mut faces = Vec::new();
+    for t in 0..n {
+        let tri = if t % 2 == 0 {
+            [t, t + 1, t + 2]
+        } else {
+            [t + 1, t, t + 2]
+        };
+        let start = soup.len() as u32;
+        soup.extend(tri.iter().map(|&i| positions[i as usize]));
+        faces.push([start, start + 1, start + 2]);
+    }
+    let mesh = HalfEdgeMesh::build(&soup, &faces, &MeshOptions::default()).unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(mesh.vertex_count(), (n + 2) as usize);
+    assert_eq!(mesh.face_count(), n as usize);
+}

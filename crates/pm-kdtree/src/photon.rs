@@ -150,6 +150,13 @@ fn decode_direction(u: u32, v: u32) -> Vec3 {
 /// Octahedral code of a direction; of the four grid points around the exact projection it
 /// keeps the one that decodes nearest (Cigolle et al. 2014, "precise" variant).
 fn encode_direction(direction: Vec3) -> (u32, u32) {
+    // Scale to a largest component of 1 first, so that neither a tiny direction (whose squared
+    // length underflows) nor a huge one (whose L1 norm overflows) loses its direction.
+    let largest = direction.abs().max_element();
+    if !(largest > 0.0 && largest.is_finite()) {
+        return encode_direction(Vec3::Z);
+    }
+    let direction = direction / largest;
     let l1 = direction.x.abs() + direction.y.abs() + direction.z.abs();
     if !(l1 > 0.0 && l1.is_finite()) {
         return encode_direction(Vec3::Z);

@@ -98,7 +98,8 @@ impl PhotonTree {
         if max_distance.is_nan() || max_distance < 0.0 || !query.is_finite() || self.is_empty() {
             return;
         }
-        out.found.reserve(k);
+        // The heap never holds more than the tree: a huge k must not reserve for it.
+        out.found.reserve(k.min(self.len()));
         let max_rank = M::distance_to_rank(max_distance);
         let mut search = Knn::<M> {
             tree: self,

@@ -34,7 +34,7 @@ fn power_error_is_below_half_a_percent_per_channel() {
             let relative = (decoded[c] as f64 / power[c] as f64 - 1.0).abs();
             worst = worst.max(relative);
             assert!(
-                relative <= 0.005,
+                relative <= 0.0035, // the documented bound; the issue asks for 0.5 %
                 "channel {c} of {power}: decoded {}",
                 decoded[c]
             );
@@ -129,5 +129,21 @@ fn zero_or_non_finite_direction_becomes_plus_z() {
     for d in [Vec3::ZERO, Vec3::NAN, Vec3::new(f32::INFINITY, 0.0, 0.0)] {
         let decoded = CompactPhoton::encode(&photon(Vec3::ONE, d, PhotonKind::Direct)).direction();
         assert!(angle_degrees(decoded, Vec3::Z) < 0.05, "{d} → {decoded}");
+    }
+}
+
+#[test]
+fn tiny_and_huge_directions_keep_their_direction() {
+    for unit in [
+        Vec3::X,
+        Vec3::NEG_Y,
+        Vec3::new(0.6, -0.8, 0.0),
+        Vec3::new(-1.0, 2.0, -2.0).normalize(),
+    ] {
+        for scale in [1e-30f32, 1e-20, 1e20, 1e30] {
+            let d = unit * scale;
+            let decoded = CompactPhoton::encode(&photon(Vec3::ONE, d, PhotonKind::Direct)).direction();
+            assert!(angle_degrees(decoded, unit) < 0.05, "{d} → {decoded}");
+        }
     }
 }

@@ -46,10 +46,24 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     let mut next: Vec<u32> = Vec::new();
     let mut welded: Vec<Vec3> = Vec::new();
     let mut remap = Vec::with_capacity(positions.len());
+    // Points whose cells do not fit an i64: there one float step is far larger than the
+    // tolerance, so only identical points can weld. Keyed by their bits, not crammed into
+    // the outermost cells, where a long chain would make welding quadratic.
+    let mut huge: HashMap<[u32; 3], u32> = HashMap::new();
     for &p in positions {
-        // `as` saturates, so huge coordinates land in the outermost cells: still correct,
-        // because the distance test decides.
         let cell = (p * inv_cell).floor();
+        if !(cell.abs().max_element() < 4.0e18) {
+            let q = p + Vec3::ZERO; // -0.0 + 0.0 = +0.0
+            let id = *huge
+                .entry([q.x.to_bits(), q.y.to_bits(), q.z.to_bits()])
+                .or_insert_with(|| {
+                    welded.push(p);
+                    next.push(NONE);
+                    (welded.len() - 1) as u32
+                });
+            remap.push(id);
+            continue;
+        }
         let key = [cell.x as i64, cell.y as i64, cell.z as i64];
         let mut found = NONE;
         'search: for dx in -1..=1i64 {
