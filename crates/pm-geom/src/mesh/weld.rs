@@ -52,7 +52,7 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     let mut huge: HashMap<[u32; 3], u32> = HashMap::new();
     for &p in positions {
         let cell = (p * inv_cell).floor();
-        if !(cell.abs().max_element() < 4.0e18) {
+        if cell.abs().max_element() >= 4.0e18 {
             let q = p + Vec3::ZERO; // -0.0 + 0.0 = +0.0
             let id = *huge
                 .entry([q.x.to_bits(), q.y.to_bits(), q.z.to_bits()])
