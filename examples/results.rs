@@ -369,15 +369,26 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
     })
 }
 
+/// Part of every cached reference's file name: bump it when a built-in scene or the path
+/// tracer changes, so that no result is measured against a stale reference.
+const REFERENCE_VERSION: &str = "v1";
+
 /// Loads the cached reference, or renders it as two half-sample images with independent seeds
 /// (their difference gives the reference's own noise) and caches both.
 fn reference(spec: &SceneSpec, scene: &Scene, config: &Config) -> Result<Reference, String> {
     let spp = ((spec.reference_spp as f32 * config.ref_spp_scale).round() as u32 / 2).max(1) * 2;
-    let stem = format!("{}-{}x{}-{spp}", spec.name, config.width, config.height);
+    let stem = format!(
+        "{}-{}x{}-{spp}-{REFERENCE_VERSION}",
+        spec.name, config.width, config.height
+    );
     let full_path = config.cache_dir.join(format!("{stem}.exr"));
     let half_path = config.cache_dir.join(format!("{stem}-half.exr"));
     if let (Ok(full), Ok(half)) = (Image::read_exr(&full_path), Image::read_exr(&half_path)) {
-        println!("{}: reference {} (cached)", spec.name, full_path.display());
+        println!(
+            "{}: reference {} (cached; delete it, or bump REFERENCE_VERSION, after changing a scene or the path tracer)",
+            spec.name,
+            full_path.display()
+        );
         return Ok(Reference {
             image: full,
             half,
