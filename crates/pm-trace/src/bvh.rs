@@ -10,13 +10,14 @@ use obvhs::ray::RayHit;
 use obvhs::{Boundable, BvhBuildParams};
 use std::time::Duration;
 
+mod batch;
 mod scan;
 
+use batch::TriangleBatches;
 use scan::{BoundsScan, SlabRay};
 
-/// Scenes with at most this many primitives are searched by a flat scan of padded bounds
-/// instead of the BVH. Measured faster on `cornell-box` (under 20 primitives); the bound of 64 is
-/// not measured (a 64-primitive scan costs about 8 slab batches per ray).
+/// Scenes with at most this many primitives are searched by a flat scan (every triangle four
+/// at a time, analytic shapes behind padded bounds) instead of the BVH.
 const SCAN_MAX_PRIMITIVES: usize = 64;
 
 /// One BVH leaf primitive; each belongs to exactly one part.
@@ -100,6 +101,10 @@ impl Boundable for Bounded {
 pub(crate) struct WatertightRay {
     origin: Vec3,
     direction: Vec3,
+    /// The permuted axes `(kx, ky, kz)`: `kz` is the direction's dominant axis.
+    axes: (usize, usize, usize),
+    /// The shear `(d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz])`.
+    shear: Vec3,
     x_row: Vec3,
     y_row: Vec3,
     z_row: Vec3,
@@ -107,6 +112,9 @@ pub(crate) struct WatertightRay {
 
 impl WatertightRay {
     pub(crate) fn new(origin: Vec3, direction: Vec3) -> Self {
+        /// Unit vectors by axis, so a per-ray axis becomes a table load rather than a branch
+        /// or a store-then-load through a stack array (which stalls store forwarding).
+        const AXES: [Vec3; 3] = [Vec3::X, Vec3::Y, Vec3::Z];
         let abs = direction.abs();
         let kz = if abs.x > abs.y {
             if abs.x > abs.z { 0 } else { 2 }
@@ -115,29 +123,23 @@ impl WatertightRay {
         } else {
             2
         };
-        // Arrays, not Vec3 indexing (a match, so unpredictable branches per ray).
-        let d = direction.to_array();
-        let dz = d[kz];
+        let ez = AXES[kz];
+        // Dot products with unit vectors select a component exactly (the direction is finite).
+        let dz = direction.dot(ez);
         let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
         if dz < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
-        let (sx, sy, sz) = (d[kx] / dz, d[ky] / dz, 1.0 / dz);
-        let mut x_row = [0.0f32; 3];
-        x_row[kx] = 1.0;
-        x_row[kz] = -sx;
-        let mut y_row = [0.0f32; 3];
-        y_row[ky] = 1.0;
-        y_row[kz] = -sy;
-        let mut z_row = [0.0f32; 3];
-        z_row[kz] = sz;
-        let (x_row, y_row, z_row) = (Vec3::from(x_row), Vec3::from(y_row), Vec3::from(z_row));
+        let (ex, ey) = (AXES[kx], AXES[ky]);
+        let (sx, sy, sz) = (direction.dot(ex) / dz, direction.dot(ey) / dz, 1.0 / dz);
         WatertightRay {
             origin,
             direction,
-            x_row,
-            y_row,
-            z_row,
+            axes: (kx, ky, kz),
+            shear: Vec3::new(sx, sy, sz),
+            x_row: ex - sx * ez,
+            y_row: ey - sy * ez,
+            z_row: sz * ez,
         }
     }
 
@@ -178,8 +180,12 @@ impl WatertightRay {
 enum Search {
     /// An obvhs 8-wide BVH; primitives are stored in its leaf order.
     Bvh(CwBvh),
-    /// A flat scan of padded bounds (small scenes).
-    Scan(BoundsScan),
+    /// A flat scan (small scenes): the triangles come first in the primitive order, tested
+    /// four at a time; the analytic shapes follow, culled by their padded bounds.
+    Scan {
+        triangles: TriangleBatches,
+        shapes: BoundsScan,
+    },
 }
 
 /// The scene's ray-query structure: a BVH, or a flat scan for small scenes.
@@ -214,15 +220,31 @@ impl SceneBvh {
     /// `prims` must not be empty.
     pub(crate) fn build(prims: Vec<Primitive>) -> Self {
         if prims.len() <= SCAN_MAX_PRIMITIVES {
-            let bounds: Vec<(Vec3, Vec3)> = prims
+            let (mut prims, shapes): (Vec<Primitive>, Vec<Primitive>) = prims
+                .into_iter()
+                .partition(|p| matches!(p, Primitive::Triangle { .. }));
+            let triangles = TriangleBatches::new(
+                prims
+                    .iter()
+                    .filter_map(|p| match p {
+                        Primitive::Triangle { v, .. } => Some(*v),
+                        _ => None,
+                    })
+                    .collect(),
+            );
+            let bounds: Vec<(Vec3, Vec3)> = shapes
                 .iter()
                 .map(|p| {
                     let b = p.bounds();
                     (b.min, b.max)
                 })
                 .collect();
+            prims.extend(shapes);
             return SceneBvh {
-                search: Search::Scan(BoundsScan::new(&bounds)),
+                search: Search::Scan {
+                    triangles,
+                    shapes: BoundsScan::new(&bounds),
+                },
                 prims,
             };
         }
@@ -266,18 +288,30 @@ impl SceneBvh {
                 });
                 found.then_some((hit.t, hit.primitive_id))
             }
-            Search::Scan(scan) => {
+            Search::Scan { triangles, shapes } => {
                 let best = std::cell::Cell::new((t_max, u32::MAX));
-                scan.for_each_candidate(
+                triangles.for_each_hit(
+                    &w,
+                    t_min,
+                    || best.get().0,
+                    |i, t| {
+                        if accept(self.prims[i].part()) {
+                            best.set((t, i as u32));
+                        }
+                        true
+                    },
+                );
+                let first = triangles.len();
+                shapes.for_each_candidate(
                     &SlabRay::new(ray.origin, ray.direction),
                     t_min,
                     || best.get().0,
                     |i| {
-                        let p = &self.prims[i];
+                        let p = &self.prims[first + i];
                         if accept(p.part()) {
                             let t = p.intersect(&w, t_min, best.get().0);
                             if t < best.get().0 {
-                                best.set((t, i as u32));
+                                best.set((t, (first + i) as u32));
                             }
                         }
                         true
@@ -297,14 +331,27 @@ impl SceneBvh {
             Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |r, i| {
                 self.prims[i].intersect(&w, r.tmin, r.tmax)
             }),
-            Search::Scan(scan) => {
+            Search::Scan { triangles, shapes } => {
                 let mut hit = false;
-                scan.for_each_candidate(
+                triangles.for_each_hit(
+                    &w,
+                    t_min,
+                    || t_max,
+                    |_, _| {
+                        hit = true;
+                        false
+                    },
+                );
+                if hit {
+                    return true;
+                }
+                let first = triangles.len();
+                shapes.for_each_candidate(
                     &SlabRay::new(ray.origin, ray.direction),
                     t_min,
                     || t_max,
                     |i| {
-                        hit = self.prims[i].intersect(&w, t_min, t_max).is_finite();
+                        hit = self.prims[first + i].intersect(&w, t_min, t_max).is_finite();
                         !hit
                     },
                 );

@@ -145,37 +145,78 @@ pub fn trace_photons(
         });
     }
     let picker = LightPicker::new(scene)?;
-    let chunks = options.photons.div_ceil(CHUNK);
-    let per_chunk: Vec<Vec<(u32, Photon)>> = (0..chunks)
-        .into_par_iter()
-        .map(|c| {
-            let begin = c * CHUNK;
-            let end = (begin + CHUNK).min(options.photons);
-            let mut out = Vec::with_capacity(((end - begin) * 3) as usize);
-            for path in begin..end {
-                trace_path(scene, assignment, options, &picker, path, &mut out);
-            }
-            out
-        })
-        .collect();
     let maps = assignment.map_count() as usize;
-    let mut stored = vec![[0u64; 3]; maps];
-    for &(m, ref p) in per_chunk.iter().flatten() {
-        stored[m as usize][p.kind as usize] += 1;
+    let mut merged = Merged {
+        photons: vec![Vec::new(); maps],
+        stored: vec![[0u64; 3]; maps],
+    };
+    // Waves of chunks traced in parallel into buffers that are reused (cache-warm, no fresh
+    // pages); each wave is merged in path order while the next one traces.
+    let chunks = options.photons.div_ceil(CHUNK);
+    let wave = (4 * rayon::current_num_threads()).max(1) as u32;
+    let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>]| {
+        buffers.par_iter_mut().enumerate().for_each(|(i, out)| {
+            out.clear();
+            let chunk = first + i as u32;
+            if chunk >= chunks {
+                return;
+            }
+            let begin = chunk * CHUNK;
+            let end = (begin + CHUNK).min(options.photons);
+            for path in begin..end {
+                trace_path(scene, assignment, options, &picker, path, out);
+            }
+        });
+    };
+    let mut traced: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
+    let mut tracing: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
+    trace_wave(0, &mut traced);
+    merged.reserve_for(
+        &traced,
+        options.photons as f64 / (wave * CHUNK).min(options.photons) as f64,
+    );
+    let mut first = wave;
+    while first < chunks {
+        rayon::join(|| merged.append(&traced), || trace_wave(first, &mut tracing));
+        std::mem::swap(&mut traced, &mut tracing);
+        first += wave;
     }
-    let mut photons: Vec<Vec<Photon>> = stored
-        .iter()
-        .map(|s| Vec::with_capacity(s.iter().sum::<u64>() as usize))
-        .collect();
-    for &(m, p) in per_chunk.iter().flatten() {
-        photons[m as usize].push(p);
-    }
+    merged.append(&traced);
+    let Merged { photons, stored } = merged;
     let stats = TraceStats {
         emitted: options.photons as u64,
         stored,
         seconds: start.elapsed().as_secs_f64(),
     };
     Ok(TracedPhotons { photons, stats })
+}
+
+/// The photons of each map in path order, and their counts by kind.
+struct Merged {
+    photons: Vec<Vec<Photon>>,
+    stored: Vec<[u64; 3]>,
+}
+
+impl Merged {
+    /// Appends one wave's buffers (in path order).
+    fn append(&mut self, buffers: &[Vec<(u32, Photon)>]) {
+        for &(m, p) in buffers.iter().flatten() {
+            self.stored[m as usize][p.kind as usize] += 1;
+            self.photons[m as usize].push(p);
+        }
+    }
+
+    /// Reserves room for the whole run from the first wave's photons per map, scaled by
+    /// `scale` (paths in the run over paths in the wave) with 5 % slack.
+    fn reserve_for(&mut self, buffers: &[Vec<(u32, Photon)>], scale: f64) {
+        let mut counts = vec![0usize; self.photons.len()];
+        for &(m, _) in buffers.iter().flatten() {
+            counts[m as usize] += 1;
+        }
+        for (photons, count) in self.photons.iter_mut().zip(counts) {
+            photons.reserve((count as f64 * scale * 1.05).ceil() as usize);
+        }
+    }
 }
 
 /// One photon path: emission, then surface interactions until absorption.
