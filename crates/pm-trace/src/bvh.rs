@@ -103,7 +103,7 @@ pub(crate) struct WatertightRay {
     direction: Vec3,
     /// The permuted axes `(kx, ky, kz)`: `kz` is the direction's dominant axis.
     axes: (usize, usize, usize),
-    /// The shear `(d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz])`.
+    /// The shear `(d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz])` (each as `d · (1 / d[kz])`).
     shear: Vec3,
     x_row: Vec3,
     y_row: Vec3,
@@ -115,23 +115,23 @@ impl WatertightRay {
         /// Unit vectors by axis, so a per-ray axis becomes a table load rather than a branch
         /// or a store-then-load through a stack array (which stalls store forwarding).
         const AXES: [Vec3; 3] = [Vec3::X, Vec3::Y, Vec3::Z];
+        /// `(kx, ky)` by `2·kz + (d[kz] < 0)`: the next two axes in cyclic order, swapped
+        /// for a negative `d[kz]` to keep the triangles' winding.
+        const OTHER_AXES: [(usize, usize); 6] = [(1, 2), (2, 1), (2, 0), (0, 2), (0, 1), (1, 0)];
         let abs = direction.abs();
-        let kz = if abs.x > abs.y {
-            if abs.x > abs.z { 0 } else { 2 }
-        } else if abs.y > abs.z {
-            1
-        } else {
-            2
-        };
+        // The dominant axis without branches (ray directions are random, so branches here
+        // mispredict): x when it beats both, else y when it beats z, else z.
+        let x_major = (abs.x > abs.y) & (abs.x > abs.z);
+        let y_major = (abs.x <= abs.y) & (abs.y > abs.z);
+        let kz = 2 - 2 * x_major as usize - y_major as usize;
         let ez = AXES[kz];
         // Dot products with unit vectors select a component exactly (the direction is finite).
         let dz = direction.dot(ez);
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if dz < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let (kx, ky) = OTHER_AXES[2 * kz + (dz < 0.0) as usize];
         let (ex, ey) = (AXES[kx], AXES[ky]);
-        let (sx, sy, sz) = (direction.dot(ex) / dz, direction.dot(ey) / dz, 1.0 / dz);
+        // One division: the shear only has to be the same for every triangle of a ray.
+        let sz = 1.0 / dz;
+        let (sx, sy) = (direction.dot(ex) * sz, direction.dot(ey) * sz);
         WatertightRay {
             origin,
             direction,

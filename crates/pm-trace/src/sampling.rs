@@ -52,9 +52,16 @@ pub fn sin_cos_octant(phi: f32) -> (f32, f32) {
 /// A direction around the unit `normal` with density `cos θ / π` (solid-angle measure).
 #[inline]
 pub fn cosine_hemisphere(normal: Vec3, u: Vec2) -> Vec3 {
+    let (t, b) = orthonormal_frame(normal);
+    cosine_hemisphere_in_frame(t, b, normal, u)
+}
+
+/// [`cosine_hemisphere`] in a given right-handed orthonormal frame `(t, b, normal)` (from
+/// [`orthonormal_frame`]), for callers that sample many directions around one normal.
+#[inline]
+pub fn cosine_hemisphere_in_frame(t: Vec3, b: Vec3, normal: Vec3, u: Vec2) -> Vec3 {
     let d = uniform_disc(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    let (t, b) = orthonormal_frame(normal);
     (t * d.x + b * d.y + normal * z).normalize()
 }
 

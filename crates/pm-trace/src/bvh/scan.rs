@@ -39,12 +39,10 @@ impl SlabRay {
     /// min/max need no NaN handling; a NaN ray fails `near <= far` and is culled.
     #[inline]
     pub(crate) fn new(origin: Vec3, direction: Vec3) -> Self {
-        let inv = |d: f32| (1.0 / d).clamp(-1e30, 1e30);
-        let inv = [
-            inv(direction.x + 0.0),
-            inv(direction.y + 0.0),
-            inv(direction.z + 0.0),
-        ];
+        // One vector division; `+ 0.0` turns −0.0 into +0.0.
+        let d = Vec4::new(direction.x + 0.0, direction.y + 0.0, direction.z + 0.0, 1.0);
+        let inv = (Vec4::ONE / d).clamp(Vec4::splat(-1e30), Vec4::splat(1e30));
+        let inv = [inv.x, inv.y, inv.z];
         SlabRay {
             origin: origin.to_array(),
             inv,

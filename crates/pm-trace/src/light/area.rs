@@ -2,7 +2,7 @@
 //! (counter-clockwise winding), cosine-distributed.
 
 use super::{EmittedRay, Light, LightSample};
-use crate::sampling::{cosine_hemisphere, pick_cumulative, uniform_triangle};
+use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame, pick_cumulative, uniform_triangle};
 use crate::{Ray, Rng};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -13,7 +13,8 @@ use std::f32::consts::PI;
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
     triangles: Vec<[Vec3; 3]>,
-    normals: Vec<Vec3>,
+    /// Per triangle, an orthonormal frame `[t, b, n]` around its unit normal `n`.
+    frames: Vec<[Vec3; 3]>,
     /// Cumulative areas, last = total.
     cumulative: Vec<f32>,
     radiance: Vec3,
@@ -31,7 +32,7 @@ impl AreaLight {
     pub fn from_triangles(triangles: &[[Vec3; 3]], radiance: Vec3) -> Self {
         let mut light = AreaLight {
             triangles: Vec::new(),
-            normals: Vec::new(),
+            frames: Vec::new(),
             cumulative: Vec::new(),
             radiance,
         };
@@ -44,7 +45,9 @@ impl AreaLight {
             }
             total += area;
             light.triangles.push(*t);
-            light.normals.push(n.normalize());
+            let n = n.normalize();
+            let (t, b) = orthonormal_frame(n);
+            light.frames.push([t, b, n]);
             light.cumulative.push(total);
         }
         light
@@ -65,7 +68,8 @@ impl AreaLight {
         &self.triangles
     }
 
-    fn sample_point(&self, rng: &mut Rng) -> Option<(Vec3, Vec3)> {
+    /// A uniform point on the light and the frame `[t, b, n]` of its triangle.
+    fn sample_point(&self, rng: &mut Rng) -> Option<(Vec3, [Vec3; 3])> {
         let total = self.area();
         if total <= 0.0 {
             return None;
@@ -74,7 +78,7 @@ impl AreaLight {
         let t = &self.triangles[i];
         Some((
             uniform_triangle(t[0], t[1], t[2], Vec2::new(rng.next_f32(), rng.next_f32())),
-            self.normals[i],
+            self.frames[i],
         ))
     }
 }
@@ -86,8 +90,8 @@ impl Light for AreaLight {
 
     fn emit(&self, rng: &mut Rng) -> EmittedRay {
         match self.sample_point(rng) {
-            Some((p, n)) => {
-                let d = cosine_hemisphere(n, Vec2::new(rng.next_f32(), rng.next_f32()));
+            Some((p, [t, b, n])) => {
+                let d = cosine_hemisphere_in_frame(t, b, n, Vec2::new(rng.next_f32(), rng.next_f32()));
                 EmittedRay {
                     ray: Ray {
                         origin: p,
@@ -108,7 +112,7 @@ impl Light for AreaLight {
     }
 
     fn sample_incident(&self, point: Vec3, _normal: Vec3, rng: &mut Rng) -> Option<LightSample> {
-        let (y, n) = self.sample_point(rng)?;
+        let (y, [_, _, n]) = self.sample_point(rng)?;
         let to = y - point;
         let d2 = to.length_squared();
         let distance = d2.sqrt();

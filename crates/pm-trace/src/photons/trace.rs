@@ -5,7 +5,7 @@
 use super::scatter::{fresnel_dielectric, reflect, refract};
 use crate::sampling::{cosine_hemisphere, pick_cumulative};
 use crate::{MapAssignment, Material, Ray, RayKind, Rng, Scene, TraceError};
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use pm_kdtree::{Photon, PhotonKind};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -83,14 +83,16 @@ impl TracedPhotons {
     }
 }
 
-/// Light selection in proportion to power (sum over channels).
+/// Light selection in proportion to power (sum over channels), and the power each photon of
+/// a light starts with.
 struct LightPicker {
     cumulative: Vec<f32>,
-    total: f32,
+    /// Per light, `power / (N · p)` for `N` photons and selection probability `p`.
+    photon_power: Vec<Vec3>,
 }
 
 impl LightPicker {
-    fn new(scene: &Scene) -> Result<Self, TraceError> {
+    fn new(scene: &Scene, photons: u32) -> Result<Self, TraceError> {
         if scene.lights().is_empty() {
             return Err(TraceError::NoLights);
         }
@@ -113,14 +115,33 @@ impl LightPicker {
                 power: [0.0; 3],
             });
         }
-        Ok(LightPicker { cumulative, total })
+        let photon_power = scene
+            .lights()
+            .iter()
+            .enumerate()
+            .map(|(i, light)| {
+                let lo = if i == 0 { 0.0 } else { cumulative[i - 1] };
+                let p_light = (cumulative[i] - lo) / total;
+                light.power() / (photons as f32 * p_light)
+            })
+            .collect();
+        Ok(LightPicker {
+            cumulative,
+            photon_power,
+        })
     }
 
-    /// Index and selection probability.
-    fn pick(&self, rng: &mut Rng) -> (usize, f32) {
-        let i = pick_cumulative(&self.cumulative, rng.next_f32());
-        let lo = if i == 0 { 0.0 } else { self.cumulative[i - 1] };
-        (i, (self.cumulative[i] - lo) / self.total)
+    /// Index of a light drawn in proportion to power, and its photons' starting power.
+    #[inline]
+    fn pick(&self, rng: &mut Rng) -> (usize, Vec3) {
+        let i = if self.cumulative.len() == 1 {
+            // Keep the stream's use identical whatever the light count.
+            rng.next_f32();
+            0
+        } else {
+            pick_cumulative(&self.cumulative, rng.next_f32())
+        };
+        (i, self.photon_power[i])
     }
 }
 
@@ -144,7 +165,7 @@ pub fn trace_photons(
             parts: scene.part_count(),
         });
     }
-    let picker = LightPicker::new(scene)?;
+    let picker = LightPicker::new(scene, options.photons)?;
     let maps = assignment.map_count() as usize;
     let mut merged = Merged {
         photons: vec![Vec::new(); maps],
@@ -229,10 +250,9 @@ fn trace_path(
     out: &mut Vec<(u32, Photon)>,
 ) {
     let mut rng = Rng::new(options.seed, path as u64);
-    let (li, p_light) = picker.pick(&mut rng);
-    let light = &scene.lights()[li];
-    let emitted = light.emit(&mut rng);
-    let mut power = light.power() * emitted.weight / (options.photons as f32 * p_light);
+    let (li, photon_power) = picker.pick(&mut rng);
+    let emitted = scene.lights()[li].emit(&mut rng);
+    let mut power = photon_power * emitted.weight;
     // Step off the emitter's own surface (area lights start on their geometry).
     let mut ray = Ray {
         origin: emitted.ray.at(scene.epsilon()),
