@@ -49,7 +49,8 @@ pub fn sin_cos_octant(phi: f32) -> (f32, f32) {
     (s, c)
 }
 
-/// A direction around the unit `normal` with density `cos θ / π` (solid-angle measure).
+/// A direction around the unit `normal` with density `cos θ / π` (solid-angle measure), unit
+/// length up to rounding (see [`cosine_hemisphere_in_frame`]).
 #[inline]
 pub fn cosine_hemisphere(normal: Vec3, u: Vec2) -> Vec3 {
     let (t, b) = orthonormal_frame(normal);
@@ -58,11 +59,14 @@ pub fn cosine_hemisphere(normal: Vec3, u: Vec2) -> Vec3 {
 
 /// [`cosine_hemisphere`] in a given right-handed orthonormal frame `(t, b, normal)` (from
 /// [`orthonormal_frame`]), for callers that sample many directions around one normal.
+///
+/// The result is unit length up to rounding (a few ulps), as the frame is orthonormal and the
+/// disc point and height lie on the unit sphere; it is not renormalised.
 #[inline]
 pub fn cosine_hemisphere_in_frame(t: Vec3, b: Vec3, normal: Vec3, u: Vec2) -> Vec3 {
     let d = uniform_disc(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    (t * d.x + b * d.y + normal * z).normalize()
+    t * d.x + b * d.y + normal * z
 }
 
 /// A uniformly distributed unit vector (density `1 / 4π`).
@@ -136,6 +140,7 @@ mod tests {
             let d = cosine_hemisphere(n, u2(&mut rng));
             let c = d.dot(n);
             assert!(c >= -1e-6);
+            assert!((d.length() - 1.0).abs() < 1e-6, "not unit: {d}");
             sum += c as f64;
         }
         let se = (1.0f64 / 18.0 / count as f64).sqrt();

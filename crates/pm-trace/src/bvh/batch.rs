@@ -101,14 +101,9 @@ impl TriangleBatches {
             let det = u + v + w;
             let t = (u * (sz * z[0]) + v * (sz * z[1]) + w * (sz * z[2])) / det;
             let inside = t.cmpgt(t_min4) & t.cmplt(Vec4::splat(t_max)) & !outside & det.cmpne(zero);
-            let mut hits = inside.bitmask() & !on_edge.bitmask();
-            let mut edges = on_edge.bitmask();
-            let used = self.triangles.len() - b * LANES;
-            if used < LANES {
-                let valid = (1u32 << used) - 1;
-                hits &= valid;
-                edges &= valid;
-            }
+            // Unused (NaN) lanes set no bit: every comparison with NaN is false.
+            let hits = inside.bitmask() & !on_edge.bitmask();
+            let edges = on_edge.bitmask();
             let t = t.to_array();
             let mut lanes = hits | edges;
             while lanes != 0 {

@@ -69,6 +69,7 @@ impl AreaLight {
     }
 
     /// A uniform point on the light and the frame `[t, b, n]` of its triangle.
+    #[inline]
     fn sample_point(&self, rng: &mut Rng) -> Option<(Vec3, [Vec3; 3])> {
         let total = self.area();
         if total <= 0.0 {

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use std::time::Instant;
 
 /// Paths per parallel work item.
-const CHUNK: u32 = 2048;
+const CHUNK: u32 = 512;
 
 /// What to trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -174,7 +174,7 @@ pub fn trace_photons(
     // Waves of chunks traced in parallel into buffers that are reused (cache-warm, no fresh
     // pages); each wave is merged in path order while the next one traces.
     let chunks = options.photons.div_ceil(CHUNK);
-    let wave = (4 * rayon::current_num_threads()).max(1) as u32;
+    let wave = (16 * rayon::current_num_threads()).max(1) as u32;
     let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>]| {
         buffers.par_iter_mut().enumerate().for_each(|(i, out)| {
             out.clear();
