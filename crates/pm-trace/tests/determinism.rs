@@ -44,9 +44,12 @@ fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
     let one = bits(&run(1));
     let two = bits(&run(2));
     let again = bits(&run(2));
+    // Three threads: waves of another size (they scale with the thread count).
+    let three = bits(&run(3));
     assert!(one.iter().map(Vec::len).sum::<usize>() > 30_000);
     assert!(one == two, "1 vs 2 threads differ");
     assert!(two == again, "two runs differ");
+    assert!(one == three, "1 vs 3 threads differ");
     // A different seed gives different photons (the comparison can fail).
     let other = bits(&trace_photons(&scene, &maps, &TraceOptions { seed: 43, ..options }).unwrap());
     assert!(other != one);
