@@ -153,3 +153,35 @@ fn an_exr_claiming_a_billion_pixels_is_refused_before_allocating() {
         "a 40000x40000 EXR with 16 pixels of data must not load"
     );
 }
+
+#[test]
+fn a_scene_without_lights_is_a_typed_trace_error() {
+    use photon_maps::render::RenderStats;
+    use photon_maps::trace::glam::Vec3;
+    use photon_maps::trace::{Partitioner, Scene, SingleMap, Surface, TraceError};
+    let floor = [
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 1.0),
+        Vec3::new(0.0, 0.0, 1.0),
+    ];
+    let dark = Scene::builder()
+        .mesh(&floor, &[[0u32, 1, 2, 3]], Surface::diffuse(Vec3::splat(0.5)))
+        .build()
+        .unwrap();
+    let renderer = photon_maps::render::Renderer::new(EstimatorKind::Disc, RenderSettings::default());
+    let error = renderer
+        .build_maps(
+            &dark,
+            &SingleMap.partition(&dark),
+            &(),
+            &mut RenderStats::default(),
+        )
+        .unwrap_err();
+    assert!(
+        matches!(error, RenderError::Trace(TraceError::NoLights)),
+        "{error:?}"
+    );
+    // The message says which stage refused and why.
+    assert!(error.to_string().starts_with("photon tracing:"), "{error}");
+}

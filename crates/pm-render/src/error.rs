@@ -100,7 +100,10 @@ pub enum RenderError {
         /// What failed.
         message: String,
     },
-    /// The scene cannot be rendered (no camera, no light, …) or photon tracing failed.
-    #[error("scene: {0}")]
-    Scene(String),
+    /// Photon tracing refused the scene or the options (no lights, zero power, …).
+    #[error("photon tracing: {0}")]
+    Trace(#[from] pm_trace::TraceError),
+    /// The photon maps could not be built from the traced photons.
+    #[error("photon maps: {0}")]
+    Maps(#[from] pm_trace::MapError),
 }

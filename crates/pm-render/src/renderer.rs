@@ -97,16 +97,14 @@ impl<E: Estimator> Renderer<E> {
             seed: self.settings.seed,
             ..TraceOptions::default()
         };
-        let traced =
-            trace_photons(scene, assignment, &options).map_err(|e| RenderError::Scene(e.to_string()))?;
+        let traced = trace_photons(scene, assignment, &options)?;
         stats.photons_emitted = traced.stats().emitted;
         stats.photons_stored = traced.stats().total_stored();
         stats.map_count = assignment.map_count();
         stats.trace = start.elapsed();
         progress.phase("build");
         let start = Instant::now();
-        let maps =
-            PhotonMaps::build(scene, assignment, traced).map_err(|e| RenderError::Scene(e.to_string()))?;
+        let maps = PhotonMaps::build(scene, assignment, traced)?;
         stats.build = start.elapsed();
         Ok(maps)
     }
