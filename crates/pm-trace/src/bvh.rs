@@ -202,13 +202,29 @@ impl std::fmt::Debug for SceneBvh {
     }
 }
 
-/// The obvhs ray. Its node test picks slab sides by `direction < 0` but inverts −0.0 to a
-/// large *negative* number, so an axis-aligned ray with a −0.0 component missed every node
-/// (found by the watertightness test); adding +0.0 turns −0.0 into +0.0.
+/// How far (in ray parameter units) the obvhs traversal starts behind the true origin.
+///
+/// obvhs's node test raises every child box's entry distance to at least 1e-4 (an absolute
+/// `EPSILON` in `cwbvh::node`), so a box the ray leaves before `t = 1e-4` was culled: a wall
+/// within 0.1 mm of the origin (in metres) was never hit, and rays starting near a corner
+/// passed through the adjacent wall. Traversing from `origin − BACKSTEP · direction` puts
+/// every true distance `t ≥ 0` at `t + BACKSTEP > 1e-4`; the exact tests keep the true origin.
+const BACKSTEP: f32 = 2e-4;
+
+/// The obvhs ray for distances `(t_min, t_max)` of `ray`, started [`BACKSTEP`] behind it.
+/// Its node test picks slab sides by `direction < 0` but inverts −0.0 to a large *negative*
+/// number, so an axis-aligned ray with a −0.0 component missed every node (found by the
+/// watertightness test); adding +0.0 turns −0.0 into +0.0.
 #[inline]
 fn obvhs_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
     let direction = ray.direction + Vec3::ZERO;
-    obvhs::ray::Ray::new(Vec3A::from(ray.origin), Vec3A::from(direction), t_min, t_max)
+    let origin = ray.origin - direction * BACKSTEP;
+    obvhs::ray::Ray::new(
+        Vec3A::from(origin),
+        Vec3A::from(direction),
+        t_min + BACKSTEP,
+        t_max + BACKSTEP,
+    )
 }
 
 fn to_obvhs(b: pm_geom::Aabb) -> obvhs::aabb::Aabb {
@@ -220,34 +236,45 @@ impl SceneBvh {
     /// `prims` must not be empty.
     pub(crate) fn build(prims: Vec<Primitive>) -> Self {
         if prims.len() <= SCAN_MAX_PRIMITIVES {
-            let (mut prims, shapes): (Vec<Primitive>, Vec<Primitive>) = prims
-                .into_iter()
-                .partition(|p| matches!(p, Primitive::Triangle { .. }));
-            let triangles = TriangleBatches::new(
-                prims
-                    .iter()
-                    .filter_map(|p| match p {
-                        Primitive::Triangle { v, .. } => Some(*v),
-                        _ => None,
-                    })
-                    .collect(),
-            );
-            let bounds: Vec<(Vec3, Vec3)> = shapes
-                .iter()
-                .map(|p| {
-                    let b = p.bounds();
-                    (b.min, b.max)
-                })
-                .collect();
-            prims.extend(shapes);
-            return SceneBvh {
-                search: Search::Scan {
-                    triangles,
-                    shapes: BoundsScan::new(&bounds),
-                },
-                prims,
-            };
+            Self::build_scan(prims)
+        } else {
+            Self::build_bvh(prims)
         }
+    }
+
+    /// The flat scan: triangles first (tested four at a time), then the analytic shapes.
+    fn build_scan(prims: Vec<Primitive>) -> Self {
+        let (mut prims, shapes): (Vec<Primitive>, Vec<Primitive>) = prims
+            .into_iter()
+            .partition(|p| matches!(p, Primitive::Triangle { .. }));
+        let triangles = TriangleBatches::new(
+            prims
+                .iter()
+                .filter_map(|p| match p {
+                    Primitive::Triangle { v, .. } => Some(*v),
+                    _ => None,
+                })
+                .collect(),
+        );
+        let bounds: Vec<(Vec3, Vec3)> = shapes
+            .iter()
+            .map(|p| {
+                let b = p.bounds();
+                (b.min, b.max)
+            })
+            .collect();
+        prims.extend(shapes);
+        SceneBvh {
+            search: Search::Scan {
+                triangles,
+                shapes: BoundsScan::new(&bounds),
+            },
+            prims,
+        }
+    }
+
+    /// The obvhs BVH over any number of primitives.
+    fn build_bvh(prims: Vec<Primitive>) -> Self {
         let bounds: Vec<Bounded> = prims.iter().map(|p| Bounded(to_obvhs(p.bounds()))).collect();
         let bvh = obvhs::cwbvh::builder::build_cwbvh(
             &bounds,
@@ -278,15 +305,23 @@ impl SceneBvh {
         let w = WatertightRay::new(ray.origin, ray.direction);
         match &self.search {
             Search::Bvh(bvh) => {
-                let mut hit = RayHit::none();
-                let found = bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut hit, |r, i| {
+                // The exact closest hit is kept here; obvhs only gets a distance to prune by
+                // (shifted by BACKSTEP and rounded up a little, so pruning stays conservative).
+                let mut best = (t_max, u32::MAX);
+                bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
                     let p = &self.prims[i];
                     if !accept(p.part()) {
                         return f32::INFINITY;
                     }
-                    p.intersect(&w, r.tmin, r.tmax)
+                    let t = p.intersect(&w, t_min, best.0);
+                    if t < best.0 {
+                        best = (t, i as u32);
+                        (t + BACKSTEP) * (1.0 + 1e-6)
+                    } else {
+                        f32::INFINITY
+                    }
                 });
-                found.then_some((hit.t, hit.primitive_id))
+                (best.1 != u32::MAX).then_some(best)
             }
             Search::Scan { triangles, shapes } => {
                 let best = std::cell::Cell::new((t_max, u32::MAX));
@@ -328,8 +363,13 @@ impl SceneBvh {
     pub(crate) fn any_hit(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let w = WatertightRay::new(ray.origin, ray.direction);
         match &self.search {
-            Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |r, i| {
-                self.prims[i].intersect(&w, r.tmin, r.tmax)
+            Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |_, i| {
+                // Any distance below obvhs's (shifted) t_max reports the hit.
+                if self.prims[i].intersect(&w, t_min, t_max).is_finite() {
+                    f32::NEG_INFINITY
+                } else {
+                    f32::INFINITY
+                }
             }),
             Search::Scan { triangles, shapes } => {
                 let mut hit = false;
@@ -364,6 +404,61 @@ impl SceneBvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Rng;
+    use crate::sampling::uniform_sphere;
+    use glam::Vec2;
+
+    /// The flat scan tests every triangle, so it is the brute-force reference for the BVH:
+    /// both must find the same closest distance (bit for bit) and the same any-hit answer,
+    /// also for rays starting within 1e-6…1e-4 of a surface (near corners these hit the
+    /// adjacent wall almost at once; obvhs's node test used to cull such hits).
+    #[test]
+    fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
+        for name in ["lit-unlit-rooms", "touching-rooms", "cornell-box"] {
+            let scene = crate::scenes::build(name).unwrap();
+            let prims = scene.search().prims.clone();
+            let triangles: Vec<([Vec3; 3], Vec3)> = prims
+                .iter()
+                .filter_map(|p| match *p {
+                    Primitive::Triangle { v, normal, .. } => Some((v, normal)),
+                    _ => None,
+                })
+                .collect();
+            let (scan, bvh) = (SceneBvh::build_scan(prims.clone()), SceneBvh::build_bvh(prims));
+            assert!(matches!(scan.search, Search::Scan { .. }) && matches!(bvh.search, Search::Bvh(_)));
+            let bounds = scene.bounds();
+            let mut rng = Rng::new(17, 3);
+            let mut near_hits = 0;
+            for k in 0..100_000 {
+                let mut u = || rng.next_f32();
+                let origin = if k % 2 == 0 {
+                    bounds.min + (bounds.max - bounds.min) * Vec3::new(u(), u(), u())
+                } else {
+                    let (v, normal) = triangles[(u() * triangles.len() as f32) as usize % triangles.len()];
+                    let (a, b) = (u(), u());
+                    let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+                    let offset = 1e-6 * 100f32.powf(u()) * if u() < 0.5 { -1.0 } else { 1.0 };
+                    v[0] + (v[1] - v[0]) * a + (v[2] - v[0]) * b + normal * offset
+                };
+                let direction = uniform_sphere(Vec2::new(u(), u()));
+                let ray = Ray { origin, direction };
+                let t_max = if k % 3 == 0 { 0.05 } else { f32::INFINITY };
+                let expected = scan.closest(&ray, 0.0, t_max, |_| true).map(|(t, _)| t.to_bits());
+                let found = bvh.closest(&ray, 0.0, t_max, |_| true).map(|(t, _)| t.to_bits());
+                assert_eq!(
+                    found, expected,
+                    "{name}: closest, ray {k} from {origin} along {direction}"
+                );
+                assert_eq!(
+                    bvh.any_hit(&ray, 0.0, t_max),
+                    expected.is_some(),
+                    "{name}: any hit, ray {k}"
+                );
+                near_hits += expected.is_some_and(|t| f32::from_bits(t) < 1e-4) as u32;
+            }
+            assert!(near_hits > 100, "{name}: only {near_hits} hits closer than 1e-4");
+        }
+    }
 
     #[test]
     fn watertight_test_hits_the_shared_edge_of_two_triangles_exactly_once_or_twice_never_zero() {

@@ -458,6 +458,12 @@ impl Scene {
         }
     }
 
+    /// The ray-query structure (for tests that compare its two kinds of search).
+    #[cfg(test)]
+    pub(crate) fn search(&self) -> &SceneBvh {
+        &self.bvh
+    }
+
     /// The distance used to push rays off surfaces (1e-5 × the scene's size, at least 1e-5 m).
     pub fn epsilon(&self) -> f32 {
         self.epsilon
