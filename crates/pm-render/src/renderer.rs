@@ -8,6 +8,7 @@ use crate::{
 use glam::Vec3;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
@@ -135,23 +136,30 @@ impl<E: Estimator> Renderer<E> {
         };
         let tiles = tiles(s.width, s.height, s.tile_size);
         let done = AtomicUsize::new(0);
-        let rendered: Vec<Vec<Vec3>> = tiles
-            .par_iter()
-            .map_init(EstimatorScratch::new, |scratch, tile| {
-                let pixels = render_tile(&lighting, s, tile, scratch);
-                progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
-                pixels
-            })
-            .collect();
-        let mut image = Image::new(s.width, s.height)?;
+        // Each finished tile is copied into the image at once, so the pixels are held once
+        // (plus one tile per worker), not twice. Tiles are disjoint: the order of the copies
+        // does not change the image.
+        let image = Mutex::new(Image::new(s.width, s.height)?);
         let width = s.width as usize;
-        for (tile, pixels) in tiles.iter().zip(&rendered) {
-            for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
-                let start = (tile.y as usize + row) * width + tile.x as usize;
-                image.pixels_mut()[start..start + chunk.len()].copy_from_slice(chunk);
-            }
-        }
-        Ok(image)
+        tiles.par_iter().for_each_init(
+            || (EstimatorScratch::new(), Vec::new()),
+            |(scratch, pixels), tile| {
+                render_tile(&lighting, s, tile, scratch, pixels);
+                {
+                    // A poisoned lock only means another tile's copy panicked; the pixels
+                    // themselves are plain data.
+                    let mut image = image.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+                    for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+                        let start = (tile.y as usize + row) * width + tile.x as usize;
+                        image.pixels_mut()[start..start + chunk.len()].copy_from_slice(chunk);
+                    }
+                }
+                progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
+            },
+        );
+        Ok(image
+            .into_inner()
+            .unwrap_or_else(|poisoned| poisoned.into_inner()))
     }
 
     fn in_pool<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
@@ -190,17 +198,20 @@ fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
+/// Renders `tile` into `out` (cleared first), row by row; every (pixel, sample) draws from
+/// its own random stream, so a tile's pixels do not depend on which worker renders it.
 fn render_tile<E: Estimator>(
     lighting: &Lighting<'_, E>,
     s: &RenderSettings,
     tile: &Tile,
     scratch: &mut EstimatorScratch,
-) -> Vec<Vec3> {
+    out: &mut Vec<Vec3>,
+) {
     let camera = lighting.scene.camera();
     let aspect = s.width as f32 / s.height as f32;
     let spp = s.samples_per_pixel as u64;
     let seed = s.seed ^ PIXEL_SEED_SALT;
-    let mut out = Vec::with_capacity(tile.width as usize * tile.height as usize);
+    out.clear();
     for y in tile.y..tile.y + tile.height {
         for x in tile.x..tile.x + tile.width {
             let pixel = y as u64 * s.width as u64 + x as u64;
@@ -218,5 +229,4 @@ fn render_tile<E: Estimator>(
             out.push(sum / spp as f32);
         }
     }
-    out
 }
