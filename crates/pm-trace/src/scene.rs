@@ -318,12 +318,16 @@ impl SceneBuilder {
     }
 }
 
+/// On the −z side of the bounds looking along +z at their centre (the built-in scenes' view).
 fn default_camera(bounds: &Aabb) -> Camera {
     let c = bounds.center();
-    let size = bounds.size();
     let fov = 40f32.to_radians();
-    let back = 0.5 * size.y.max(size.x) / (fov * 0.5).tan() + 0.5 * size.z;
-    Camera::new(c - Vec3::Z * back * 1.1, c, Vec3::Y, fov)
+    Camera::new(
+        c - Vec3::Z * Camera::framing_distance(bounds.size(), fov),
+        c,
+        Vec3::Y,
+        fov,
+    )
 }
 
 fn check_shape(shape: &Shape) -> Result<(), String> {

@@ -81,8 +81,7 @@ pub(super) fn place_camera(
 pub fn frame_bounds(min: Vec3, max: Vec3) -> GltfCamera {
     let center = (min + max) * 0.5;
     let size = (max - min).max(Vec3::splat(1e-3));
-    let back = 0.5 * size.x.max(size.y) / (DEFAULT_VFOV * 0.5).tan() + 0.5 * size.z;
-    let position = center + Vec3::Z * back * 1.1;
+    let position = center + Vec3::Z * crate::Camera::framing_distance(size, DEFAULT_VFOV);
     GltfCamera {
         position,
         look_at: center,
