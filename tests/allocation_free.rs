@@ -92,7 +92,7 @@ fn clipping_allocates_nothing_once_warm() {
         })
         .collect();
     let mut scratch = ClipScratch::new();
-    let mut run = |scratch: &mut ClipScratch| {
+    let run = |scratch: &mut ClipScratch| {
         let mut area = 0.0;
         for (polygon, cube, ball) in &cases {
             let normal = (polygon[1] - polygon[0])
@@ -132,10 +132,10 @@ fn queries_ray_casts_and_estimators_allocate_nothing_once_warm() {
         .map(|_| scene.camera().ray(rng.next_f32(), rng.next_f32(), 1.0))
         .collect();
     let estimator_options = EstimatorOptions::for_scene(&scene.bounds());
-    let estimators: [&dyn Estimator; 3] = [&Disc::default(), &GeometryCube, &GeometryBall];
+    let estimators: [&dyn Estimator; 3] = [&Disc, &GeometryCube, &GeometryBall];
     let mut scratch = EstimatorScratch::new();
     let mut neighbours = Neighbours::with_capacity(estimator_options.k);
-    let mut run = |scratch: &mut EstimatorScratch, neighbours: &mut Neighbours| {
+    let run = |scratch: &mut EstimatorScratch, neighbours: &mut Neighbours| {
         let mut sum = Vec3::ZERO;
         let mut found = 0;
         for ray in &rays {
