@@ -113,7 +113,7 @@ impl PhotonTree {
         };
         let (bound, offsets) = self.root_bound::<M>(query);
         if bound <= max_rank {
-            search.visit(1, 0, self.len(), 0, bound, offsets);
+            self.descend::<M, _>(query, &mut search, 1, 0, self.len(), 0, bound, offsets);
         }
         for n in out.found.iter_mut() {
             n.distance = M::rank_to_distance(n.distance);
@@ -141,7 +141,53 @@ impl PhotonTree {
         };
         let (bound, offsets) = self.root_bound::<M>(query);
         if bound <= search.limit {
-            search.visit(1, 0, self.len(), 0, bound, offsets);
+            self.descend::<M, _>(query, &mut search, 1, 0, self.len(), 0, bound, offsets);
+        }
+    }
+
+    /// The traversal every search shares: from `node` (holding photons `lo..hi`, at `level`,
+    /// whose region is at least `bound` from `query` with per-axis `offsets`), the nearer child
+    /// first, then the farther one only while its bound is within `search.limit()`.
+    #[allow(clippy::too_many_arguments)]
+    fn descend<M: Metric, S: LeafSearch>(
+        &self,
+        query: Vec3,
+        search: &mut S,
+        node: usize,
+        lo: usize,
+        hi: usize,
+        level: u32,
+        bound: f32,
+        offsets: [f32; 3],
+    ) {
+        if level == self.depth {
+            search.scan_leaf(lo, hi);
+            return;
+        }
+        let axis = self.axes[node] as usize;
+        let delta = query[axis] - self.splits[node];
+        let mid = lo + (hi - lo) / 2;
+        let (near, near_lo, near_hi, far, far_lo, far_hi) = if delta < 0.0 {
+            (2 * node, lo, mid, 2 * node + 1, mid, hi)
+        } else {
+            (2 * node + 1, mid, hi, 2 * node, lo, mid)
+        };
+        self.descend::<M, S>(query, search, near, near_lo, near_hi, level + 1, bound, offsets);
+        let offset = M::axis_rank(delta);
+        let far_bound = M::grow_bound(bound, offsets[axis], offset);
+        if far_bound <= search.limit() {
+            let mut far_offsets = offsets;
+            far_offsets[axis] = offset;
+            self.descend::<M, S>(
+                query,
+                search,
+                far,
+                far_lo,
+                far_hi,
+                level + 1,
+                far_bound,
+                far_offsets,
+            );
         }
     }
 
@@ -185,6 +231,14 @@ impl PhotonTree {
     }
 }
 
+/// What the shared traversal ([`PhotonTree::descend`]) asks of a search.
+trait LeafSearch {
+    /// The largest rank still of interest (a k-nearest search shrinks it as it fills).
+    fn limit(&self) -> f32;
+    /// Looks at the photons `lo..hi` of one leaf.
+    fn scan_leaf(&mut self, lo: usize, hi: usize);
+}
+
 /// State of one k-nearest search. `found` holds ranks (not distances) while searching, as a
 /// max-heap.
 struct Knn<'a, M> {
@@ -199,28 +253,10 @@ struct Knn<'a, M> {
     metric: std::marker::PhantomData<M>,
 }
 
-impl<M: Metric> Knn<'_, M> {
-    fn visit(&mut self, node: usize, lo: usize, hi: usize, level: u32, bound: f32, offsets: [f32; 3]) {
-        if level == self.tree.depth {
-            self.scan_leaf(lo, hi);
-            return;
-        }
-        let axis = self.tree.axes[node] as usize;
-        let delta = self.query[axis] - self.tree.splits[node];
-        let mid = lo + (hi - lo) / 2;
-        let (near, near_lo, near_hi, far, far_lo, far_hi) = if delta < 0.0 {
-            (2 * node, lo, mid, 2 * node + 1, mid, hi)
-        } else {
-            (2 * node + 1, mid, hi, 2 * node, lo, mid)
-        };
-        self.visit(near, near_lo, near_hi, level + 1, bound, offsets);
-        let offset = M::axis_rank(delta);
-        let far_bound = M::grow_bound(bound, offsets[axis], offset);
-        if far_bound <= self.worst {
-            let mut far_offsets = offsets;
-            far_offsets[axis] = offset;
-            self.visit(far, far_lo, far_hi, level + 1, far_bound, far_offsets);
-        }
+impl<M: Metric> LeafSearch for Knn<'_, M> {
+    #[inline]
+    fn limit(&self) -> f32 {
+        self.worst
     }
 
     #[inline]
@@ -243,7 +279,9 @@ impl<M: Metric> Knn<'_, M> {
             }
         }
     }
+}
 
+impl<M: Metric> Knn<'_, M> {
     /// Keeps `found` a max-heap on rank (the worst at the root), at most `k` long.
     #[inline]
     fn insert(&mut self, index: u32, rank: f32) {
@@ -306,33 +344,20 @@ struct Within<'a, M, F> {
     metric: std::marker::PhantomData<M>,
 }
 
-impl<M: Metric, F: FnMut(u32, f32)> Within<'_, M, F> {
-    fn visit(&mut self, node: usize, lo: usize, hi: usize, level: u32, bound: f32, offsets: [f32; 3]) {
-        if level == self.tree.depth {
-            let mut ranks = [0.0f32; LEAF_CAPACITY];
-            let len = self.tree.leaf_ranks::<M>(self.query, lo, hi, &mut ranks);
-            for (i, &rank) in ranks[..len].iter().enumerate() {
-                if rank <= self.limit {
-                    (self.f)((lo + i) as u32, M::rank_to_distance(rank));
-                }
+impl<M: Metric, F: FnMut(u32, f32)> LeafSearch for Within<'_, M, F> {
+    #[inline]
+    fn limit(&self) -> f32 {
+        self.limit
+    }
+
+    #[inline]
+    fn scan_leaf(&mut self, lo: usize, hi: usize) {
+        let mut ranks = [0.0f32; LEAF_CAPACITY];
+        let len = self.tree.leaf_ranks::<M>(self.query, lo, hi, &mut ranks);
+        for (i, &rank) in ranks[..len].iter().enumerate() {
+            if rank <= self.limit {
+                (self.f)((lo + i) as u32, M::rank_to_distance(rank));
             }
-            return;
-        }
-        let axis = self.tree.axes[node] as usize;
-        let delta = self.query[axis] - self.tree.splits[node];
-        let mid = lo + (hi - lo) / 2;
-        let (near, near_lo, near_hi, far, far_lo, far_hi) = if delta < 0.0 {
-            (2 * node, lo, mid, 2 * node + 1, mid, hi)
-        } else {
-            (2 * node + 1, mid, hi, 2 * node, lo, mid)
-        };
-        self.visit(near, near_lo, near_hi, level + 1, bound, offsets);
-        let offset = M::axis_rank(delta);
-        let far_bound = M::grow_bound(bound, offsets[axis], offset);
-        if far_bound <= self.limit {
-            let mut far_offsets = offsets;
-            far_offsets[axis] = offset;
-            self.visit(far, far_lo, far_hi, level + 1, far_bound, far_offsets);
         }
     }
 }
