@@ -212,19 +212,26 @@ impl std::fmt::Debug for SceneBvh {
 const BACKSTEP: f32 = 2e-4;
 
 /// The obvhs ray for distances `(t_min, t_max)` of `ray`, started [`BACKSTEP`] behind it.
-/// Its node test picks slab sides by `direction < 0` but inverts −0.0 to a large *negative*
-/// number, so an axis-aligned ray with a −0.0 component missed every node (found by the
-/// watertightness test); adding +0.0 turns −0.0 into +0.0.
+///
+/// Two fixes to what `obvhs::ray::Ray::new` would make:
+/// - its node test picks slab sides by `direction < 0` but inverts −0.0 to a large *negative*
+///   number, so an axis-aligned ray with a −0.0 component missed every node (found by the
+///   watertightness test); adding +0.0 turns −0.0 into +0.0;
+/// - it inverts any component below `f32::EPSILON` to `±1/f32::EPSILON`, so a ray running
+///   along an axis 1e-7 inside a box's face saw that box end after t ≈ 0.8 and missed what
+///   lies beyond. The inverse here is `1/d` clamped to ±1e30 (a zero component gives 1e30,
+///   and `0 · 1e30` stays 0 rather than NaN), as in the flat scan's slab test.
 #[inline]
 fn obvhs_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
-    let direction = ray.direction + Vec3::ZERO;
-    let origin = ray.origin - direction * BACKSTEP;
-    obvhs::ray::Ray::new(
-        Vec3A::from(origin),
-        Vec3A::from(direction),
-        t_min + BACKSTEP,
-        t_max + BACKSTEP,
-    )
+    let direction = Vec3A::from(ray.direction + Vec3::ZERO);
+    let origin = Vec3A::from(ray.origin) - direction * BACKSTEP;
+    obvhs::ray::Ray {
+        origin,
+        direction,
+        inv_direction: direction.recip().clamp(Vec3A::splat(-1e30), Vec3A::splat(1e30)),
+        tmin: t_min + BACKSTEP,
+        tmax: t_max + BACKSTEP,
+    }
 }
 
 fn to_obvhs(b: pm_geom::Aabb) -> obvhs::aabb::Aabb {
@@ -440,7 +447,19 @@ mod tests {
                     let offset = 1e-6 * 100f32.powf(u()) * if u() < 0.5 { -1.0 } else { 1.0 };
                     v[0] + (v[1] - v[0]) * a + (v[2] - v[0]) * b + normal * offset
                 };
-                let direction = uniform_sphere(Vec2::new(u(), u()));
+                // Every fifth ray runs exactly along an axis, or nearly so (a component below
+                // obvhs's inverse-direction cut-off of f32::EPSILON).
+                let direction = match k % 5 {
+                    0 => {
+                        let mut d = Vec3::ZERO;
+                        d[(u() * 3.0) as usize % 3] = if u() < 0.5 { -1.0 } else { 1.0 };
+                        if k % 10 == 0 {
+                            d[(u() * 3.0) as usize % 3] += 1e-8;
+                        }
+                        d.normalize()
+                    }
+                    _ => uniform_sphere(Vec2::new(u(), u())),
+                };
                 let ray = Ray { origin, direction };
                 let t_max = if k % 3 == 0 { 0.05 } else { f32::INFINITY };
                 let expected = scan.closest(&ray, 0.0, t_max, |_| true).map(|(t, _)| t.to_bits());
@@ -457,6 +476,48 @@ mod tests {
                 near_hits += expected.is_some_and(|t| f32::from_bits(t) < 1e-4) as u32;
             }
             assert!(near_hits > 100, "{name}: only {near_hits} hits closer than 1e-4");
+        }
+    }
+
+    #[test]
+    fn rays_along_an_axis_find_walls_far_away_just_inside_their_edge() {
+        // A wall at x = 10 spanning y, z ∈ [0, 1]; rays along +x at heights just below its top
+        // edge. obvhs inverts a zero direction component to 1/f32::EPSILON, not infinity, so
+        // its node test would see the slab in y end after t = (1 − y) / f32::EPSILON.
+        let wall = |x: f32| {
+            [
+                Primitive::triangle(
+                    [
+                        Vec3::new(x, 0.0, 0.0),
+                        Vec3::new(x, 1.0, 0.0),
+                        Vec3::new(x, 1.0, 1.0),
+                    ],
+                    PartId(0),
+                ),
+                Primitive::triangle(
+                    [
+                        Vec3::new(x, 0.0, 0.0),
+                        Vec3::new(x, 1.0, 1.0),
+                        Vec3::new(x, 0.0, 1.0),
+                    ],
+                    PartId(0),
+                ),
+            ]
+        };
+        let prims: Vec<Primitive> = (0..40).flat_map(|i| wall(10.0 + i as f32)).collect();
+        let (scan, bvh) = (SceneBvh::build_scan(prims.clone()), SceneBvh::build_bvh(prims));
+        for below in [1e-7f32, 1e-6, 1e-5, 1e-3] {
+            for direction in [Vec3::X, Vec3::new(1.0, 1e-9, 0.0)] {
+                let ray = Ray {
+                    origin: Vec3::new(0.0, 1.0 - below, 0.5),
+                    direction,
+                };
+                let expected = scan.closest(&ray, 0.0, f32::INFINITY, |_| true).map(|(t, _)| t);
+                assert_eq!(expected, Some(10.0), "{below}");
+                let found = bvh.closest(&ray, 0.0, f32::INFINITY, |_| true).map(|(t, _)| t);
+                assert_eq!(found, expected, "{below} below the edge along {direction}");
+                assert!(bvh.any_hit(&ray, 0.0, f32::INFINITY));
+            }
         }
     }
 
