@@ -134,6 +134,12 @@ fn encode_channel(watts: f32) -> u64 {
 }
 
 fn decode_direction(u: u32, v: u32) -> Vec3 {
+    decode_direction_l1(u, v).normalize()
+}
+
+/// The octahedral decode before normalising: unit L1 norm.
+#[inline]
+fn decode_direction_l1(u: u32, v: u32) -> Vec3 {
     // (2u − M) / M is exact at u = M/2 and at both ends.
     let m = DIRECTION_MAX_CODE as i32;
     let x = (2 * u as i32 - m) as f32 / m as f32;
@@ -144,7 +150,7 @@ fn decode_direction(u: u32, v: u32) -> Vec3 {
     } else {
         (x, y)
     };
-    Vec3::new(x, y, z).normalize()
+    Vec3::new(x, y, z)
 }
 
 /// Octahedral code of a direction; of the four grid points around the exact projection it
@@ -247,9 +253,17 @@ impl CompactPhoton {
     }
     /// Decoded unit direction of travel.
     pub fn direction(&self) -> Vec3 {
+        self.direction_l1().normalize()
+    }
+    /// The direction of travel scaled to unit L1 norm (`|x| + |y| + |z| = 1`): the decode
+    /// without its final normalisation (a square root and a division), for uses that need the
+    /// direction but not its length, such as signs of dot products or ratios of them.
+    /// [`CompactPhoton::direction`] is this, normalised.
+    #[inline]
+    pub fn direction_l1(&self) -> Vec3 {
         let bits = self.bits();
         let mask = (1u64 << DIRECTION_BITS) - 1;
-        decode_direction(
+        decode_direction_l1(
             (bits >> DIRECTION_SHIFT & mask) as u32,
             (bits >> (DIRECTION_SHIFT + DIRECTION_BITS) & mask) as u32,
         )

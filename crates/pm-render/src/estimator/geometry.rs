@@ -90,7 +90,8 @@ fn geometry_irradiance<M: VolumeMetric>(
 
 /// The geometry estimate for a given gather `volume` and `photons` (already gathered), over
 /// the polygons of `polygons` that overlap it, seen from a surface with unit normal `normal`:
-/// `E = Σ_p Φ_p · max(0, −n·ω_p) / S_p` with `S_p = Σ_f A_f · max(0, −n_f·ω_p)`.
+/// `E = Σ_p Φ_p · max(0, −n·ω_p) / S_p` with `S_p = Σ_f A_f · max(0, −n_f·ω_p)` (the length
+/// of `ω_p` cancels, so photon directions need not be normalised).
 /// The cosine at x uses the enclosed face most aligned with `normal` (x's own face on a
 /// polygon mesh), which keeps curved surfaces seen through polygonal proxies consistent.
 ///

@@ -48,12 +48,14 @@ pub struct MapView<'a> {
     pub polygons: &'a PolygonSet,
 }
 
-/// A photon decoded for the estimate: power (W per channel) and unit travel direction.
+/// A photon decoded for the estimate: power (W per channel) and travel direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GatheredPhoton {
     /// Power per RGB channel (watts).
     pub power: Vec3,
-    /// Unit direction of travel.
+    /// Direction of travel, of any positive length: the estimators use it only in signs of
+    /// dot products and in ratios of them, which do not depend on its length. Photons
+    /// gathered from a map have unit L1 norm ([`pm_kdtree::CompactPhoton::direction_l1`]).
     pub direction: Vec3,
 }
 
@@ -136,7 +138,8 @@ pub(crate) fn gather_found(
     scratch.photons.clear();
     for n in scratch.neighbours.as_slice() {
         let p = tree.get(n.index);
-        let direction = p.direction();
+        // Unnormalised: only signs and ratios of dot products with it are used.
+        let direction = p.direction_l1();
         if options.reject_behind && direction.dot(at.normal) >= 0.0 {
             continue;
         }
