@@ -36,10 +36,11 @@ impl Neighbours {
     pub fn new() -> Self {
         Self::default()
     }
-    /// An empty buffer with room for `k` neighbours (no allocation in later queries).
+    /// An empty buffer with room for queries of up to `k` neighbours (no allocation in later
+    /// queries; a search holds up to `2k` candidates before it trims them to `k`).
     pub fn with_capacity(k: usize) -> Self {
         Self {
-            found: Vec::with_capacity(k),
+            found: Vec::with_capacity(2 * k),
             ..Self::default()
         }
     }
@@ -98,8 +99,8 @@ impl PhotonTree {
         if max_distance.is_nan() || max_distance < 0.0 || !query.is_finite() || self.is_empty() {
             return;
         }
-        // The heap never holds more than the tree: a huge k must not reserve for it.
-        out.found.reserve(k.min(self.len()));
+        // The candidates never outnumber the tree: a huge k must not reserve for it.
+        out.found.reserve((2 * k).min(self.len()));
         let max_rank = M::distance_to_rank(max_distance);
         let mut search = Knn::<M> {
             tree: self,
@@ -115,12 +116,15 @@ impl PhotonTree {
         if bound <= max_rank {
             self.descend::<M, _>(query, &mut search, 1, 0, self.len(), 0, bound, offsets);
         }
+        if search.found.len() >= k {
+            search.keep_nearest_k();
+        }
         for n in out.found.iter_mut() {
             n.distance = M::rank_to_distance(n.distance);
         }
         if out.found.len() == k {
-            // The heap's root is the k-th nearest.
-            out.extent = out.found[0].distance;
+            // `keep_nearest_k` left the k-th nearest last.
+            out.extent = out.found[k - 1].distance;
             out.partial = false;
         }
     }
@@ -239,13 +243,14 @@ trait LeafSearch {
     fn scan_leaf(&mut self, lo: usize, hi: usize);
 }
 
-/// State of one k-nearest search. `found` holds ranks (not distances) while searching, as a
-/// max-heap.
+/// State of one k-nearest search. `found` holds ranks (not distances) while searching: all
+/// candidates within `worst`, trimmed to the k nearest whenever it reaches `2k`.
 struct Knn<'a, M> {
     tree: &'a PhotonTree,
     query: Vec3,
     k: usize,
-    /// Rank a photon must not exceed to be kept: the k-th rank once k are found.
+    /// Rank a photon must not exceed to be kept: the maximum rank at first, then the largest of
+    /// the first k, then the k-th nearest at the last trim.
     worst: f32,
     all_kinds: bool,
     kinds: u8,
@@ -282,56 +287,37 @@ impl<M: Metric> LeafSearch for Knn<'_, M> {
 }
 
 impl<M: Metric> Knn<'_, M> {
-    /// Keeps `found` a max-heap on rank (the worst at the root), at most `k` long.
+    /// Adds a candidate. Candidates are only appended; when `2k` have piled up, a quickselect
+    /// keeps the `k` nearest and tightens `worst` to the k-th rank. That costs O(1) per
+    /// candidate on average, against O(log k) unpredictable branches for a binary heap, at the
+    /// price of a looser bound between trims.
     #[inline]
     fn insert(&mut self, index: u32, rank: f32) {
-        let item = Neighbour {
+        let full = self.found.len() >= self.k;
+        if full && rank >= self.worst {
+            return;
+        }
+        self.found.push(Neighbour {
             index,
             distance: rank,
-        };
-        let heap = &mut *self.found;
-        if heap.len() < self.k {
-            // Sift up: on average O(1) moves for random arrivals.
-            let mut at = heap.len();
-            heap.push(item);
-            while at > 0 {
-                let parent = (at - 1) / 2;
-                if heap[parent].distance >= rank {
-                    break;
-                }
-                heap[at] = heap[parent];
-                at = parent;
-            }
-            heap[at] = item;
-            if heap.len() == self.k {
-                self.worst = heap[0].distance;
-            }
-            return;
+        });
+        let len = self.found.len();
+        if len == self.k && !full {
+            // The first k: the worst of them bounds the rest of the search.
+            self.worst = self.found.iter().fold(0.0f32, |w, n| w.max(n.distance));
+        } else if len == 2 * self.k {
+            self.keep_nearest_k();
         }
-        if rank >= self.worst {
-            return;
-        }
-        // Replace the root and sift it down; the larger child is picked without a branch.
-        let heap = heap.as_mut_slice();
-        let len = heap.len();
-        let mut at = 0;
-        loop {
-            let left = 2 * at + 1;
-            let child = if left + 1 < len {
-                left + usize::from(heap[left + 1].distance > heap[left].distance)
-            } else if left < len {
-                left
-            } else {
-                break;
-            };
-            if heap[child].distance <= rank {
-                break;
-            }
-            heap[at] = heap[child];
-            at = child;
-        }
-        heap[at] = item;
-        self.worst = heap[0].distance;
+    }
+
+    /// Trims `found` (at least `k` long) to its `k` nearest, the k-th nearest last, and makes
+    /// its rank the bound.
+    fn keep_nearest_k(&mut self) {
+        let k = self.k;
+        self.found
+            .select_nth_unstable_by(k - 1, |a, b| a.distance.total_cmp(&b.distance));
+        self.found.truncate(k);
+        self.worst = self.found[k - 1].distance;
     }
 }
 
