@@ -313,25 +313,7 @@ impl SceneBvh {
     ) -> Option<(f32, u32)> {
         let w = WatertightRay::new(ray.origin, ray.direction);
         match &self.search {
-            Search::Bvh(bvh) => {
-                // The exact closest hit is kept here; obvhs only gets a distance to prune by
-                // (shifted by BACKSTEP and rounded up a little, so pruning stays conservative).
-                let mut best = (t_max, u32::MAX);
-                bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
-                    let p = &self.prims[i];
-                    if !accept(p.part()) {
-                        return f32::INFINITY;
-                    }
-                    let t = p.intersect(&w, t_min, best.0);
-                    if t < best.0 {
-                        best = (t, i as u32);
-                        (t + BACKSTEP) * (1.0 + 1e-6)
-                    } else {
-                        f32::INFINITY
-                    }
-                });
-                (best.1 != u32::MAX).then_some(best)
-            }
+            Search::Bvh(bvh) => self.closest_in_bvh(bvh, ray, &w, t_min, t_max, accept),
             Search::Scan { triangles, shapes } => {
                 let best = std::cell::Cell::new((t_max, u32::MAX));
                 triangles.for_each_hit(
@@ -365,6 +347,38 @@ impl SceneBvh {
                 (i != u32::MAX).then_some((t, i))
             }
         }
+    }
+
+    /// [`SceneBvh::closest`] through the BVH. Not inlined: the BVH serves large scenes,
+    /// where a call is nothing beside the traversal, and keeping it out of line keeps the
+    /// small scenes' scan tight.
+    #[inline(never)]
+    fn closest_in_bvh(
+        &self,
+        bvh: &CwBvh,
+        ray: &Ray,
+        w: &WatertightRay,
+        t_min: f32,
+        t_max: f32,
+        accept: impl Fn(PartId) -> bool,
+    ) -> Option<(f32, u32)> {
+        // The exact closest hit is kept here; obvhs only gets a distance to prune by
+        // (shifted by BACKSTEP and rounded up a little, so pruning stays conservative).
+        let mut best = (t_max, u32::MAX);
+        bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
+            let p = &self.prims[i];
+            if !accept(p.part()) {
+                return f32::INFINITY;
+            }
+            let t = p.intersect(w, t_min, best.0);
+            if t < best.0 {
+                best = (t, i as u32);
+                (t + BACKSTEP) * (1.0 + 1e-6)
+            } else {
+                f32::INFINITY
+            }
+        });
+        (best.1 != u32::MAX).then_some(best)
     }
 
     /// True when any primitive lies on the ray in `(t_min, t_max)`.
