@@ -174,7 +174,8 @@ pub fn trace_photons(
     // Waves of chunks traced in parallel into buffers that are reused (cache-warm, no fresh
     // pages); each wave is merged in path order while the next one traces.
     let chunks = options.photons.div_ceil(CHUNK);
-    let wave = (16 * rayon::current_num_threads()).max(1) as u32;
+    // At most one wave of buffers beyond what the run needs (and no u32 overflow below).
+    let wave = (16 * rayon::current_num_threads()).clamp(1, chunks as usize) as u32;
     let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>]| {
         buffers.par_iter_mut().enumerate().for_each(|(i, out)| {
             out.clear();
@@ -183,7 +184,7 @@ pub fn trace_photons(
                 return;
             }
             let begin = chunk * CHUNK;
-            let end = (begin + CHUNK).min(options.photons);
+            let end = begin.saturating_add(CHUNK).min(options.photons);
             for path in begin..end {
                 trace_path(scene, assignment, options, &picker, path, out);
             }
@@ -192,10 +193,8 @@ pub fn trace_photons(
     let mut traced: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
     let mut tracing: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
     trace_wave(0, &mut traced);
-    merged.reserve_for(
-        &traced,
-        options.photons as f64 / (wave * CHUNK).min(options.photons) as f64,
-    );
+    let first_wave_paths = (u64::from(wave) * u64::from(CHUNK)).min(u64::from(options.photons));
+    merged.reserve_for(&traced, options.photons as f64 / first_wave_paths as f64);
     let mut first = wave;
     while first < chunks {
         rayon::join(|| merged.append(&traced), || trace_wave(first, &mut tracing));
