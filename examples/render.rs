@@ -282,13 +282,19 @@ fn check_writable(path: &Path) -> Result<(), String> {
 
 fn summary(r: &Record<'_>) -> String {
     let s = &r.stats;
+    // Path tracing reads no photon maps: say so rather than "crease (0), estimator cube".
+    let lighting = if s.photons_emitted == 0 {
+        "no photon maps".to_string()
+    } else {
+        format!(
+            "maps {} ({}), estimator {}",
+            r.variant.maps, s.map_count, r.variant.estimator
+        )
+    };
     format!(
-        "{} [{}]: maps {} ({}), estimator {}, mode {}, {}x{}, {} photons ({} stored): trace {:.3} s, build {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored): trace {:.3} s, build {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
-        r.variant.maps,
-        s.map_count,
-        r.variant.estimator,
         r.settings.mode,
         r.settings.width,
         r.settings.height,
