@@ -40,7 +40,7 @@ impl Neighbours {
     /// queries; a search holds up to `2k` candidates before it trims them to `k`).
     pub fn with_capacity(k: usize) -> Self {
         Self {
-            found: Vec::with_capacity(2 * k),
+            found: Vec::with_capacity(k.saturating_mul(2)),
             ..Self::default()
         }
     }
@@ -100,7 +100,7 @@ impl PhotonTree {
             return;
         }
         // The candidates never outnumber the tree: a huge k must not reserve for it.
-        out.found.reserve((2 * k).min(self.len()));
+        out.found.reserve(k.saturating_mul(2).min(self.len()));
         let max_rank = M::distance_to_rank(max_distance);
         let mut search = Knn::<M> {
             tree: self,
@@ -305,7 +305,7 @@ impl<M: Metric> Knn<'_, M> {
         if len == self.k && !full {
             // The first k: the worst of them bounds the rest of the search.
             self.worst = self.found.iter().fold(0.0f32, |w, n| w.max(n.distance));
-        } else if len == 2 * self.k {
+        } else if len == self.k.saturating_mul(2) {
             self.keep_nearest_k();
         }
     }

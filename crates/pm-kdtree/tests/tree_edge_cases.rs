@@ -57,6 +57,15 @@ fn k_larger_than_the_tree_returns_every_photon_and_is_partial() {
     assert_eq!(out.len(), 40);
     assert!(out.is_partial());
     assert_eq!(out.extent(), f32::INFINITY);
+    // A k so large that 2k (the candidate buffer's trim size) overflows: same answer.
+    for k in [usize::MAX, usize::MAX / 2 + 1] {
+        tree.nearest_k::<Euclidean>(Vec3::splat(0.5), k, f32::INFINITY, KindMask::ALL, &mut out);
+        assert_eq!((out.len(), out.is_partial()), (40, true), "k = {k}");
+    }
+    // 40 = k exactly: every photon, not partial, the extent the farthest one's distance.
+    tree.nearest_k::<Euclidean>(Vec3::splat(0.5), 40, f32::INFINITY, KindMask::ALL, &mut out);
+    let farthest = out.as_slice().iter().fold(0.0f32, |m, n| m.max(n.distance));
+    assert_eq!((out.len(), out.is_partial(), out.extent()), (40, false, farthest));
 }
 
 #[test]
