@@ -14,7 +14,7 @@ mod batch;
 mod scan;
 
 use batch::TriangleBatches;
-use scan::{BoundsScan, SlabRay};
+use scan::BoundsScan;
 
 /// Scenes with at most this many primitives are searched by a flat scan (every triangle four
 /// at a time, analytic shapes behind padded bounds) instead of the BVH. Measured on random
@@ -329,7 +329,8 @@ impl SceneBvh {
                 );
                 let first = triangles.len();
                 shapes.for_each_candidate(
-                    &SlabRay::new(ray.origin, ray.direction),
+                    ray.origin,
+                    ray.direction,
                     t_min,
                     || best.get().0,
                     |i| {
@@ -410,7 +411,8 @@ impl SceneBvh {
                 }
                 let first = triangles.len();
                 shapes.for_each_candidate(
-                    &SlabRay::new(ray.origin, ray.direction),
+                    ray.origin,
+                    ray.direction,
                     t_min,
                     || t_max,
                     |i| {

@@ -11,7 +11,7 @@ use super::WatertightRay;
 use glam::{Vec3, Vec4};
 
 /// Triangles per batch.
-pub(crate) const LANES: usize = 4;
+const LANES: usize = 4;
 
 /// Four triangles: `corners[axis][vertex]` holds that coordinate of that vertex for each lane.
 /// Unused lanes hold NaN, which no test ever reports as a hit.

@@ -1,6 +1,6 @@
-//! A flat scan over padded primitive bounds for small scenes: a slab test per primitive
-//! (structure-of-arrays, eight at a time) culls before the exact test. For a few dozen
-//! primitives this beats the 8-wide BVH's fixed cost per ray.
+//! A flat scan over padded bounds, for the analytic shapes (spheres, ring sides) of small
+//! scenes (their triangles are tested four at a time without culling, see `batch`): a slab
+//! test per shape (structure-of-arrays, eight at a time) culls before the exact test.
 //!
 //! The bounds are padded so that rounding in the slab test can never cull a primitive the
 //! exact test would hit: the padding is 1e-4 of the scene's coordinate scale, far above the
@@ -27,7 +27,7 @@ pub(crate) struct BoundsScan {
 }
 
 /// A ray prepared for slab tests: origin and clamped inverse direction.
-pub(crate) struct SlabRay {
+struct SlabRay {
     origin: [f32; 3],
     inv: [f32; 3],
 }
@@ -38,7 +38,7 @@ impl SlabRay {
     /// (the bounds are finite, or infinite in unused lanes, which are masked off), so SIMD
     /// min/max need no NaN handling; a NaN ray fails `near <= far` and is culled.
     #[inline]
-    pub(crate) fn new(origin: Vec3, direction: Vec3) -> Self {
+    fn new(origin: Vec3, direction: Vec3) -> Self {
         // One vector division; `+ 0.0` turns −0.0 into +0.0.
         let d = Vec4::new(direction.x + 0.0, direction.y + 0.0, direction.z + 0.0, 1.0);
         let inv = (Vec4::ONE / d).clamp(Vec4::splat(-1e30), Vec4::splat(1e30));
@@ -76,17 +76,23 @@ impl BoundsScan {
         }
     }
 
-    /// Calls `visit(i)` for each primitive `i` (in index order) whose padded box the
-    /// ray meets at some `t` in `[t_min, limit()]`, where `limit` is re-read before each call
-    /// so a closest-hit search can shrink it. `visit` returns false to stop the scan.
+    /// Calls `visit(i)` for each primitive `i` (in index order) whose padded box the ray
+    /// `origin + t · direction` meets at some `t` in `[t_min, limit()]`, where `limit` is
+    /// re-read before each call so a closest-hit search can shrink it. `visit` returns false
+    /// to stop the scan. A scene without shapes costs nothing here (not even the inverse).
     #[inline]
     pub(crate) fn for_each_candidate(
         &self,
-        ray: &SlabRay,
+        origin: Vec3,
+        direction: Vec3,
         t_min: f32,
         mut limit: impl FnMut() -> f32,
         mut visit: impl FnMut(usize) -> bool,
     ) {
+        if self.batches.is_empty() {
+            return;
+        }
+        let ray = SlabRay::new(origin, direction);
         let [ox, oy, oz] = ray.origin.map(Vec4::splat);
         let [ix, iy, iz] = ray.inv.map(Vec4::splat);
         let t_min = Vec4::splat(t_min);
@@ -158,7 +164,8 @@ mod tests {
             let d = d.normalize();
             let mut found = Vec::new();
             scan.for_each_candidate(
-                &SlabRay::new(o, d),
+                o,
+                d,
                 0.0,
                 || 4.0,
                 |i| {

@@ -175,7 +175,7 @@ pub fn trace_photons(
     // pages); each wave is merged in path order while the next one traces.
     let chunks = options.photons.div_ceil(CHUNK);
     // At most one wave of buffers beyond what the run needs (and no u32 overflow below).
-    let wave = (16 * rayon::current_num_threads()).clamp(1, chunks as usize) as u32;
+    let wave = (16 * rayon::current_num_threads()).min(chunks as usize).max(1) as u32;
     let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>]| {
         buffers.par_iter_mut().enumerate().for_each(|(i, out)| {
             out.clear();
