@@ -77,7 +77,7 @@ impl PhotonMaps {
         self.assignment.map_of(part)
     }
 
-    /// Map `id`.
+    /// Map `id`. Panics when `id` is not below [`PhotonMaps::len`], like slice indexing.
     #[inline]
     pub fn map(&self, id: u32) -> &PhotonMap {
         &self.maps[id as usize]

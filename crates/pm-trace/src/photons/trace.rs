@@ -67,7 +67,8 @@ impl TracedPhotons {
         &self.photons
     }
 
-    /// The photons of one map.
+    /// The photons of one map. Panics when `map` is not below the map count (the length of
+    /// [`TracedPhotons::photons_per_map`]), like slice indexing.
     pub fn photons(&self, map: u32) -> &[Photon] {
         &self.photons[map as usize]
     }
