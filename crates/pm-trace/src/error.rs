@@ -51,6 +51,14 @@ pub enum SceneError {
         /// The valid names, comma separated.
         valid: String,
     },
+    /// A scene generator got a parameter outside its range.
+    #[error("{what}: {reason}")]
+    InvalidParameter {
+        /// Which parameter.
+        what: String,
+        /// What is wrong with it.
+        reason: String,
+    },
 }
 
 /// Why photons could not be traced.

@@ -3,6 +3,7 @@
 mod accordion;
 mod cornell;
 mod rooms;
+pub mod scale;
 
 pub use accordion::ACCORDION_LIGHT_DIRECTION;
 
@@ -18,7 +19,8 @@ pub const NAMES: [&str; 5] = [
     "touching-rooms",
 ];
 
-/// Builds the built-in scene `name`; an unknown name is an error listing the valid ones.
+/// Builds the built-in scene `name`, or a scale scene named as [`SCALE_NAMES`] says; an
+/// unknown name is an error listing the valid ones.
 ///
 /// ```
 /// let scene = pm_trace::scenes::build("cornell-box")?;
@@ -33,11 +35,25 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
         "colored-rooms" => rooms::colored_rooms(),
         "accordion" => accordion::accordion(),
         "touching-rooms" => rooms::touching_rooms(),
-        _ => Err(SceneError::UnknownScene {
-            name: name.to_string(),
-            valid: NAMES.join(", "),
+        _ => build_scale(name).unwrap_or_else(|| {
+            Err(SceneError::UnknownScene {
+                name: name.to_string(),
+                valid: format!("{}, and the scale scenes {SCALE_NAMES}", NAMES.join(", ")),
+            })
         }),
     }
+}
+
+/// How the scale scenes of [`scale`] are named for [`build`].
+pub const SCALE_NAMES: &str = "split-rooms-N (lit-unlit-rooms, faces split N x N) and cube-field-N (N cubes)";
+
+/// A scale scene by name (`split-rooms-N`, `cube-field-N`), or `None` for other names.
+fn build_scale(name: &str) -> Option<Result<Scene, SceneError>> {
+    let number = |prefix: &str| name.strip_prefix(prefix).and_then(|n| n.parse::<u32>().ok());
+    if let Some(n) = number("split-rooms-") {
+        return Some(scale::split_rooms(n));
+    }
+    number("cube-field-").map(scale::cube_field)
 }
 
 /// Faces of the box `[min, max]` as quads over the 8 corners `i → (x: bit 0, y: bit 1,

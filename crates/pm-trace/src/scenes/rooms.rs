@@ -6,15 +6,17 @@ use crate::{Camera, PointLight, Scene, SceneBuilder, SceneError, Surface};
 use glam::Vec3;
 
 /// Inside size of each room, thickness of the dividing wall.
-const ROOM: f32 = 1.0;
-const WALL: f32 = 0.02;
+pub(super) const ROOM: f32 = 1.0;
+pub(super) const WALL: f32 = 0.02;
+/// Where the lit room's point light hangs.
+pub(super) const LIT_ROOM_LIGHT: Vec3 = Vec3::new(0.8, 0.5, 0.5);
 
 fn white() -> Surface {
     Surface::diffuse(Vec3::splat(0.75))
 }
 
 /// Looks at both rooms from the front (−z) with the dividing wall on the middle column.
-fn rooms_camera() -> Camera {
+pub(super) fn rooms_camera() -> Camera {
     let x = ROOM + WALL * 0.5;
     Camera::new(
         Vec3::new(x, 0.5, -2.2),
@@ -38,7 +40,7 @@ fn two_rooms() -> SceneBuilder {
 
 pub(super) fn lit_unlit_rooms() -> Result<Scene, SceneError> {
     two_rooms()
-        .light(PointLight::new(Vec3::new(0.8, 0.5, 0.5), Vec3::splat(50.0)))
+        .light(PointLight::new(LIT_ROOM_LIGHT, Vec3::splat(50.0)))
         .build()
 }
 
@@ -112,7 +114,7 @@ pub(super) fn touching_rooms() -> Result<Scene, SceneError> {
     let surfaces = [w, w, w, w, w, w, w, w, hidden, hidden];
     Scene::builder()
         .mesh_per_face(&positions, &faces, &surfaces)
-        .light(PointLight::new(Vec3::new(0.8, 0.5, 0.5), Vec3::splat(50.0)))
+        .light(PointLight::new(LIT_ROOM_LIGHT, Vec3::splat(50.0)))
         .camera(rooms_camera())
         .build()
 }
