@@ -6,11 +6,11 @@ use crate::shape::{Ring, RingSide, Sphere};
 use crate::{PartId, Ray};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
+use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 use obvhs::ray::RayHit;
-use obvhs::{Boundable, BvhBuildParams};
-use std::time::Duration;
 
 mod batch;
+mod sah;
 mod scan;
 
 use batch::TriangleBatches;
@@ -84,14 +84,6 @@ impl Primitive {
             Primitive::Sphere { sphere, .. } => sphere.normal_at(p),
             Primitive::RingSide { ring, side, .. } => ring.side_normal(*side, p),
         }
-    }
-}
-
-struct Bounded(obvhs::aabb::Aabb);
-
-impl Boundable for Bounded {
-    fn aabb(&self) -> obvhs::aabb::Aabb {
-        self.0
     }
 }
 
@@ -284,12 +276,8 @@ impl SceneBvh {
 
     /// The obvhs BVH over any number of primitives.
     fn build_bvh(prims: Vec<Primitive>) -> Self {
-        let bounds: Vec<Bounded> = prims.iter().map(|p| Bounded(to_obvhs(p.bounds()))).collect();
-        let bvh = obvhs::cwbvh::builder::build_cwbvh(
-            &bounds,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
+        let bounds: Vec<obvhs::aabb::Aabb> = prims.iter().map(|p| to_obvhs(p.bounds())).collect();
+        let bvh = bvh2_to_cwbvh(&sah::build_bvh2(&bounds), 3, true, false);
         // Reorder once so that leaf index i is primitive i (see API-NOTES, index convention).
         let ordered = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
         SceneBvh {
