@@ -276,6 +276,7 @@ impl SceneBvh {
 
     /// The obvhs BVH over any number of primitives.
     fn build_bvh(prims: Vec<Primitive>) -> Self {
+        // Bounds are finite: scene positions and shapes are checked when the scene is built.
         let bounds: Vec<obvhs::aabb::Aabb> = prims.iter().map(|p| to_obvhs(p.bounds())).collect();
         let bvh = bvh2_to_cwbvh(&sah::build_bvh2(&bounds), 3, true, false);
         // Reorder once so that leaf index i is primitive i (see API-NOTES, index convention).

@@ -115,7 +115,7 @@ impl Builder<'_> {
             },
         );
         let extent = hi - lo;
-        if !(extent.max_element() > 0.0) {
+        if extent.max_element() <= 0.0 {
             // All centroids coincide: any halving is as good as another.
             return n / 2;
         }
@@ -137,7 +137,7 @@ impl Builder<'_> {
     fn best_binned_split(&self, items: &[u32], lo: Vec3A, extent: Vec3A) -> Option<(usize, usize)> {
         let mut best: Option<(f32, usize, usize)> = None;
         for axis in 0..3 {
-            if !(extent[axis] > 0.0) {
+            if extent[axis] <= 0.0 {
                 continue;
             }
             let scale = BINS as f32 / extent[axis];
