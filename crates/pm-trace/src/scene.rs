@@ -1,7 +1,7 @@
 //! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
-use crate::bvh::{Primitive, SceneBvh};
+use crate::bvh::{SceneBvh, ShapePrimitive};
 use crate::shape::{Ring, RingSide, Shape, Sphere};
 use crate::{AreaLight, Camera, Light, Material, Ray, SceneError, Surface};
 use glam::Vec3;
@@ -223,9 +223,18 @@ impl SceneBuilder {
     /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
     /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
     pub fn build(self) -> Result<Scene, SceneError> {
-        let mut parts = Vec::new();
-        let mut part_surfaces = Vec::new();
-        let mut prims = Vec::new();
+        let face_count: usize = self.meshes.iter().map(|m| m.faces.len()).sum();
+        let mut part_count = 0u32;
+        let mut surfaces = SurfaceTable::default();
+        let mut part_surface_ids = Vec::with_capacity(face_count);
+        let triangle_count: usize = self
+            .meshes
+            .iter()
+            .map(|m| m.faces.iter().map(|f| f.len().saturating_sub(2)).sum::<usize>())
+            .sum();
+        let mut triangles = Vec::with_capacity(triangle_count);
+        let mut triangle_parts = Vec::with_capacity(triangle_count);
+        let mut shape_prims = Vec::new();
         let mut meshes = Vec::with_capacity(self.meshes.len());
         for (mi, input) in self.meshes.iter().enumerate() {
             if let FaceSurfaces::PerFace(s) = &input.surfaces
@@ -239,7 +248,7 @@ impl SceneBuilder {
             }
             let mesh = HalfEdgeMesh::build(&input.positions, &input.faces, &self.mesh_options)
                 .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
-            let first_part = parts.len() as u32;
+            let first_part = part_count;
             let mut polygon = Vec::new();
             for face in mesh.faces() {
                 let surface = match &input.surfaces {
@@ -247,49 +256,48 @@ impl SceneBuilder {
                     FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
                 };
                 check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
-                let part = PartId(parts.len() as u32);
-                parts.push(PartSource::MeshFace {
-                    mesh: mi as u32,
-                    face,
-                });
-                part_surfaces.push(surface);
+                let part = PartId(part_count);
+                part_count += 1;
+                part_surface_ids.push(surfaces.id_of(surface));
                 polygon.clear();
                 polygon.extend(mesh.face_polygon(face));
                 for i in 1..polygon.len().saturating_sub(1) {
-                    prims.push(Primitive::triangle(
-                        [polygon[0], polygon[i], polygon[i + 1]],
-                        part,
-                    ));
+                    triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
+                    triangle_parts.push(part);
                 }
             }
             meshes.push(SceneMesh { mesh, first_part });
         }
+        let mesh_part_count = part_count;
+        let mut shape_parts = Vec::new();
         let mut shapes = Vec::with_capacity(self.shapes.len());
         for (si, (shape, surface)) in self.shapes.iter().enumerate() {
             check_shape(shape).map_err(|reason| SceneError::InvalidShape { shape: si, reason })?;
             check_surface(surface, || format!("shape {si}"))?;
             match *shape {
                 Shape::Sphere(sphere) => {
-                    let part = PartId(parts.len() as u32);
-                    parts.push(PartSource::Sphere { shape: si as u32 });
-                    part_surfaces.push(*surface);
-                    prims.push(Primitive::Sphere { sphere, part });
+                    let part = PartId(part_count);
+                    part_count += 1;
+                    shape_parts.push(PartSource::Sphere { shape: si as u32 });
+                    part_surface_ids.push(surfaces.id_of(*surface));
+                    shape_prims.push(ShapePrimitive::Sphere { sphere, part });
                 }
                 Shape::Ring(ring) => {
                     for side in RingSide::ALL {
-                        let part = PartId(parts.len() as u32);
-                        parts.push(PartSource::Ring {
+                        let part = PartId(part_count);
+                        part_count += 1;
+                        shape_parts.push(PartSource::Ring {
                             shape: si as u32,
                             side,
                         });
-                        part_surfaces.push(*surface);
-                        prims.push(Primitive::RingSide { ring, side, part });
+                        part_surface_ids.push(surfaces.id_of(*surface));
+                        shape_prims.push(ShapePrimitive::RingSide { ring, side, part });
                     }
                 }
             }
             shapes.push(*shape);
         }
-        if prims.is_empty() {
+        if triangles.is_empty() && shape_prims.is_empty() {
             return Err(SceneError::NoGeometry);
         }
         let bounds = meshes
@@ -306,14 +314,49 @@ impl SceneBuilder {
         Ok(Scene {
             meshes,
             shapes,
-            parts,
-            part_surfaces,
+            mesh_part_count,
+            shape_parts,
+            part_surface_ids,
+            surfaces: surfaces.surfaces,
             lights,
             camera,
             bounds,
             epsilon,
             mesh_options: self.mesh_options,
-            bvh: SceneBvh::build(prims),
+            bvh: SceneBvh::build(triangles, triangle_parts, shape_prims),
+        })
+    }
+}
+
+/// The distinct surfaces of a scene, each stored once however many parts use it.
+#[derive(Default)]
+struct SurfaceTable {
+    surfaces: Vec<Surface>,
+    ids: std::collections::HashMap<[u32; 8], u32>,
+}
+
+impl SurfaceTable {
+    /// The id of `surface`, added if new. Surfaces are compared by their bits.
+    fn id_of(&mut self, surface: Surface) -> u32 {
+        let (kind, colour) = match surface.material {
+            Material::Lambertian { albedo } => (0, albedo),
+            Material::Mirror { reflectance } => (1, reflectance),
+            Material::Glass { ior } => (2, Vec3::splat(ior)),
+        };
+        let e = surface.emission;
+        let key = [
+            kind,
+            colour.x.to_bits(),
+            colour.y.to_bits(),
+            colour.z.to_bits(),
+            e.x.to_bits(),
+            e.y.to_bits(),
+            e.z.to_bits(),
+            surface.camera_visible as u32,
+        ];
+        *self.ids.entry(key).or_insert_with(|| {
+            self.surfaces.push(surface);
+            (self.surfaces.len() - 1) as u32
         })
     }
 }
@@ -387,8 +430,14 @@ fn check_surface(s: &Surface, what: impl Fn() -> String) -> Result<(), SceneErro
 pub struct Scene {
     meshes: Vec<SceneMesh>,
     shapes: Vec<Shape>,
-    parts: Vec<PartSource>,
-    part_surfaces: Vec<Surface>,
+    /// Mesh faces are parts `0..mesh_part_count`, mesh by mesh (see `SceneMesh::first_part`).
+    mesh_part_count: u32,
+    /// What each later part is (the analytic shapes' parts).
+    shape_parts: Vec<PartSource>,
+    /// Index in `surfaces` of each part's surface.
+    part_surface_ids: Vec<u32>,
+    /// The distinct surfaces.
+    surfaces: Vec<Surface>,
     lights: Vec<Box<dyn Light>>,
     camera: Camera,
     bounds: Aabb,
@@ -414,20 +463,19 @@ impl Scene {
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
         let (t, index) = match kind {
             RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
-            RayKind::Camera => self.bvh.closest(ray, 0.0, t_max, |p| {
-                self.part_surfaces[p.0 as usize].camera_visible
-            })?,
+            RayKind::Camera => self
+                .bvh
+                .closest(ray, 0.0, t_max, |p| self.part_surface(p).camera_visible)?,
         };
-        let prim = self.bvh.primitive(index);
         let position = ray.at(t);
-        let n = prim.normal_at(position);
+        let (part, n) = self.bvh.part_and_normal(index, position);
         let front_face = n.dot(ray.direction) < 0.0;
         Some(Hit {
             t,
             position,
             normal: if front_face { n } else { -n },
             front_face,
-            part: prim.part(),
+            part,
         })
     }
 
@@ -491,12 +539,13 @@ impl Scene {
     /// Surface of the part that was hit.
     #[inline]
     pub fn surface(&self, hit: &Hit) -> &Surface {
-        &self.part_surfaces[hit.part.0 as usize]
+        self.part_surface(hit.part)
     }
 
     /// Surface of a part.
+    #[inline]
     pub fn part_surface(&self, part: PartId) -> &Surface {
-        &self.part_surfaces[part.0 as usize]
+        &self.surfaces[self.part_surface_ids[part.0 as usize] as usize]
     }
 
     /// Material of the part that was hit.
@@ -515,14 +564,37 @@ impl Scene {
         }
     }
 
+    /// Bytes this scene holds on the heap: its meshes, the ray-query structure (triangles, BVH
+    /// nodes), the per-part tables and the surfaces. Lights are not counted.
+    pub fn heap_bytes(&self) -> usize {
+        self.meshes
+            .iter()
+            .map(|m| size_of::<SceneMesh>() + m.mesh.heap_bytes())
+            .sum::<usize>()
+            + self.bvh.heap_bytes()
+            + self.part_surface_ids.capacity() * size_of::<u32>()
+            + self.surfaces.capacity() * size_of::<Surface>()
+            + self.shape_parts.capacity() * size_of::<PartSource>()
+            + self.shapes.capacity() * size_of::<Shape>()
+    }
+
     /// Number of parts.
     pub fn part_count(&self) -> usize {
-        self.parts.len()
+        self.part_surface_ids.len()
     }
 
     /// What part `part` is.
     pub fn part_source(&self, part: PartId) -> PartSource {
-        self.parts[part.0 as usize]
+        if part.0 < self.mesh_part_count {
+            // The last mesh whose first part is at or before `part`.
+            let mesh = self.meshes.partition_point(|m| m.first_part <= part.0) - 1;
+            PartSource::MeshFace {
+                mesh: mesh as u32,
+                face: FaceId(part.0 - self.meshes[mesh].first_part),
+            }
+        } else {
+            self.shape_parts[(part.0 - self.mesh_part_count) as usize]
+        }
     }
 
     /// The meshes, in the order they were added.
@@ -540,15 +612,14 @@ impl Scene {
     /// along contact lines). Add every mesh again, including those of area-light quads.
     pub fn into_builder_without_meshes(self) -> SceneBuilder {
         let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (p, source) in self.parts.iter().enumerate() {
+        for (i, source) in self.shape_parts.iter().enumerate() {
+            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
             match *source {
-                PartSource::Sphere { shape } => {
-                    shapes.push((self.shapes[shape as usize], self.part_surfaces[p]))
-                }
-                PartSource::Ring {
+                PartSource::Sphere { shape }
+                | PartSource::Ring {
                     shape,
                     side: RingSide::Top,
-                } => shapes.push((self.shapes[shape as usize], self.part_surfaces[p])),
+                } => shapes.push((self.shapes[shape as usize], surface)),
                 _ => {}
             }
         }
@@ -565,7 +636,7 @@ impl Scene {
     /// polygonal proxy (512 polygons per sphere, 64 per ring side). Polygons are wound
     /// counter-clockwise seen from the side the part's normal points to.
     pub fn for_each_part_polygon(&self, part: PartId, mut f: impl FnMut(&[Vec3])) {
-        match self.parts[part.0 as usize] {
+        match self.part_source(part) {
             PartSource::MeshFace { mesh, face } => {
                 let polygon: Vec<Vec3> = self.meshes[mesh as usize].mesh.face_polygon(face).collect();
                 f(&polygon);

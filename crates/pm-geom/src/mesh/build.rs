@@ -2,7 +2,7 @@
 //! faces, and linking twins through a hash map on each edge's vertex pair.
 
 use super::weld::weld;
-use super::{HalfEdgeMesh, MeshOptions, NO_TWIN};
+use super::{HalfEdgeMesh, MeshOptions, NO_TWIN, NON_MANIFOLD};
 use crate::{MeshError, polygon_vector_area};
 use glam::Vec3;
 use std::cmp::Ordering::Greater;
@@ -40,9 +40,6 @@ impl HalfEdgeMesh {
             he_origin: Vec::new(),
             he_face: Vec::new(),
             he_twin: Vec::new(),
-            he_non_manifold: Vec::new(),
-            face_normals: Vec::new(),
-            face_areas: Vec::new(),
             source_faces: Vec::new(),
             input_face_count: faces.len(),
             dropped_faces: 0,
@@ -74,28 +71,35 @@ impl HalfEdgeMesh {
                 .then(|| face_normal_and_area(&polygon))
                 .flatten()
             {
-                Some((normal, area)) => mesh.push_face(&ring, normal, area, source),
+                Some(_) => mesh.push_face(&ring, source),
                 None => mesh.dropped_faces += 1,
             }
         }
         mesh.link_twins();
+        mesh.shrink_to_fit();
         Ok(mesh)
     }
 
-    fn push_face(&mut self, ring: &[u32], normal: Vec3, area: f32, source: usize) {
-        let face = self.face_normals.len() as u32;
+    fn push_face(&mut self, ring: &[u32], source: usize) {
+        let face = self.source_faces.len() as u32;
         self.he_origin.extend_from_slice(ring);
         self.he_face.extend(std::iter::repeat_n(face, ring.len()));
         self.face_starts.push(self.he_origin.len() as u32);
-        self.face_normals.push(normal);
-        self.face_areas.push(area);
-        self.source_faces.push(source);
+        self.source_faces.push(source as u32);
+    }
+
+    /// Drops the spare capacity of the growing tables.
+    fn shrink_to_fit(&mut self) {
+        self.positions.shrink_to_fit();
+        self.face_starts.shrink_to_fit();
+        self.he_origin.shrink_to_fit();
+        self.he_face.shrink_to_fit();
+        self.source_faces.shrink_to_fit();
     }
 
     fn link_twins(&mut self) {
         let count = self.he_origin.len();
         self.he_twin = vec![NO_TWIN; count];
-        self.he_non_manifold = vec![false; count];
         let mut edges: HashMap<(u32, u32), EdgeUse> = HashMap::with_capacity(count);
         for he in 0..count as u32 {
             let (a, b) = self.endpoints(he);
@@ -128,7 +132,9 @@ impl HalfEdgeMesh {
                 let (a, b) = self.endpoints(he);
                 let edge = edges[&(a.min(b), a.max(b))];
                 let twinned = edge.count == 2 && self.he_twin[he as usize] != NO_TWIN;
-                self.he_non_manifold[he as usize] = edge.count >= 2 && !twinned;
+                if edge.count >= 2 && !twinned {
+                    self.he_twin[he as usize] = NON_MANIFOLD;
+                }
             }
         }
     }

@@ -13,6 +13,8 @@ use glam::Vec3;
 
 /// "No twin" in the twin table.
 const NO_TWIN: u32 = u32::MAX;
+/// `he_twin` of a half-edge on a non-manifold edge.
+const NON_MANIFOLD: u32 = u32::MAX - 1;
 
 /// Index of a vertex (after welding).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -64,11 +66,12 @@ pub struct HalfEdgeMesh {
     face_starts: Vec<u32>,
     he_origin: Vec<u32>,
     he_face: Vec<u32>,
+    /// The twin of each half-edge, or [`NO_TWIN`] / [`NON_MANIFOLD`].
     he_twin: Vec<u32>,
-    he_non_manifold: Vec<bool>,
-    face_normals: Vec<Vec3>,
-    face_areas: Vec<f32>,
-    source_faces: Vec<usize>,
+    /// Index in the input of each kept face. Normals and areas are not stored: they are
+    /// recomputed from the vertices (bit-identical to the values checked at build), which
+    /// keeps a triangle mesh near 50 bytes per triangle.
+    source_faces: Vec<u32>,
     input_face_count: usize,
     dropped_faces: usize,
     boundary_edges: usize,
@@ -81,6 +84,17 @@ impl HalfEdgeMesh {
         &self.positions
     }
 
+    /// Bytes this mesh holds on the heap (its tables' capacity).
+    pub fn heap_bytes(&self) -> usize {
+        self.positions.capacity() * size_of::<Vec3>()
+            + (self.face_starts.capacity()
+                + self.he_origin.capacity()
+                + self.he_face.capacity()
+                + self.he_twin.capacity()
+                + self.source_faces.capacity())
+                * size_of::<u32>()
+    }
+
     /// Number of welded vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
@@ -88,7 +102,7 @@ impl HalfEdgeMesh {
 
     /// Number of faces kept.
     pub fn face_count(&self) -> usize {
-        self.face_normals.len()
+        self.face_starts.len() - 1
     }
 
     /// Number of half-edges.
@@ -103,7 +117,7 @@ impl HalfEdgeMesh {
 
     /// Index of `face` in the `faces` list given to [`HalfEdgeMesh::build`].
     pub fn source_face(&self, face: FaceId) -> usize {
-        self.source_faces[face.0 as usize]
+        self.source_faces[face.0 as usize] as usize
     }
 
     /// Number of input faces dropped as degenerate: fewer than 3 distinct vertices or a
@@ -124,12 +138,29 @@ impl HalfEdgeMesh {
 
     /// The face's unit normal (Newell).
     pub fn face_normal(&self, face: FaceId) -> Vec3 {
-        self.face_normals[face.0 as usize]
+        self.face_vector_area(face).normalize()
     }
 
     /// The face's area.
     pub fn face_area(&self, face: FaceId) -> f32 {
-        self.face_areas[face.0 as usize]
+        self.face_vector_area(face).length()
+    }
+
+    /// The face's vector area, by the same operations as [`crate::polygon_vector_area`] on
+    /// its polygon (so bit-identical to it), without collecting the polygon.
+    fn face_vector_area(&self, face: FaceId) -> Vec3 {
+        let mut vertices = self.face_polygon(face);
+        let (Some(first), Some(second)) = (vertices.next(), vertices.next()) else {
+            return Vec3::ZERO;
+        };
+        let mut sum = Vec3::ZERO;
+        let mut prev = second - first;
+        for v in vertices {
+            let cur = v - first;
+            sum += prev.cross(cur);
+            prev = cur;
+        }
+        sum * 0.5
     }
 
     /// The half-edges around `face`, in vertex order.
@@ -168,14 +199,14 @@ impl HalfEdgeMesh {
     /// The opposite half-edge, `None` on boundary and non-manifold edges.
     pub fn twin(&self, he: HalfEdgeId) -> Option<HalfEdgeId> {
         let t = self.he_twin[he.0 as usize];
-        (t != NO_TWIN).then_some(HalfEdgeId(t))
+        (t < NON_MANIFOLD).then_some(HalfEdgeId(t))
     }
 
     /// True when the edge is non-manifold: used by more than two half-edges, or by two that
     /// run the same direction (inconsistent winding). Such edges never get a twin, so they
     /// never join photon maps.
     pub fn is_non_manifold(&self, he: HalfEdgeId) -> bool {
-        self.he_non_manifold[he.0 as usize]
+        self.he_twin[he.0 as usize] == NON_MANIFOLD
     }
 
     /// Angle in radians between the normals of the two faces on a twinned edge (0 = flat

@@ -2,7 +2,7 @@
 //! call it after each build and later mesh edits cannot silently break connectivity.
 
 use super::build::face_normal_and_area;
-use super::{FaceId, HalfEdgeId, HalfEdgeMesh, NO_TWIN};
+use super::{FaceId, HalfEdgeId, HalfEdgeMesh};
 use crate::MeshError;
 use glam::Vec3;
 use std::collections::HashMap;
@@ -15,14 +15,11 @@ impl HalfEdgeMesh {
     /// opposite half-edges; non-manifold flags and the edge counts match a recount.
     pub fn validate(&self) -> Result<(), MeshError> {
         let fail = |msg: String| Err(MeshError::Invalid(msg));
-        let faces = self.face_normals.len();
+        let faces = self.source_faces.len();
         let hes = self.he_origin.len();
-        if self.face_areas.len() != faces
-            || self.source_faces.len() != faces
-            || self.face_starts.len() != faces + 1
+        if self.face_starts.len() != faces + 1
             || self.he_face.len() != hes
             || self.he_twin.len() != hes
-            || self.he_non_manifold.len() != hes
             || self.face_starts.first() != Some(&0)
             || self.face_starts.last().map(|&s| s as usize) != Some(hes)
         {
@@ -38,7 +35,7 @@ impl HalfEdgeMesh {
             || self
                 .source_faces
                 .last()
-                .is_some_and(|&s| s >= self.input_face_count)
+                .is_some_and(|&s| s as usize >= self.input_face_count)
         {
             return fail("source faces not strictly increasing within the input".into());
         }
@@ -71,13 +68,9 @@ impl HalfEdgeMesh {
         let Some((normal, area)) = face_normal_and_area(polygon) else {
             return Err(MeshError::Invalid(format!("face {f}: degenerate")));
         };
-        let stored = self.face_normals[f];
-        if (stored.length() - 1.0).abs() > 1e-4
-            || stored.dot(normal) < 1.0 - 1e-4
-            || (self.face_areas[f] - area).abs() > 1e-4 * area
-        {
+        if self.face_normal(face) != normal || self.face_area(face) != area {
             return Err(MeshError::Invalid(format!(
-                "face {f}: stored normal or area is stale"
+                "face {f}: normal or area differs from its polygon's"
             )));
         }
         Ok(())
@@ -105,7 +98,7 @@ impl HalfEdgeMesh {
                 } else {
                     None
                 };
-                if (twin != NO_TWIN).then_some(twin) != expected {
+                if self.twin(HalfEdgeId(he)).map(|t| t.0) != expected {
                     return Err(MeshError::Invalid(format!(
                         "half-edge {he}: twin {twin} expected {expected:?}"
                     )));

@@ -46,9 +46,9 @@ impl TriangleBatches {
         TriangleBatches { batches, triangles }
     }
 
-    /// Number of triangles.
-    pub(crate) fn len(&self) -> usize {
-        self.triangles.len()
+    /// Heap bytes held.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.batches.capacity() * size_of::<Batch>() + self.triangles.capacity() * size_of::<[Vec3; 3]>()
     }
 
     /// Calls `visit(i, t)` for every triangle `i` (in index order) that the ray meets at a

@@ -76,6 +76,11 @@ impl BoundsScan {
         }
     }
 
+    /// Heap bytes held.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.batches.capacity() * size_of::<Batch>()
+    }
+
     /// Calls `visit(i)` for each primitive `i` (in index order) whose padded box the ray
     /// `origin + t · direction` meets at some `t` in `[t_min, limit()]`, where `limit` is
     /// re-read before each call so a closest-hit search can shrink it. `visit` returns false
