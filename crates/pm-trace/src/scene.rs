@@ -85,10 +85,52 @@ enum FaceSurfaces {
     PerFace(Vec<Surface>),
 }
 
+/// A mesh as given to the builder, its faces' indices stored flat.
 struct MeshInput {
     positions: Vec<Vec3>,
-    faces: Vec<Vec<u32>>,
+    /// Every face's vertex indices, one face after another.
+    indices: Vec<u32>,
+    /// Face `f` is `indices[starts[f]..starts[f + 1]]`.
+    starts: Vec<usize>,
     surfaces: FaceSurfaces,
+}
+
+impl MeshInput {
+    fn new<F: AsRef<[u32]>>(positions: &[Vec3], faces: &[F], surfaces: FaceSurfaces) -> Self {
+        let mut starts = Vec::with_capacity(faces.len() + 1);
+        starts.push(0);
+        let mut indices = Vec::with_capacity(faces.iter().map(|f| f.as_ref().len()).sum());
+        for f in faces {
+            indices.extend_from_slice(f.as_ref());
+            starts.push(indices.len());
+        }
+        MeshInput {
+            positions: positions.to_vec(),
+            indices,
+            starts,
+            surfaces,
+        }
+    }
+
+    fn face_count(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    /// The faces as index slices.
+    fn faces(&self) -> Vec<&[u32]> {
+        self.starts
+            .windows(2)
+            .map(|w| &self.indices[w[0]..w[1]])
+            .collect()
+    }
+
+    /// Triangles of a fan triangulation of every face.
+    fn triangle_count(&self) -> usize {
+        self.starts
+            .windows(2)
+            .map(|w| (w[1] - w[0]).saturating_sub(2))
+            .sum()
+    }
 }
 
 /// Builds a [`Scene`]; errors are reported by [`SceneBuilder::build`].
@@ -128,11 +170,8 @@ impl SceneBuilder {
     /// Adds a mesh of convex planar polygons (vertex index lists, counter-clockwise seen from
     /// the side the normal points to), all with `surface`.
     pub fn mesh<F: AsRef<[u32]>>(mut self, positions: &[Vec3], faces: &[F], surface: Surface) -> Self {
-        self.meshes.push(MeshInput {
-            positions: positions.to_vec(),
-            faces: faces.iter().map(|f| f.as_ref().to_vec()).collect(),
-            surfaces: FaceSurfaces::One(surface),
-        });
+        self.meshes
+            .push(MeshInput::new(positions, faces, FaceSurfaces::One(surface)));
         self
     }
 
@@ -143,11 +182,11 @@ impl SceneBuilder {
         faces: &[F],
         surfaces: &[Surface],
     ) -> Self {
-        self.meshes.push(MeshInput {
-            positions: positions.to_vec(),
-            faces: faces.iter().map(|f| f.as_ref().to_vec()).collect(),
-            surfaces: FaceSurfaces::PerFace(surfaces.to_vec()),
-        });
+        self.meshes.push(MeshInput::new(
+            positions,
+            faces,
+            FaceSurfaces::PerFace(surfaces.to_vec()),
+        ));
         self
     }
 
@@ -223,30 +262,27 @@ impl SceneBuilder {
     /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
     /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
     pub fn build(self) -> Result<Scene, SceneError> {
-        let face_count: usize = self.meshes.iter().map(|m| m.faces.len()).sum();
+        let face_count: usize = self.meshes.iter().map(MeshInput::face_count).sum();
         let mut part_count = 0u32;
         let mut surfaces = SurfaceTable::default();
-        let mut part_surface_ids = Vec::with_capacity(face_count);
-        let triangle_count: usize = self
-            .meshes
-            .iter()
-            .map(|m| m.faces.iter().map(|f| f.len().saturating_sub(2)).sum::<usize>())
-            .sum();
+        let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
+        let triangle_count: usize = self.meshes.iter().map(MeshInput::triangle_count).sum();
         let mut triangles = Vec::with_capacity(triangle_count);
         let mut triangle_parts = Vec::with_capacity(triangle_count);
         let mut shape_prims = Vec::new();
         let mut meshes = Vec::with_capacity(self.meshes.len());
-        for (mi, input) in self.meshes.iter().enumerate() {
+        // Each input mesh is dropped once built, so the input and the scene are not held twice.
+        for (mi, input) in self.meshes.into_iter().enumerate() {
             if let FaceSurfaces::PerFace(s) = &input.surfaces
-                && s.len() != input.faces.len()
+                && s.len() != input.face_count()
             {
                 return Err(SceneError::SurfaceCount {
                     mesh: mi,
                     surfaces: s.len(),
-                    faces: input.faces.len(),
+                    faces: input.face_count(),
                 });
             }
-            let mesh = HalfEdgeMesh::build(&input.positions, &input.faces, &self.mesh_options)
+            let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), &self.mesh_options)
                 .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
             let first_part = part_count;
             let mut polygon = Vec::new();
@@ -297,6 +333,10 @@ impl SceneBuilder {
             }
             shapes.push(*shape);
         }
+        // Dropped (degenerate) faces leave spare room.
+        triangles.shrink_to_fit();
+        triangle_parts.shrink_to_fit();
+        part_surface_ids.shrink_to_fit();
         if triangles.is_empty() && shape_prims.is_empty() {
             return Err(SceneError::NoGeometry);
         }

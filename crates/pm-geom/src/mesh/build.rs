@@ -38,7 +38,6 @@ impl HalfEdgeMesh {
             positions: welded,
             face_starts: vec![0],
             he_origin: Vec::new(),
-            he_face: Vec::new(),
             he_twin: Vec::new(),
             source_faces: Vec::new(),
             input_face_count: faces.len(),
@@ -81,9 +80,7 @@ impl HalfEdgeMesh {
     }
 
     fn push_face(&mut self, ring: &[u32], source: usize) {
-        let face = self.source_faces.len() as u32;
         self.he_origin.extend_from_slice(ring);
-        self.he_face.extend(std::iter::repeat_n(face, ring.len()));
         self.face_starts.push(self.he_origin.len() as u32);
         self.source_faces.push(source as u32);
     }
@@ -93,7 +90,6 @@ impl HalfEdgeMesh {
         self.positions.shrink_to_fit();
         self.face_starts.shrink_to_fit();
         self.he_origin.shrink_to_fit();
-        self.he_face.shrink_to_fit();
         self.source_faces.shrink_to_fit();
     }
 

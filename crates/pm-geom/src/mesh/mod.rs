@@ -65,7 +65,6 @@ pub struct HalfEdgeMesh {
     /// Half-edges of face `f` are `face_starts[f]..face_starts[f + 1]`.
     face_starts: Vec<u32>,
     he_origin: Vec<u32>,
-    he_face: Vec<u32>,
     /// The twin of each half-edge, or [`NO_TWIN`] / [`NON_MANIFOLD`].
     he_twin: Vec<u32>,
     /// Index in the input of each kept face. Normals and areas are not stored: they are
@@ -89,7 +88,6 @@ impl HalfEdgeMesh {
         self.positions.capacity() * size_of::<Vec3>()
             + (self.face_starts.capacity()
                 + self.he_origin.capacity()
-                + self.he_face.capacity()
                 + self.he_twin.capacity()
                 + self.source_faces.capacity())
                 * size_of::<u32>()
@@ -171,7 +169,7 @@ impl HalfEdgeMesh {
 
     /// The face a half-edge belongs to.
     pub fn half_edge_face(&self, he: HalfEdgeId) -> FaceId {
-        FaceId(self.he_face[he.0 as usize])
+        self.face_of_half_edge(he.0)
     }
 
     /// The vertex a half-edge starts at.
@@ -234,13 +232,20 @@ impl HalfEdgeMesh {
         self.non_manifold_edges
     }
 
+    /// The face whose half-edge range holds `he`: a binary search of the face starts (not
+    /// stored per half-edge, to keep the mesh small).
+    #[inline]
+    fn face_of_half_edge(&self, he: u32) -> FaceId {
+        FaceId(self.face_starts.partition_point(|&s| s <= he) as u32 - 1)
+    }
+
     fn face_range(&self, face: FaceId) -> std::ops::Range<usize> {
         let f = face.0 as usize;
         self.face_starts[f] as usize..self.face_starts[f + 1] as usize
     }
 
     fn next_index(&self, he: u32) -> u32 {
-        let range = self.face_range(FaceId(self.he_face[he as usize]));
+        let range = self.face_range(self.face_of_half_edge(he));
         if he as usize + 1 == range.end {
             range.start as u32
         } else {

@@ -18,7 +18,6 @@ impl HalfEdgeMesh {
         let faces = self.source_faces.len();
         let hes = self.he_origin.len();
         if self.face_starts.len() != faces + 1
-            || self.he_face.len() != hes
             || self.he_twin.len() != hes
             || self.face_starts.first() != Some(&0)
             || self.face_starts.last().map(|&s| s as usize) != Some(hes)
@@ -54,7 +53,7 @@ impl HalfEdgeMesh {
         }
         for he in start..end {
             let v = self.he_origin[he] as usize;
-            if self.he_face[he] as usize != f || v >= self.positions.len() {
+            if self.half_edge_face(HalfEdgeId(he as u32)).0 as usize != f || v >= self.positions.len() {
                 return Err(MeshError::Invalid(format!(
                     "half-edge {he}: wrong face or vertex"
                 )));

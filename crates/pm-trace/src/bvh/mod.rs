@@ -157,9 +157,11 @@ fn to_obvhs(b: pm_geom::Aabb) -> obvhs::aabb::Aabb {
 }
 
 /// An 8-wide BVH over `bounds` (not empty), and the order of its leaves.
-fn build_cwbvh(bounds: &[pm_geom::Aabb]) -> (CwBvh, Vec<u32>) {
-    let bounds: Vec<obvhs::aabb::Aabb> = bounds.iter().map(|&b| to_obvhs(b)).collect();
-    let mut bvh = bvh2_to_cwbvh(&sah::build_bvh2(&bounds), 3, true, false);
+fn build_cwbvh(bounds: Vec<obvhs::aabb::Aabb>) -> (CwBvh, Vec<u32>) {
+    let bvh2 = sah::build_bvh2(&bounds);
+    // Freed before the conversion, which needs about as much again as the binary tree.
+    drop(bounds);
+    let mut bvh = bvh2_to_cwbvh(&bvh2, 3, true, false);
     // Leaf index i will be primitive i once the caller reorders by this; obvhs's traversal
     // never reads the indices, so they are not kept twice.
     let order = std::mem::take(&mut bvh.primitive_indices);
@@ -188,23 +190,27 @@ impl SceneBvh {
             let batches = TriangleBatches::new(triangles.clone());
             (triangles, parts, Search::Scan(batches))
         } else {
-            let bounds: Vec<pm_geom::Aabb> =
-                triangles.iter().map(|v| pm_geom::Aabb::from_points(v)).collect();
-            let (bvh, order) = build_cwbvh(&bounds);
-            drop(bounds);
+            let bounds = triangles
+                .iter()
+                .map(|v| to_obvhs(pm_geom::Aabb::from_points(v)))
+                .collect();
+            let (bvh, order) = build_cwbvh(bounds);
             let ordered: Vec<[Vec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
             drop(triangles);
             let ordered_parts = order.iter().map(|&i| parts[i as usize]).collect();
             (ordered, ordered_parts, Search::Bvh(bvh))
         };
-        let bounds: Vec<pm_geom::Aabb> = shapes.iter().map(ShapePrimitive::bounds).collect();
         let (shapes, shape_search) = if shapes.is_empty() {
             (shapes, Search::Empty)
         } else if shapes.len() <= scan_max {
-            let boxes: Vec<(Vec3, Vec3)> = bounds.iter().map(|b| (b.min, b.max)).collect();
+            let boxes: Vec<(Vec3, Vec3)> = shapes
+                .iter()
+                .map(|s| s.bounds())
+                .map(|b| (b.min, b.max))
+                .collect();
             (shapes, Search::Scan(BoundsScan::new(&boxes)))
         } else {
-            let (bvh, order) = build_cwbvh(&bounds);
+            let (bvh, order) = build_cwbvh(shapes.iter().map(|s| to_obvhs(s.bounds())).collect());
             (
                 order.iter().map(|&i| shapes[i as usize]).collect(),
                 Search::Bvh(bvh),
