@@ -9,7 +9,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use glam::Vec3;
 use kiddo::{Chebyshev as KChebyshev, ImmutableKdTree, SquaredEuclidean};
 use photon_maps::kdtree::{
-    Chebyshev, CompactPhoton, Euclidean, KindMask, Metric, Neighbours, Photon, PhotonKind, PhotonTree,
+    Chebyshev, Euclidean, KindMask, Metric, Neighbours, Photon, PhotonKind, PhotonTree,
 };
 use std::hint::black_box;
 use std::num::NonZero;
@@ -47,16 +47,14 @@ fn cloud(name: &str, n: usize, seed: u64) -> Vec<[f32; 3]> {
     (0..n).map(|_| rng.point(name)).collect()
 }
 
-fn compact(points: &[[f32; 3]]) -> Vec<CompactPhoton> {
+fn photons(points: &[[f32; 3]]) -> Vec<Photon> {
     points
         .iter()
-        .map(|&p| {
-            CompactPhoton::encode(&Photon {
-                position: Vec3::from(p),
-                power: Vec3::splat(1e-3),
-                direction: Vec3::NEG_Y,
-                kind: PhotonKind::Indirect,
-            })
+        .map(|&p| Photon {
+            position: Vec3::from(p),
+            power: Vec3::splat(1e-3),
+            direction: Vec3::NEG_Y,
+            kind: PhotonKind::Indirect,
         })
         .collect()
 }
@@ -75,7 +73,7 @@ fn bench_queries(c: &mut Criterion) {
         for n in [100_000, 1_000_000] {
             let points = cloud(name, n, 1);
             let queries = cloud(name, QUERIES, 2);
-            let pm = PhotonTree::build(compact(&points)).expect("finite points");
+            let pm = PhotonTree::build(photons(&points)).expect("finite points");
             let kd = ImmutableKdTree::<f32, 3>::new_from_slice(&points).expect("kiddo builds");
             if name == "uniform" {
                 println!(
@@ -122,7 +120,8 @@ fn bench_build(c: &mut Criterion) {
     for name in ["uniform", "walls"] {
         for n in [100_000, 1_000_000] {
             let points = cloud(name, n, 1);
-            let photons = compact(&points);
+            // pm's build includes encoding the photons into 20 bytes (power, direction).
+            let photons = photons(&points);
             let mut g = c.benchmark_group(format!("build/{name}/{n}"));
             g.throughput(Throughput::Elements(n as u64));
             g.sample_size(10);

@@ -1,6 +1,6 @@
 //! Renders a built-in scene or a glTF file with a chosen photon-map partition, estimator and
-//! mode, and writes an EXR, an sRGB PNG preview and optionally the figures as JSON
-//! (DESIGN.md section 9). `--compare` renders the paper's four variants into one 2×2 grid.
+//! mode, and writes an EXR, an sRGB PNG preview and optionally the figures as JSON.
+//! `--compare` renders the paper's four variants into one 2×2 grid.
 //!
 //! `cargo run --release --example render -- --scene cornell-box --maps crease --estimator cube`
 
@@ -291,8 +291,13 @@ fn summary(r: &Record<'_>) -> String {
             r.variant.maps, s.map_count, r.variant.estimator
         )
     };
+    // Channels too dim for their map's power codes (over 10¹² below its brightest): say so.
+    let below = match s.photon_channels_below_range {
+        0 => String::new(),
+        n => format!(", {n} power channels below the map's range stored as zero"),
+    };
     format!(
-        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored): trace {:.3} s, build {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored{below}): trace {:.3} s, build {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.settings.mode,
@@ -324,13 +329,14 @@ fn json_object(r: &Record<'_>) -> String {
     );
     let _ = write!(
         o,
-        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
+        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
         r.settings.width,
         r.settings.height,
         r.settings.samples_per_pixel,
         r.settings.k,
         s.photons_emitted,
         s.photons_stored,
+        s.photon_channels_below_range,
         s.map_count,
         s.threads,
         r.args.seed,

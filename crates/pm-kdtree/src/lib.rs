@@ -2,7 +2,8 @@
 //! (Euclidean) or a cube (Chebyshev, L∞), for photon-mapping renderers.
 //!
 //! - [`CompactPhoton`] packs a [`Photon`] (position, RGB power, travel direction, kind) into
-//!   20 bytes: power within ±0.35 % per channel, direction within 0.05°.
+//!   20 bytes: power within ±0.35 % per channel relative to a [`PowerScale`] that the tree
+//!   keeps (its brightest channel, so any absolute power works), direction within 0.05°.
 //! - [`PhotonTree`] stores photons in tree order with no per-node pointers (20 bytes per
 //!   photon plus about 0.2 bytes of split nodes), built in parallel by median selection.
 //! - [`PhotonTree::nearest_k`] finds the k nearest photons within a maximum distance under a
@@ -41,7 +42,10 @@
 //! assert_eq!(near.len(), 50);
 //! assert!(!near.is_partial());
 //! // Jensen's estimate: irradiance = total power / (π r²), r = the 50th distance.
-//! let power: Vec3 = near.as_slice().iter().map(|n| tree.get(n.index).power()).sum();
+//! // Powers are stored relative to the tree's scale: sum them, then multiply once.
+//! let relative: Vec3 = near.as_slice().iter().map(|n| tree.get(n.index).relative_power()).sum();
+//! let power = relative * tree.power_scale().watts();
+//! assert_eq!(tree.power(near.as_slice()[0].index), Vec3::splat(1e-3), "the scale itself is exact");
 //! let irradiance = power / (std::f32::consts::PI * near.extent().powi(2));
 //! assert!((irradiance.x - 1.0).abs() < 0.25, "1000 mW on about 1 m² is about 1 W/m²");
 //!
@@ -59,6 +63,6 @@ pub mod tree;
 
 pub use error::BuildError;
 pub use metric::{Chebyshev, Euclidean, Metric};
-pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind};
+pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind, PowerScale};
 pub use query::{Neighbour, Neighbours};
 pub use tree::{InvariantError, LEAF_CAPACITY, PhotonTree};

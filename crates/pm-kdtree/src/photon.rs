@@ -10,9 +10,14 @@
 //! Power is stored per channel on a log scale rather than with a shared exponent (as Ward's
 //! RGBE and Jensen's 4-byte power do): a shared exponent gives the largest channel 0.4 %
 //! precision but a channel 10× smaller only 4 %, and photon powers after a few coloured
-//! bounces routinely differ by 10–100× between channels. Per-channel codes keep every channel
-//! within ±0.35 % over 9.5e-7 … 2.0e6 W. Decoding is a lookup in a 4096-entry table computed
-//! at compile time: no `exp` in the hot loop.
+//! bounces routinely differ by 10–100× between channels. The codes are relative to a
+//! [`PowerScale`] that the photon map keeps (its brightest channel), not absolute: code 4095
+//! is the scale and each code below it is 2^(1/100) smaller, down to about 2⁻⁴¹ (5·10⁻¹³)
+//! times the scale; code 0 is zero. So every channel keeps ±0.35 % at any absolute power in
+//! f32's normal range, whether a scene emits 10⁻⁶ W or 10¹² W and whether it is traced with a
+//! thousand photons or a billion, and photons of one map may differ by up to 2⁴⁰ (10¹²).
+//! Decoding is a lookup in a 4096-entry table computed at compile time and one multiply by the
+//! scale (which an estimator does once per query, after summing): no `exp` in the hot loop.
 
 use glam::{Vec2, Vec3};
 
@@ -67,8 +72,9 @@ pub struct Photon {
 /// A photon in 20 bytes: position as 3×f32 and 8 bytes of encoded power, direction and kind.
 ///
 /// See the [module docs](self) for the layout and precision: power within ±0.35 % per
-/// channel over [`CompactPhoton::MIN_POWER`] … [`CompactPhoton::MAX_POWER`] watts, direction
-/// within 0.05°.
+/// channel relative to a [`PowerScale`] (from the scale down to about 2⁻⁴¹ times it), direction
+/// within 0.05°. The scale is not stored in the photon: a [`crate::PhotonTree`] keeps one for
+/// all its photons.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C)]
 pub struct CompactPhoton {
@@ -78,9 +84,9 @@ pub struct CompactPhoton {
 
 /// Power codes per octave (factor 2): a step of 2^(1/100), so rounding errs by ≤ 0.347 %.
 const CODES_PER_OCTAVE: i32 = 100;
-/// log2 of the power of code 1.
-const MIN_LOG2: i32 = -20;
 const POWER_BITS: u32 = 12;
+/// The top code: exactly the map's [`PowerScale`]. Code `c ≥ 1` decodes to
+/// `2^((c − POWER_MAX_CODE) / 100)` times the scale; code 0 is zero.
 const POWER_MAX_CODE: u32 = (1 << POWER_BITS) - 1;
 const DIRECTION_BITS: u32 = 12;
 /// Even, so the middle code decodes to exactly 0 and the six axis directions are exact.
@@ -101,13 +107,13 @@ const fn exp_series(x: f64) -> f64 {
     sum
 }
 
-/// Decoded watts for each 12-bit power code; code 0 is zero.
+/// Each 12-bit power code decoded relative to the scale (the top code is 1); code 0 is zero.
 const POWER_TABLE_VALUES: [f32; 1 << POWER_BITS] = {
     let mut table = [0.0f32; 1 << POWER_BITS];
     let mut code = 1;
     while code < table.len() {
-        let e = code as i32 - 1;
-        let octave = e.div_euclid(CODES_PER_OCTAVE) + MIN_LOG2;
+        let e = code as i32 - POWER_MAX_CODE as i32;
+        let octave = e.div_euclid(CODES_PER_OCTAVE);
         let frac = e.rem_euclid(CODES_PER_OCTAVE);
         let whole = f64::from_bits(((1023 + octave) as u64) << 52);
         let part = exp_series(frac as f64 / CODES_PER_OCTAVE as f64 * core::f64::consts::LN_2);
@@ -118,19 +124,103 @@ const POWER_TABLE_VALUES: [f32; 1 << POWER_BITS] = {
 };
 static POWER_TABLE: [f32; 1 << POWER_BITS] = POWER_TABLE_VALUES;
 
-fn encode_channel(watts: f32) -> u64 {
+/// The power of a photon map's top code: every photon power of the map is stored relative to
+/// it, so the codes keep their precision at any absolute power.
+///
+/// A channel is stored as one of 4095 logarithmic steps of 2^(1/100) below the scale (within
+/// ±0.35 %), from the scale itself down to [`PowerScale::SMALLEST_RELATIVE`] (about 2⁻⁴¹)
+/// times it, or as zero. [`PowerScale::for_photons`] picks the largest channel of the map's
+/// photons, so nothing is clamped and every channel within 2⁻⁴⁰ of the map's brightest keeps
+/// its precision; [`PhotonTree::build`](crate::PhotonTree::build) counts the positive channels
+/// further below, which are stored as zero
+/// ([`PhotonTree::channels_below_range`](crate::PhotonTree::channels_below_range)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PowerScale {
+    watts: f32,
+    log2: f32,
+}
+
+impl Default for PowerScale {
+    /// A scale of 1 W.
+    fn default() -> Self {
+        PowerScale::new(1.0)
+    }
+}
+
+impl PowerScale {
+    /// The smallest nonzero power stored, relative to the scale: 2^(−4094/100) ≈ 5.1·10⁻¹³.
+    pub const SMALLEST_RELATIVE: f32 = POWER_TABLE_VALUES[1];
+
+    /// A scale whose top code is `watts`. A zero, negative or non-finite `watts` gives 1 W
+    /// (there is no positive finite power to scale to).
+    pub fn new(watts: f32) -> Self {
+        let watts = if watts > 0.0 && watts.is_finite() {
+            watts
+        } else {
+            1.0
+        };
+        PowerScale {
+            watts,
+            log2: watts.log2(),
+        }
+    }
+
+    /// The scale for a set of photons: their largest finite positive power channel (1 W when
+    /// there is none).
+    pub fn for_photons(photons: &[Photon]) -> Self {
+        Self::new(
+            photons
+                .iter()
+                .map(|p| largest_channel(p.power))
+                .fold(0.0, f32::max),
+        )
+    }
+
+    /// Watts of the top code (relative power 1).
+    #[inline]
+    pub fn watts(self) -> f32 {
+        self.watts
+    }
+
+    /// The smallest nonzero power stored (watts).
+    pub fn smallest(self) -> f32 {
+        Self::SMALLEST_RELATIVE * self.watts
+    }
+
+    /// How many channels of `power` are finite and positive but below the smallest code, so
+    /// that [`CompactPhoton::encode`] stores them as zero.
+    pub fn channels_below(self, power: Vec3) -> u32 {
+        power
+            .to_array()
+            .into_iter()
+            .filter(|&w| encode_channel(w, self) == (0, true))
+            .count() as u32
+    }
+}
+
+/// The largest finite positive channel of `power`, or 0.
+pub(crate) fn largest_channel(power: Vec3) -> f32 {
+    power
+        .to_array()
+        .into_iter()
+        .filter(|w| w.is_finite())
+        .fold(0.0, f32::max)
+}
+
+/// The code of one channel relative to `scale`, and whether a finite positive channel fell
+/// below the smallest code (and is stored as zero). Above the scale (or +∞) clamps to the top.
+#[inline]
+fn encode_channel(watts: f32, scale: PowerScale) -> (u64, bool) {
     if watts.is_nan() || watts <= 0.0 {
-        return 0;
+        return (0, false);
     }
-    if watts == f32::INFINITY {
-        return POWER_MAX_CODE as u64;
-    }
-    let code = ((watts.log2() - MIN_LOG2 as f32) * CODES_PER_OCTAVE as f32).round() + 1.0;
+    // Logarithms, not the ratio: watts / scale could underflow or overflow in f32.
+    let code = ((watts.log2() - scale.log2) * CODES_PER_OCTAVE as f32).round() + POWER_MAX_CODE as f32;
     if code >= 1.0 {
-        return code.min(POWER_MAX_CODE as f32) as u64;
+        (code.min(POWER_MAX_CODE as f32) as u64, false)
+    } else {
+        (0, watts.is_finite())
     }
-    // Below the smallest code: keep it when it is nearer to that code than to zero.
-    if watts >= 0.5 * POWER_TABLE[1] { 1 } else { 0 }
 }
 
 fn decode_direction(u: u32, v: u32) -> Vec3 {
@@ -193,24 +283,31 @@ fn encode_direction(direction: Vec3) -> (u32, u32) {
 }
 
 impl CompactPhoton {
-    /// Smallest nonzero power a channel keeps (watts); smaller powers round to it or to zero.
-    pub const MIN_POWER: f32 = POWER_TABLE_VALUES[1];
-    /// Largest power a channel keeps (watts); larger powers are clamped to it.
-    pub const MAX_POWER: f32 = POWER_TABLE_VALUES[POWER_MAX_CODE as usize];
+    /// Encodes a photon with its power relative to `scale` (the map's; see [`PowerScale`]).
+    /// Zero, negative or NaN power channels become zero, and so do positive channels below
+    /// the smallest code ([`PowerScale::channels_below`] counts them); channels above the
+    /// scale are clamped to it. The direction is normalised (a zero or non-finite direction
+    /// becomes +z). The position is kept as is: [`crate::PhotonTree::build`] rejects
+    /// non-finite ones.
+    pub fn encode(photon: &Photon, scale: PowerScale) -> Self {
+        Self::encode_counting(photon, scale).0
+    }
 
-    /// Encodes a photon. Negative or NaN power channels become zero; the direction is
-    /// normalised (a zero or non-finite direction becomes +z). The position is kept as is:
-    /// [`crate::PhotonTree::build`] rejects non-finite ones.
-    pub fn encode(photon: &Photon) -> Self {
+    /// [`CompactPhoton::encode`], and how many channels fell below the smallest code.
+    pub(crate) fn encode_counting(photon: &Photon, scale: PowerScale) -> (Self, u32) {
         let power = photon.power;
+        let (r, r_low) = encode_channel(power.x, scale);
+        let (g, g_low) = encode_channel(power.y, scale);
+        let (b, b_low) = encode_channel(power.z, scale);
         let (u, v) = encode_direction(photon.direction);
-        let bits = encode_channel(power.x)
-            | encode_channel(power.y) << POWER_BITS
-            | encode_channel(power.z) << (2 * POWER_BITS)
+        let bits = r
+            | g << POWER_BITS
+            | b << (2 * POWER_BITS)
             | (u as u64) << DIRECTION_SHIFT
             | (v as u64) << (DIRECTION_SHIFT + DIRECTION_BITS)
             | (photon.kind as u64) << KIND_SHIFT;
-        Self::from_parts(photon.position.to_array(), bits)
+        let low = u32::from(r_low) + u32::from(g_low) + u32::from(b_low);
+        (Self::from_parts(photon.position.to_array(), bits), low)
     }
 
     pub(crate) fn from_parts(position: [f32; 3], bits: u64) -> Self {
@@ -228,11 +325,11 @@ impl CompactPhoton {
         self.position
     }
 
-    /// Decodes it.
-    pub fn decode(&self) -> Photon {
+    /// Decodes it, with its power relative to `scale` (the scale it was encoded with).
+    pub fn decode(&self, scale: PowerScale) -> Photon {
         Photon {
             position: self.position(),
-            power: self.power(),
+            power: self.power(scale),
             direction: self.direction(),
             kind: self.kind(),
         }
@@ -241,8 +338,15 @@ impl CompactPhoton {
     pub fn position(&self) -> Vec3 {
         Vec3::from(self.position)
     }
-    /// Decoded power (watts per channel).
-    pub fn power(&self) -> Vec3 {
+    /// Decoded power (watts per channel), given the `scale` it was encoded with.
+    #[inline]
+    pub fn power(&self, scale: PowerScale) -> Vec3 {
+        self.relative_power() * scale.watts()
+    }
+    /// Decoded power per channel relative to the scale it was encoded with (1 is the scale):
+    /// three table lookups. Estimators sum these and multiply by [`PowerScale::watts`] once.
+    #[inline]
+    pub fn relative_power(&self) -> Vec3 {
         let bits = self.bits();
         let mask = POWER_MAX_CODE as u64;
         Vec3::new(
@@ -301,13 +405,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn power_table_ends_match_the_documented_range() {
-        assert_eq!(POWER_TABLE[1], CompactPhoton::MIN_POWER);
-        assert_eq!(POWER_TABLE[POWER_MAX_CODE as usize], CompactPhoton::MAX_POWER);
-        // Closed form at whole octaves: code 1 + 100·m is exactly 2^(m − 20).
-        for m in 0..40 {
-            let code = 1 + 100 * m as usize;
-            assert_eq!(POWER_TABLE[code], 2f32.powi(m - 20));
+    fn power_table_is_two_to_the_code_over_a_hundred_below_the_scale() {
+        assert_eq!(POWER_TABLE[0], 0.0);
+        assert_eq!(POWER_TABLE[POWER_MAX_CODE as usize], 1.0);
+        assert_eq!(POWER_TABLE[1], PowerScale::SMALLEST_RELATIVE);
+        // Closed form at whole octaves: code 4095 − 100·m is exactly 2^−m.
+        for m in 0..=40 {
+            let code = POWER_MAX_CODE as usize - 100 * m as usize;
+            assert_eq!(POWER_TABLE[code], 2f32.powi(-m), "code {code}");
+        }
+        // And in between, against f64's exp2.
+        for (code, &value) in POWER_TABLE.iter().enumerate().skip(1) {
+            let want = ((code as f64 - POWER_MAX_CODE as f64) / 100.0).exp2();
+            assert!((value as f64 / want - 1.0).abs() < 1e-7, "code {code}");
         }
     }
 }

@@ -8,7 +8,7 @@
 //! per axis, so leaf scans read only coordinates and vectorise.
 
 use crate::photon::{CompactPhoton, kind_code_of_bits};
-use crate::{BuildError, Photon};
+use crate::{BuildError, Photon, PowerScale};
 use glam::Vec3;
 
 /// Most photons in a leaf.
@@ -22,7 +22,11 @@ const PARALLEL_MIN: usize = 32 * 1024;
 ///
 /// Build it once with [`PhotonTree::build`], then query it from many threads with
 /// [`PhotonTree::nearest_k`] and [`PhotonTree::for_each_within`]. Indices returned by
-/// queries are positions in tree order, for [`PhotonTree::get`].
+/// queries are positions in tree order, for [`PhotonTree::get`] and [`PhotonTree::power`].
+///
+/// Photon powers are stored relative to the tree's [`PowerScale`], the largest power channel
+/// of its photons: [`PhotonTree::power`] returns watts, and a sum of
+/// [`CompactPhoton::relative_power`] times [`PowerScale::watts`] is the same in one multiply.
 #[derive(Clone, Debug)]
 pub struct PhotonTree {
     pub(crate) xs: Vec<f32>,
@@ -38,6 +42,10 @@ pub struct PhotonTree {
     /// Smallest and largest photon coordinates: the root cell, so that a query outside the
     /// photons' bounds starts with the right distance bound instead of zero.
     pub(crate) bounds: [[f32; 3]; 2],
+    /// Watts of the top power code.
+    pub(crate) scale: PowerScale,
+    /// Finite positive power channels below the smallest code, stored as zero.
+    pub(crate) below_range: u64,
 }
 
 impl Default for PhotonTree {
@@ -52,6 +60,8 @@ impl Default for PhotonTree {
             axes: vec![0],
             depth: 0,
             bounds: [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]],
+            scale: PowerScale::default(),
+            below_range: 0,
         }
     }
 }
@@ -70,17 +80,29 @@ pub struct InvariantError {
 type Splits = Vec<(usize, f32, u8)>;
 
 impl PhotonTree {
-    /// Builds the tree (reorders the photons). Errors on non-finite positions.
+    /// Builds the tree from photons in full precision (reorders them). Errors on non-finite
+    /// positions.
     ///
-    /// Median selection per node, O(n log n); subtrees above 32k photons are built in
-    /// parallel with rayon.
-    pub fn build(mut photons: Vec<CompactPhoton>) -> Result<Self, BuildError> {
-        for (index, p) in photons.iter().enumerate() {
-            let position = p.position_array();
-            if !position.iter().all(|c| c.is_finite()) {
-                return Err(BuildError::NonFinitePosition { index, position });
-            }
-        }
+    /// The power scale is the largest finite power channel of any photon
+    /// ([`PowerScale::for_photons`]), so every channel within 2⁻⁴⁰ of it keeps ±0.35 %;
+    /// positive channels further below are stored as zero and counted
+    /// ([`PhotonTree::channels_below_range`]). The photons are encoded into 20 bytes each and
+    /// dropped before the tree is built. Median selection per node, O(n log n); subtrees
+    /// above 32k photons are built in parallel with rayon.
+    pub fn build(photons: Vec<Photon>) -> Result<Self, BuildError> {
+        let (compact, scale, below_range) = encode_all(&photons)?;
+        drop(photons);
+        Ok(Self::build_compact(compact, scale, below_range))
+    }
+
+    /// [`PhotonTree::build`] from a slice (the photons are encoded, not copied).
+    pub fn from_photons(photons: &[Photon]) -> Result<Self, BuildError> {
+        let (compact, scale, below_range) = encode_all(photons)?;
+        Ok(Self::build_compact(compact, scale, below_range))
+    }
+
+    /// Builds from photons already encoded (and position-checked) relative to `scale`.
+    fn build_compact(mut photons: Vec<CompactPhoton>, scale: PowerScale, below_range: u64) -> Self {
         let n = photons.len();
         let mut depth = 0;
         while (n >> depth) + usize::from(n & ((1 << depth) - 1) != 0) > LEAF_CAPACITY {
@@ -102,6 +124,8 @@ impl PhotonTree {
             axes,
             depth,
             bounds: [[f32::INFINITY; 3], [f32::NEG_INFINITY; 3]],
+            scale,
+            below_range,
         };
         for p in &photons {
             let [x, y, z] = p.position_array();
@@ -114,12 +138,7 @@ impl PhotonTree {
             tree.zs.push(z);
             tree.payload.push(p.bits());
         }
-        Ok(tree)
-    }
-
-    /// Encodes and builds in one step.
-    pub fn from_photons(photons: &[Photon]) -> Result<Self, BuildError> {
-        Self::build(photons.iter().map(CompactPhoton::encode).collect())
+        tree
     }
 
     /// Number of photons.
@@ -130,10 +149,33 @@ impl PhotonTree {
     pub fn is_empty(&self) -> bool {
         self.xs.is_empty()
     }
-    /// Photon `index` (tree order). Panics when `index >= len()`, like slice indexing.
+    /// Photon `index` (tree order), encoded: its power is relative to
+    /// [`PhotonTree::power_scale`]. Panics when `index >= len()`, like slice indexing.
+    #[inline]
     pub fn get(&self, index: u32) -> CompactPhoton {
         let i = index as usize;
         CompactPhoton::from_parts([self.xs[i], self.ys[i], self.zs[i]], self.payload[i])
+    }
+    /// Power of photon `index` (tree order) in watts per channel.
+    #[inline]
+    pub fn power(&self, index: u32) -> Vec3 {
+        self.get(index).power(self.scale)
+    }
+    /// Photon `index` (tree order) decoded, power in watts.
+    pub fn photon(&self, index: u32) -> Photon {
+        self.get(index).decode(self.scale)
+    }
+    /// The scale the photons' power codes are relative to: the largest power channel of the
+    /// photons the tree was built from (1 W for a tree without positive power).
+    #[inline]
+    pub fn power_scale(&self) -> PowerScale {
+        self.scale
+    }
+    /// How many finite positive power channels of the photons lay more than about 2⁻⁴¹ below
+    /// [`PhotonTree::power_scale`] and are stored as zero. Zero unless one map holds photons
+    /// whose powers differ by more than 10¹².
+    pub fn channels_below_range(&self) -> u64 {
+        self.below_range
     }
     /// Position of photon `index` (tree order), without decoding the rest.
     pub fn position(&self, index: u32) -> Vec3 {
@@ -206,6 +248,27 @@ impl PhotonTree {
         self.validate_node(2 * node, lo, mid, level + 1)?;
         self.validate_node(2 * node + 1, mid, hi, level + 1)
     }
+}
+
+/// Checks positions, picks the power scale and encodes: (photons, scale, channels below range).
+fn encode_all(photons: &[Photon]) -> Result<(Vec<CompactPhoton>, PowerScale, u64), BuildError> {
+    for (index, p) in photons.iter().enumerate() {
+        let position = p.position.to_array();
+        if !position.iter().all(|c| c.is_finite()) {
+            return Err(BuildError::NonFinitePosition { index, position });
+        }
+    }
+    let scale = PowerScale::for_photons(photons);
+    let mut below_range = 0u64;
+    let compact = photons
+        .iter()
+        .map(|p| {
+            let (c, below) = CompactPhoton::encode_counting(p, scale);
+            below_range += u64::from(below);
+            c
+        })
+        .collect();
+    Ok((compact, scale, below_range))
 }
 
 /// Builds the subtree of heap node `node` over `photons` with `levels` inner levels below

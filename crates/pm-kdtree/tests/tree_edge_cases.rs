@@ -5,17 +5,15 @@ mod common;
 
 use common::*;
 use glam::Vec3;
-use pm_kdtree::{
-    BuildError, Chebyshev, CompactPhoton, Euclidean, KindMask, Neighbours, Photon, PhotonKind, PhotonTree,
-};
+use pm_kdtree::{BuildError, Chebyshev, Euclidean, KindMask, Neighbours, Photon, PhotonKind, PhotonTree};
 
-fn at(position: Vec3, kind: PhotonKind) -> CompactPhoton {
-    CompactPhoton::encode(&Photon {
+fn at(position: Vec3, kind: PhotonKind) -> Photon {
+    Photon {
         position,
         power: Vec3::ONE,
         direction: Vec3::NEG_Y,
         kind,
-    })
+    }
 }
 
 #[test]
@@ -71,7 +69,7 @@ fn k_larger_than_the_tree_returns_every_photon_and_is_partial() {
 #[test]
 fn thousands_of_identical_positions() {
     let p = Vec3::new(0.25, 0.5, 0.75);
-    let mut photons: Vec<CompactPhoton> = (0..5000).map(|_| at(p, PhotonKind::Indirect)).collect();
+    let mut photons: Vec<Photon> = (0..5000).map(|_| at(p, PhotonKind::Indirect)).collect();
     photons.push(at(p + Vec3::X, PhotonKind::Indirect));
     let tree = PhotonTree::build(photons).expect("duplicates are fine");
     tree.validate().expect("valid");
@@ -157,7 +155,7 @@ fn negative_or_nan_maximum_distance_finds_nothing() {
 #[test]
 fn non_finite_positions_are_rejected_with_their_index() {
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
-        let mut photons: Vec<CompactPhoton> = (0..10)
+        let mut photons: Vec<Photon> = (0..10)
             .map(|i| at(Vec3::splat(i as f32), PhotonKind::Direct))
             .collect();
         photons[7] = at(Vec3::new(0.0, bad, 0.0), PhotonKind::Direct);
@@ -194,9 +192,9 @@ fn build_keeps_every_photon() {
     let photons = photons_at(&mut rng, &points);
     let tree = PhotonTree::build(photons.clone()).expect("builds");
     tree.validate().expect("valid");
-    let key = |p: &CompactPhoton| (p.position().to_array().map(f32::to_bits), p.kind() as u8);
+    let key = |p: &Photon| (p.position.to_array().map(f32::to_bits), p.kind as u8);
     let mut before: Vec<_> = photons.iter().map(key).collect();
-    let mut after: Vec<_> = tree.iter().map(|p| key(&p)).collect();
+    let mut after: Vec<_> = (0..tree.len() as u32).map(|i| key(&tree.photon(i))).collect();
     before.sort_unstable();
     after.sort_unstable();
     assert_eq!(before, after, "the tree holds exactly the input photons");

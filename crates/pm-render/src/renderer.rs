@@ -107,6 +107,7 @@ impl<E: Estimator> Renderer<E> {
         let start = Instant::now();
         let maps = PhotonMaps::build(scene, assignment, traced)?;
         stats.build = start.elapsed();
+        stats.photon_channels_below_range = maps.channels_below_range();
         Ok(maps)
     }
 

@@ -9,6 +9,10 @@ pub struct RenderStats {
     pub photons_emitted: u64,
     /// Photons stored over all maps.
     pub photons_stored: u64,
+    /// Photon power channels stored as zero because they were more than 2⁴⁰ (about 10¹²)
+    /// times smaller than their map's brightest channel ([`pm_trace::PhotonMaps::channels_below_range`]);
+    /// zero in any ordinary scene.
+    pub photon_channels_below_range: u64,
     /// Number of photon maps.
     pub map_count: u32,
     /// Worker threads used.

@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use pm_geom::{Aabb, Ball, ClipScratch, GatherVolume, PolygonSet};
-use pm_kdtree::{CompactPhoton, KindMask, Photon, PhotonKind, PhotonTree};
+use pm_kdtree::{KindMask, Photon, PhotonKind, PhotonTree};
 use pm_render::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
     GeometryCube, MapView, SurfacePoint, irradiance_in_volume,
@@ -47,13 +47,13 @@ impl Rand {
     }
 }
 
-fn photon(position: Vec3, power: Vec3, direction: Vec3) -> CompactPhoton {
-    CompactPhoton::encode(&Photon {
+fn photon(position: Vec3, power: Vec3, direction: Vec3) -> Photon {
+    Photon {
         position,
         power,
         direction,
         kind: PhotonKind::Direct,
-    })
+    }
 }
 
 /// The tilted plane x + y = 0 through the origin, spanned by `u` and `w`.
@@ -70,7 +70,7 @@ const TILT_U: Vec3 = Vec3::new(
 const TILT_W: Vec3 = Vec3::Z;
 
 /// Photons on the tilted plane around the origin, and the plane itself as a big quad.
-fn tilted_plane_map(n: usize, seed: u64) -> (Vec<CompactPhoton>, PolygonSet) {
+fn tilted_plane_map(n: usize, seed: u64) -> (Vec<Photon>, PolygonSet) {
     let mut rng = Rand(seed);
     let photons = (0..n)
         .map(|_| {
@@ -88,9 +88,12 @@ fn tilted_plane_map(n: usize, seed: u64) -> (Vec<CompactPhoton>, PolygonSet) {
     (photons, polygons)
 }
 
-/// The k nearest by brute force under `dist`: (their total decoded power, the k-th distance).
-fn brute_nearest(photons: &[CompactPhoton], k: usize, dist: impl Fn(Vec3) -> f32) -> (Vec3, f32) {
-    let mut d: Vec<(f32, Vec3)> = photons.iter().map(|p| (dist(p.position()), p.power())).collect();
+/// The k nearest of the tree's photons by brute force under `dist`: (their total decoded power,
+/// the k-th distance).
+fn brute_nearest(tree: &PhotonTree, k: usize, dist: impl Fn(Vec3) -> f32) -> (Vec3, f32) {
+    let mut d: Vec<(f32, Vec3)> = (0..tree.len() as u32)
+        .map(|i| (dist(tree.position(i)), tree.power(i)))
+        .collect();
     d.sort_by(|a, b| a.0.total_cmp(&b.0));
     (d[..k].iter().map(|x| x.1).sum(), d[k - 1].0)
 }
@@ -103,7 +106,7 @@ fn assert_close(got: Vec3, want: Vec3, rel: f32) {
 #[test]
 fn cube_on_one_plane_is_power_over_area_in_cube() {
     let (photons, polygons) = tilted_plane_map(2000, 1);
-    let tree = PhotonTree::build(photons.clone()).unwrap();
+    let tree = PhotonTree::from_photons(&photons).unwrap();
     let map = MapView {
         tree: &tree,
         polygons: &polygons,
@@ -111,7 +114,7 @@ fn cube_on_one_plane_is_power_over_area_in_cube() {
     let mut scratch = EstimatorScratch::new();
     let at = SurfacePoint::front(Vec3::ZERO, TILT_N);
     for k in [1, 7, 100, 555] {
-        let (power, h) = brute_nearest(&photons, k, |p| p.abs().max_element());
+        let (power, h) = brute_nearest(&tree, k, |p| p.abs().max_element());
         // The cube [-h, h]³ cuts the plane x + y = 0 in a rectangle 2√2h (along u) by 2h (along w).
         let area = 4.0 * SQRT_2 * h * h;
         let options = EstimatorOptions {
@@ -126,7 +129,7 @@ fn cube_on_one_plane_is_power_over_area_in_cube() {
 #[test]
 fn ball_on_one_plane_is_power_over_disc_area() {
     let (photons, polygons) = tilted_plane_map(2000, 2);
-    let tree = PhotonTree::build(photons.clone()).unwrap();
+    let tree = PhotonTree::from_photons(&photons).unwrap();
     let map = MapView {
         tree: &tree,
         polygons: &polygons,
@@ -134,7 +137,7 @@ fn ball_on_one_plane_is_power_over_disc_area() {
     let mut scratch = EstimatorScratch::new();
     let at = SurfacePoint::front(Vec3::ZERO, TILT_N);
     for k in [3, 100, 400] {
-        let (power, r) = brute_nearest(&photons, k, |p| p.length());
+        let (power, r) = brute_nearest(&tree, k, |p| p.length());
         let options = EstimatorOptions {
             k,
             ..EstimatorOptions::with_max_distance(10.0)
@@ -147,7 +150,7 @@ fn ball_on_one_plane_is_power_over_disc_area() {
 #[test]
 fn fewer_than_k_photons_use_the_maximum_distance() {
     let (photons, polygons) = tilted_plane_map(50, 3);
-    let tree = PhotonTree::build(photons.clone()).unwrap();
+    let tree = PhotonTree::from_photons(&photons).unwrap();
     let map = MapView {
         tree: &tree,
         polygons: &polygons,
@@ -159,7 +162,7 @@ fn fewer_than_k_photons_use_the_maximum_distance() {
         k: 100,
         ..EstimatorOptions::with_max_distance(max)
     };
-    let total: Vec3 = photons.iter().map(|p| p.power()).sum();
+    let total: Vec3 = (0..tree.len() as u32).map(|i| tree.power(i)).sum();
     assert_close(
         Disc.irradiance(at, map, &options, &mut scratch),
         total / (PI * max * max),
@@ -185,7 +188,7 @@ fn disc_matches_the_poisson_expectation_on_uniform_photons() {
     // For a Poisson process, E[k Φ / (π r_k²)] = ρ Φ k / (k − 1).
     let n = 100_000;
     let mut rng = Rand(4);
-    let photons: Vec<CompactPhoton> = (0..n)
+    let photons: Vec<Photon> = (0..n)
         .map(|_| {
             photon(
                 Vec3::new(rng.next_f32(), 0.0, rng.next_f32()),
@@ -236,13 +239,13 @@ fn reject_behind_drops_photons_from_the_back() {
     let r2 = PI * 0.01 * 0.01;
     assert_close(
         Disc.irradiance(at, map, &options, &mut scratch),
-        (front.power() + back.power()) / r2,
+        (front.power + back.power) / r2,
         1e-5,
     );
     options.reject_behind = true;
     assert_close(
         Disc.irradiance(at, map, &options, &mut scratch),
-        front.power() / r2,
+        front.power / r2,
         1e-5,
     );
 }
@@ -262,11 +265,7 @@ fn kind_mask_selects_photons() {
         ..direct
     };
     direct.position.z = 0.05;
-    let tree = PhotonTree::build(vec![
-        CompactPhoton::encode(&direct),
-        CompactPhoton::encode(&indirect),
-    ])
-    .unwrap();
+    let tree = PhotonTree::build(vec![direct, indirect]).unwrap();
     let polygons = PolygonSet::new();
     let map = MapView {
         tree: &tree,

@@ -17,8 +17,9 @@
 //! - Polygons are counter-clockwise seen from the side their normal points to.
 //! - With `N` photons emitted, each starts with `Φ_total / N` on average (lights are chosen in
 //!   proportion to their power).
-//! - Tracing is deterministic: photon path `i` draws from `Rng::new(seed, i)`, so results are
-//!   bit-identical for any number of threads.
+//! - Tracing is deterministic: photon path `i` draws from its own stream `Rng::new(seed, i)`
+//!   (the key hashed into both the PCG state and its increment, so neighbouring paths and
+//!   seeds are independent), so results are bit-identical for any number of threads.
 //! - Ray queries ([`Scene::intersect`], [`Scene::occluded`]) are watertight: no ray slips
 //!   between triangles that share an edge. Scenes of up to 64 primitives test every triangle
 //!   (four at a time); larger ones go through an obvhs BVH, which is tested to find exactly

@@ -63,9 +63,7 @@ fn black_box_stores_exactly_the_light_power_as_direct_photons() {
     let built = PhotonMaps::build(&scene, &maps, traced).unwrap();
     built.validate().unwrap();
     let tree = built.map(0).tree();
-    let decoded: DVec3 = (0..tree.len() as u32)
-        .map(|i| tree.get(i).power().as_dvec3())
-        .sum();
+    let decoded: DVec3 = (0..tree.len() as u32).map(|i| tree.power(i).as_dvec3()).sum();
     assert!(
         ((decoded - power.as_dvec3()) / power.as_dvec3())
             .abs()

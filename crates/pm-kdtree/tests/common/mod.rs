@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use glam::Vec3;
-use pm_kdtree::{CompactPhoton, Photon, PhotonKind};
+use pm_kdtree::{Photon, PhotonKind};
 
 /// The seed of this run: `PM_KDTREE_SEED` when set, else a fixed default. Printed so a
 /// failing run can be repeated.
@@ -69,17 +69,15 @@ pub fn box_walls(rng: &mut Rng, n: usize) -> Vec<Vec3> {
         .collect()
 }
 
-/// Compact photons at `points` with random kinds.
-pub fn photons_at(rng: &mut Rng, points: &[Vec3]) -> Vec<CompactPhoton> {
+/// Photons of 1 W at `points` with random kinds.
+pub fn photons_at(rng: &mut Rng, points: &[Vec3]) -> Vec<Photon> {
     points
         .iter()
-        .map(|&position| {
-            CompactPhoton::encode(&Photon {
-                position,
-                power: Vec3::ONE,
-                direction: Vec3::NEG_Y,
-                kind: rng.kind(),
-            })
+        .map(|&position| Photon {
+            position,
+            power: Vec3::ONE,
+            direction: Vec3::NEG_Y,
+            kind: rng.kind(),
         })
         .collect()
 }

@@ -23,14 +23,15 @@ impl Estimator for Disc {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        let total: Vec3 = if options.reject_behind {
+        // Powers relative to the map's scale, summed, then scaled once.
+        let relative: Vec3 = if options.reject_behind {
             gather_found(at, map.tree, options, scratch);
             scratch.photons.iter().map(|p| p.power).sum()
         } else {
             // Directions are only needed to reject photons from behind: skip decoding them.
             let found = scratch.neighbours.as_slice();
-            found.iter().map(|n| map.tree.get(n.index).power()).sum()
+            found.iter().map(|n| map.tree.get(n.index).relative_power()).sum()
         };
-        total / (PI * r * r)
+        relative * (map.tree.power_scale().watts() / (PI * r * r))
     }
 }

@@ -32,12 +32,12 @@ impl VolumeMetric for Euclidean {
 }
 
 /// Hey & Purgathofer's estimator in a cube (the k nearest under L∞), with the cosine at the
-/// query point so that it conserves energy (DESIGN.md 5.2).
+/// query point so that it conserves energy.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GeometryCube;
 
 /// The geometry estimator in a ball (the k nearest under L2) with the exact polygon–ball area
-/// (DESIGN.md 5.3).
+/// of each polygon inside the ball.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GeometryBall;
 
@@ -85,7 +85,8 @@ fn geometry_irradiance<M: VolumeMetric>(
     } = scratch;
     let orientation = if at.front_face { 1.0 } else { -1.0 };
     collect_faces(&volume, map.polygons, orientation, clip, candidates, faces);
-    spread_power(at.normal, photons, faces)
+    // The gathered powers are relative to the map's scale.
+    spread_power(at.normal, photons, faces) * map.tree.power_scale().watts()
 }
 
 /// The geometry estimate for a given gather `volume` and `photons` (already gathered), over

@@ -1,5 +1,6 @@
 //! Radiance estimators: the irradiance at a surface point from the photons of one map
-//! (DESIGN.md section 5). The trait is generic-friendly; [`EstimatorKind`] picks one at run time.
+//! (Jensen's disc, and Hey & Purgathofer's geometry-based area in a cube or a ball). The
+//! trait is generic-friendly; [`EstimatorKind`] picks one at run time.
 
 mod disc;
 mod geometry;
@@ -48,10 +49,13 @@ pub struct MapView<'a> {
     pub polygons: &'a PolygonSet,
 }
 
-/// A photon decoded for the estimate: power (W per channel) and travel direction.
+/// A photon decoded for the estimate: power and travel direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GatheredPhoton {
-    /// Power per RGB channel (watts).
+    /// Power per RGB channel, in the unit the estimate should come out in: watts when passed
+    /// to [`irradiance_in_volume`]. The estimators gather a map's photons relative to its
+    /// [`pm_kdtree::PowerScale`] ([`pm_kdtree::CompactPhoton::relative_power`]) and multiply
+    /// the estimate by the scale once.
     pub power: Vec3,
     /// Direction of travel, of any positive length: the estimators use it only in signs of
     /// dot products and in ratios of them, which do not depend on its length. Photons
@@ -128,7 +132,9 @@ pub(crate) fn find_nearest<M: pm_kdtree::Metric>(
 }
 
 /// Decodes the neighbours found by the last query into `scratch.photons`, dropping photons
-/// that arrive from behind the surface when `options.reject_behind` is set.
+/// that arrive from behind the surface when `options.reject_behind` is set. Their powers are
+/// relative to the tree's power scale: multiply the estimate by
+/// [`PhotonTree::power_scale`]'s watts.
 pub(crate) fn gather_found(
     at: SurfacePoint,
     tree: &PhotonTree,
@@ -144,7 +150,7 @@ pub(crate) fn gather_found(
             continue;
         }
         scratch.photons.push(GatheredPhoton {
-            power: p.power(),
+            power: p.relative_power(),
             direction,
         });
     }

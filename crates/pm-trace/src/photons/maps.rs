@@ -5,7 +5,7 @@ use super::TracedPhotons;
 use crate::{MapAssignment, MapError, PartId, Scene, TraceError};
 use glam::Vec3;
 use pm_geom::{Aabb, PolygonSet};
-use pm_kdtree::{CompactPhoton, PhotonTree};
+use pm_kdtree::PhotonTree;
 use rayon::prelude::*;
 
 /// One photon map: its photons and its geometry.
@@ -136,6 +136,14 @@ impl PhotonMaps {
         Ok(())
     }
 
+    /// Photon power channels (positive and finite) too small to encode relative to their
+    /// map's power scale, so stored as zero, over all maps: more than 2⁴⁰ (about 10¹²) times
+    /// smaller than the map's brightest photon channel. Zero in any ordinary scene; see
+    /// [`PhotonTree::channels_below_range`].
+    pub fn channels_below_range(&self) -> u64 {
+        self.maps.iter().map(|m| m.tree.channels_below_range()).sum()
+    }
+
     /// The assignment the maps were built with.
     pub fn assignment(&self) -> &MapAssignment {
         &self.assignment
@@ -148,9 +156,8 @@ fn build_map(
     photons: Vec<pm_kdtree::Photon>,
     parts: &[PartId],
 ) -> Result<PhotonMap, MapError> {
-    let compact: Vec<CompactPhoton> = photons.iter().map(CompactPhoton::encode).collect();
-    drop(photons);
-    let tree = PhotonTree::build(compact).map_err(|source| MapError::Tree { map, source })?;
+    // Encodes relative to the map's brightest channel and drops the full-precision photons.
+    let tree = PhotonTree::build(photons).map_err(|source| MapError::Tree { map, source })?;
     let mut geometry = PolygonSet::new();
     let mut bounds = Aabb::EMPTY;
     for &part in parts {
