@@ -12,16 +12,47 @@ mod greedy;
 mod outline;
 
 use crate::{Aabb, polygon_vector_area};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use greedy::SharedEdge;
 use outline::{VertexKey, accepts, simplify_outline};
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A multiply-rotate hash (as in rustc's FxHash) for vertex keys: merging hashes every edge
+/// twice, and SipHash's resistance to chosen keys buys nothing on mesh coordinates.
+type FastHash = BuildHasherDefault<FxHasher>;
+
+#[derive(Default)]
+struct FxHasher(u64);
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(4) {
+            let mut word = [0u8; 4];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u32(u32::from_le_bytes(word));
+        }
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_usize(&mut self, i: usize) {
+        self.0 = (self.0.rotate_left(5) ^ i as u64).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
 
 /// Tolerances of [`CoplanarMerger`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MergeOptions {
     /// Largest distance of a vertex from its region's plane, and of a dropped collinear vertex
-    /// from the line of its neighbours, as a fraction of the input's bounding-box diagonal.
+    /// from the line of its neighbours, as a fraction of the input's bounding-box diagonal
+    /// (plus four `f32` roundings of the largest coordinate).
     pub relative_distance: f32,
     /// Largest angle between the normals of polygons merged together, in radians.
     pub max_angle: f32,
@@ -81,6 +112,8 @@ pub struct CoplanarMerger {
 
 /// Marks a directed edge used by more than one polygon: it joins nothing.
 const AMBIGUOUS: u32 = u32::MAX;
+/// No polygon across an edge.
+const NONE: u32 = u32::MAX;
 /// A polygon not yet given a region.
 const UNASSIGNED: u32 = u32::MAX;
 
@@ -134,6 +167,10 @@ impl CoplanarMerger {
         self.bounds
     }
 
+    fn vector_area(&self, i: u32) -> DVec3 {
+        self.normals[i as usize].as_dvec3() * self.areas[i as usize]
+    }
+
     fn polygon(&self, i: u32) -> &[Vec3] {
         &self.vertices[self.starts[i as usize]..self.starts[i as usize + 1]]
     }
@@ -149,15 +186,16 @@ impl CoplanarMerger {
     /// were pushed, in the order of their regions' first polygons.
     pub fn merge(&self, mut emit: impl FnMut(&[Vec3])) {
         let n = self.len() as u32;
-        let diagonal = self.bounds.diagonal();
-        let tol = if diagonal.is_finite() {
-            self.options.relative_distance * diagonal
-        } else {
-            0.0
-        };
-        let min_cos = self.options.max_angle.cos();
+        // Relative to the input's size, and never below the rounding of its coordinates.
+        let magnitude = self.bounds.min.abs().max(self.bounds.max.abs()).max_element();
+        let tol = self.options.relative_distance * self.bounds.diagonal() + 4.0 * f32::EPSILON * magnitude;
+        let tol = if tol.is_finite() { tol } else { 0.0 };
+        let min_cos = f64::from(self.options.max_angle).cos();
 
-        let mut owner: HashMap<(VertexKey, VertexKey), u32> = HashMap::with_capacity(self.vertices.len());
+        // across[starts[i] + k]: the polygon across edge k of polygon i, when exactly one
+        // polygon walks it the other way and no other polygon walks it this way.
+        let mut owner: HashMap<(VertexKey, VertexKey), u32, FastHash> =
+            HashMap::with_capacity_and_hasher(self.vertices.len(), FastHash::default());
         for i in 0..n {
             for (a, b) in self.edges(i) {
                 owner
@@ -166,16 +204,24 @@ impl CoplanarMerger {
                     .or_insert(i);
             }
         }
-        // The polygon across edge a → b of polygon i, when exactly one walks it as b → a.
-        let neighbour = |i: u32, a: Vec3, b: Vec3| -> Option<u32> {
-            let (ka, kb) = (VertexKey::of(a), VertexKey::of(b));
-            if owner.get(&(ka, kb)) != Some(&i) {
-                return None;
+        let mut across = vec![NONE; self.vertices.len()];
+        for i in 0..n {
+            let start = self.starts[i as usize];
+            for (k, (a, b)) in self.edges(i).enumerate() {
+                let (ka, kb) = (VertexKey::of(a), VertexKey::of(b));
+                if owner.get(&(ka, kb)) == Some(&i)
+                    && let Some(&q) = owner.get(&(kb, ka))
+                    && q != AMBIGUOUS
+                    && q != i
+                {
+                    across[start + k] = q;
+                }
             }
-            owner
-                .get(&(kb, ka))
-                .copied()
-                .filter(|&q| q != AMBIGUOUS && q != i)
+        }
+        drop(owner);
+        let neighbours = |i: u32| {
+            let (start, end) = (self.starts[i as usize], self.starts[i as usize + 1]);
+            across[start..end].iter().copied().zip(self.edges(i))
         };
 
         let mut region = vec![UNASSIGNED; n as usize];
@@ -185,14 +231,17 @@ impl CoplanarMerger {
             if region[seed as usize] != UNASSIGNED {
                 continue;
             }
-            let normal = self.normals[seed as usize];
-            let offset = normal.dot(self.polygon(seed)[0]);
-            let coplanar = |q: u32| {
-                self.normals[q as usize].dot(normal) >= min_cos
+            // The region's plane: through the seed's first vertex, normal to the sum of the
+            // members' vector areas, which sharpens as the region grows (one small polygon's
+            // normal is too rough to hold a whole wall within the tolerance).
+            let origin = self.polygon(seed)[0].as_dvec3();
+            let mut vector_area = self.vector_area(seed);
+            let in_plane = |q: u32, normal: DVec3, tol: f64| {
+                self.normals[q as usize].as_dvec3().dot(normal) >= min_cos
                     && self
                         .polygon(q)
                         .iter()
-                        .all(|&v| (normal.dot(v) - offset).abs() <= tol)
+                        .all(|&v| (v.as_dvec3() - origin).dot(normal).abs() <= tol)
             };
             region[seed as usize] = seed;
             members.clear();
@@ -201,23 +250,34 @@ impl CoplanarMerger {
             while next < members.len() {
                 let p = members[next];
                 next += 1;
-                for (a, b) in self.edges(p) {
-                    if let Some(q) = neighbour(p, a, b)
+                for (q, _) in neighbours(p) {
+                    if q != NONE
                         && region[q as usize] == UNASSIGNED
-                        && coplanar(q)
+                        && in_plane(q, vector_area.normalize(), f64::from(tol))
                     {
                         region[q as usize] = seed;
                         members.push(q);
+                        vector_area += self.vector_area(q);
                     }
                 }
             }
-            if members.len() == 1 {
-                emit(self.polygon(seed));
+            let normal = vector_area.normalize();
+            // Each member was within the tolerance of the plane as it stood when it joined;
+            // all must be within twice of the final one, or the region stays as it was.
+            if members.len() == 1 || !members.iter().all(|&m| in_plane(m, normal, 2.0 * f64::from(tol))) {
+                for &m in &members {
+                    emit(self.polygon(m));
+                }
                 continue;
             }
+            let normal = normal.as_vec3();
             let area: f64 = members.iter().map(|&m| self.areas[m as usize]).sum();
-            let in_region = |q: Option<u32>| q.is_some_and(|q| region[q as usize] == seed);
-            if let Some(outline) = self.single_outline(&members, |p, a, b| in_region(neighbour(p, a, b))) {
+            let in_region = |q: u32| q != NONE && region[q as usize] == seed;
+            if let Some(outline) = Self::single_outline(&members, |p| {
+                neighbours(p)
+                    .filter(move |&(q, _)| !in_region(q))
+                    .map(|(_, edge)| edge)
+            }) {
                 simplify_outline(&outline, tol, &mut simplified);
                 if accepts(&simplified, normal, area) {
                     emit(&simplified);
@@ -227,8 +287,9 @@ impl CoplanarMerger {
             let local: HashMap<u32, u32> = members.iter().enumerate().map(|(l, &m)| (m, l as u32)).collect();
             let mut shared = Vec::new();
             for &p in &members {
-                for (a, b) in self.edges(p) {
-                    if let Some(q) = neighbour(p, a, b).filter(|&q| p < q)
+                for (q, (a, b)) in neighbours(p) {
+                    if q != NONE
+                        && p < q
                         && let Some(&lq) = local.get(&q)
                     {
                         shared.push(SharedEdge {
@@ -248,16 +309,16 @@ impl CoplanarMerger {
 
     /// The region's boundary (edges without a neighbour in it) chained into a loop, when it
     /// forms exactly one loop that touches itself nowhere.
-    fn single_outline(
-        &self,
+    fn single_outline<I: Iterator<Item = (Vec3, Vec3)>>(
         members: &[u32],
-        interior: impl Fn(u32, Vec3, Vec3) -> bool,
+        boundary_of: impl Fn(u32) -> I,
     ) -> Option<Vec<Vec3>> {
         let mut boundary: Vec<(Vec3, Vec3)> = Vec::new();
         for &p in members {
-            boundary.extend(self.edges(p).filter(|&(a, b)| !interior(p, a, b)));
+            boundary.extend(boundary_of(p));
         }
-        let mut from: HashMap<VertexKey, usize> = HashMap::with_capacity(boundary.len());
+        let mut from: HashMap<VertexKey, usize, FastHash> =
+            HashMap::with_capacity_and_hasher(boundary.len(), FastHash::default());
         for (e, &(a, _)) in boundary.iter().enumerate() {
             if from.insert(VertexKey::of(a), e).is_some() {
                 return None;
