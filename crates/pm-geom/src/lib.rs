@@ -5,7 +5,8 @@
 //! enclosed by a gather volume. This crate answers "how much of this polygon lies inside the
 //! volume" for a cube ([`Aabb`], Sutherland–Hodgman clipping) and a ball ([`Ball`], exact
 //! polygon ∩ disc area) through one trait, [`GatherVolume`]; finds the candidate polygons
-//! fast ([`PolygonSet`], with a bounding-volume hierarchy); and tells which faces may share
+//! fast ([`PolygonSet`], with a bounding-volume hierarchy, its coplanar polygons merged by
+//! [`CoplanarMerger`]); and tells which faces may share
 //! a photon map ([`HalfEdgeMesh`]: twins, non-manifold edges, crease angles).
 //!
 //! # Conventions
@@ -47,6 +48,7 @@ mod bounds_bvh;
 pub mod clip;
 pub mod contact;
 pub mod error;
+pub mod merge;
 pub mod mesh;
 pub mod plane;
 pub mod polygon;
@@ -59,6 +61,7 @@ pub use clip::{ClipScratch, clip_polygon_to_aabb, split_convex_polygon_by_plane}
 pub use contact::{ContactSplit, split_polygons_at_contacts};
 pub use error::MeshError;
 pub use glam;
+pub use merge::{CoplanarMerger, MergeOptions, merge_coplanar_polygons};
 pub use mesh::{FaceId, HalfEdgeId, HalfEdgeMesh, MeshOptions, VertexId};
 pub use plane::Plane;
 pub use polygon::{polygon_area, polygon_normal, polygon_vector_area};

@@ -75,7 +75,9 @@ pub use glam;
 pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, PointLight, SpotLight};
 pub use material::{Material, Surface};
 pub use partition::{Contact, CreaseAngle, MapAssignment, Partitioner, SingleMap};
-pub use photons::{PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons};
+pub use photons::{
+    MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons,
+};
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;

@@ -4,9 +4,21 @@
 use super::TracedPhotons;
 use crate::{MapAssignment, MapError, PartId, Scene, TraceError};
 use glam::Vec3;
-use pm_geom::{Aabb, PolygonSet};
+use pm_geom::{Aabb, CoplanarMerger, MergeOptions, PolygonSet};
 use pm_kdtree::PhotonTree;
 use rayon::prelude::*;
+
+/// How a map stores its polygons for the geometry-based estimators.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MapGeometry {
+    /// Coplanar, edge-connected faces merged into larger convex polygons (the same area in
+    /// any volume, up to rounding): a gather volume over a finely split wall clips one
+    /// polygon, not hundreds.
+    #[default]
+    Merged,
+    /// Every face (and proxy polygon) as it is, one polygon each.
+    PerFace,
+}
 
 /// One photon map: its photons and its geometry.
 #[derive(Clone, Debug)]
@@ -22,7 +34,8 @@ impl PhotonMap {
         &self.tree
     }
 
-    /// The map's polygons (mesh faces as they are, analytic parts as fine proxies), indexed.
+    /// The map's polygons (mesh faces with coplanar neighbours merged, analytic parts as fine
+    /// proxies), indexed.
     pub fn geometry(&self) -> &PolygonSet {
         &self.geometry
     }
@@ -41,8 +54,19 @@ pub struct PhotonMaps {
 }
 
 impl PhotonMaps {
-    /// Builds every map (in parallel): a kd-tree over its photons and its polygon set.
+    /// Builds every map (in parallel): a kd-tree over its photons and its polygon set, with
+    /// coplanar faces merged ([`MapGeometry::Merged`]).
     pub fn build(scene: &Scene, assignment: &MapAssignment, traced: TracedPhotons) -> Result<Self, MapError> {
+        Self::build_with(scene, assignment, traced, MapGeometry::Merged)
+    }
+
+    /// As [`PhotonMaps::build`], storing each map's polygons as `geometry` says.
+    pub fn build_with(
+        scene: &Scene,
+        assignment: &MapAssignment,
+        traced: TracedPhotons,
+        geometry: MapGeometry,
+    ) -> Result<Self, MapError> {
         if assignment.part_count() != scene.part_count() {
             return Err(TraceError::AssignmentMismatch {
                 assigned: assignment.part_count(),
@@ -63,7 +87,7 @@ impl PhotonMaps {
             .into_par_iter()
             .zip(parts.par_iter())
             .enumerate()
-            .map(|(m, (photons, parts))| build_map(scene, m as u32, photons, parts))
+            .map(|(m, (photons, parts))| build_map(scene, m as u32, photons, parts, geometry))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(PhotonMaps {
             maps,
@@ -155,18 +179,37 @@ fn build_map(
     map: u32,
     photons: Vec<pm_kdtree::Photon>,
     parts: &[PartId],
+    kind: MapGeometry,
 ) -> Result<PhotonMap, MapError> {
     // Encodes relative to the map's brightest channel and drops the full-precision photons.
     let tree = PhotonTree::build(photons).map_err(|source| MapError::Tree { map, source })?;
     let mut geometry = PolygonSet::new();
-    let mut bounds = Aabb::EMPTY;
-    for &part in parts {
-        scene.for_each_part_polygon(part, |polygon| {
-            if geometry.push(polygon).is_some() {
-                bounds = bounds.union(Aabb::from_points(polygon));
+    let bounds = match kind {
+        MapGeometry::PerFace => {
+            let mut bounds = Aabb::EMPTY;
+            for &part in parts {
+                scene.for_each_part_polygon(part, |polygon| {
+                    if geometry.push(polygon).is_some() {
+                        bounds = bounds.union(Aabb::from_points(polygon));
+                    }
+                });
             }
-        });
-    }
+            bounds
+        }
+        MapGeometry::Merged => {
+            let mut merger = CoplanarMerger::new(MergeOptions::DEFAULT);
+            for &part in parts {
+                scene.for_each_part_polygon(part, |polygon| {
+                    merger.push(polygon);
+                });
+            }
+            merger.merge(|polygon| {
+                geometry.push(polygon);
+            });
+            // The pushed faces' bounds: the merged outlines keep their extreme vertices.
+            merger.bounds()
+        }
+    };
     geometry.build_index();
     Ok(PhotonMap {
         tree,

@@ -5,6 +5,6 @@ mod maps;
 mod scatter;
 mod trace;
 
-pub use maps::{PhotonMap, PhotonMaps};
+pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
 pub use scatter::{fresnel_dielectric, reflect, refract};
 pub use trace::{TraceOptions, TraceStats, TracedPhotons, trace_photons};
