@@ -100,12 +100,18 @@ pub(crate) enum HitPrimitive {
     Shape(u32),
 }
 
+/// A triangle as the ray queries read it: its corners and its part, in one 40-byte record so
+/// a hit needs no second cache line for the part.
+#[derive(Clone, Copy, Debug)]
+struct TriangleRecord {
+    v: [Vec3; 3],
+    part: PartId,
+}
+
 /// The scene's ray-query structure.
 pub(crate) struct SceneBvh {
-    /// Corners of each triangle, in the search's order.
-    triangles: Vec<[Vec3; 3]>,
-    /// The part of each triangle.
-    triangle_parts: Vec<PartId>,
+    /// Each triangle, in the search's order.
+    triangles: Vec<TriangleRecord>,
     triangle_search: Search<TriangleBatches>,
     shapes: Vec<ShapePrimitive>,
     shape_search: Search<BoundsScan>,
@@ -184,21 +190,25 @@ impl SceneBvh {
         shapes: Vec<ShapePrimitive>,
         scan_max: usize,
     ) -> Self {
-        let (triangles, triangle_parts, triangle_search) = if triangles.is_empty() {
-            (triangles, parts, Search::Empty)
+        let record = |i: usize| TriangleRecord {
+            v: triangles[i],
+            part: parts[i],
+        };
+        let (triangles, triangle_search) = if triangles.is_empty() {
+            (Vec::new(), Search::Empty)
         } else if triangles.len() <= scan_max {
-            let batches = TriangleBatches::new(triangles.clone());
-            (triangles, parts, Search::Scan(batches))
+            let records = (0..triangles.len()).map(record).collect();
+            (records, Search::Scan(TriangleBatches::new(triangles.clone())))
         } else {
             let bounds = triangles
                 .iter()
                 .map(|v| to_obvhs(pm_geom::Aabb::from_points(v)))
                 .collect();
             let (bvh, order) = build_cwbvh(bounds);
-            let ordered: Vec<[Vec3; 3]> = order.iter().map(|&i| triangles[i as usize]).collect();
-            drop(triangles);
-            let ordered_parts = order.iter().map(|&i| parts[i as usize]).collect();
-            (ordered, ordered_parts, Search::Bvh(bvh))
+            (
+                order.iter().map(|&i| record(i as usize)).collect(),
+                Search::Bvh(bvh),
+            )
         };
         let (shapes, shape_search) = if shapes.is_empty() {
             (shapes, Search::Empty)
@@ -218,7 +228,6 @@ impl SceneBvh {
         };
         SceneBvh {
             triangles,
-            triangle_parts,
             triangle_search,
             shapes,
             shape_search,
@@ -231,8 +240,8 @@ impl SceneBvh {
     pub(crate) fn part_and_normal(&self, hit: HitPrimitive, p: Vec3) -> (PartId, Vec3) {
         match hit {
             HitPrimitive::Triangle(i) => (
-                self.triangle_parts[i as usize],
-                triangle_normal(&self.triangles[i as usize]),
+                self.triangles[i as usize].part,
+                triangle_normal(&self.triangles[i as usize].v),
             ),
             HitPrimitive::Shape(i) => {
                 let s = &self.shapes[i as usize];
@@ -250,8 +259,7 @@ impl SceneBvh {
                 Search::Bvh(b) => b.nodes.capacity() * size_of::<obvhs::cwbvh::node::CwBvhNode>(),
             }
         }
-        self.triangles.capacity() * size_of::<[Vec3; 3]>()
-            + self.triangle_parts.capacity() * size_of::<PartId>()
+        self.triangles.capacity() * size_of::<TriangleRecord>()
             + self.shapes.capacity() * size_of::<ShapePrimitive>()
             + search_bytes(&self.triangle_search, TriangleBatches::heap_bytes)
             + search_bytes(&self.shape_search, BoundsScan::heap_bytes)
@@ -276,7 +284,7 @@ impl SceneBvh {
                     t_min,
                     || best.get().0,
                     |i, t| {
-                        if accept(self.triangle_parts[i]) {
+                        if accept(self.triangles[i].part) {
                             best.set((t, i as u32));
                         }
                         true
@@ -313,8 +321,8 @@ impl SceneBvh {
         // (shifted by BACKSTEP and rounded up a little, so pruning stays conservative).
         let mut best = (t_max, u32::MAX);
         bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
-            let t = w.intersect_triangle(&self.triangles[i], t_min, best.0);
-            if t < best.0 && accept(self.triangle_parts[i]) {
+            let t = w.intersect_triangle(&self.triangles[i].v, t_min, best.0);
+            if t < best.0 && accept(self.triangles[i].part) {
                 best = (t, i as u32);
                 (t + BACKSTEP) * (1.0 + 1e-6)
             } else {
@@ -397,7 +405,9 @@ impl SceneBvh {
             }
             Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |_, i| {
                 // Any distance below obvhs's (shifted) t_max reports the hit.
-                if w.intersect_triangle(&self.triangles[i], t_min, t_max).is_finite() {
+                if w.intersect_triangle(&self.triangles[i].v, t_min, t_max)
+                    .is_finite()
+                {
                     f32::NEG_INFINITY
                 } else {
                     f32::INFINITY
@@ -457,11 +467,9 @@ mod tests {
         ] {
             let scene = crate::scenes::build(name).unwrap();
             let search = scene.search();
-            let (triangles, parts, shapes) = (
-                search.triangles.clone(),
-                search.triangle_parts.clone(),
-                search.shapes.clone(),
-            );
+            let (triangles, parts): (Vec<[Vec3; 3]>, Vec<PartId>) =
+                search.triangles.iter().map(|r| (r.v, r.part)).unzip();
+            let shapes = search.shapes.clone();
             let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), shapes.clone(), usize::MAX);
             let bvh = SceneBvh::build_with(triangles.clone(), parts, shapes, 0);
             assert!(
