@@ -1,4 +1,4 @@
-//! Reproduces the report's results (DESIGN.md section 8): the 16 timed cases (four scenes ×
+//! Reproduces the report's results (its section 8): the 16 timed cases (four scenes ×
 //! basic / multiple maps / geometry area / both) plus the ball estimator, each measured against
 //! a path-traced reference, written to `docs/results.md` with 2×2 image grids under
 //! `docs/results/`.

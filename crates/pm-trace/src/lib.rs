@@ -6,8 +6,9 @@
 //! Every mesh face, sphere and ring side is a *part* ([`PartId`]); a [`Partitioner`]
 //! ([`SingleMap`], [`CreaseAngle`]) assigns each part a photon map. [`trace_photons`] shoots
 //! photons from the lights and stores them per map; [`PhotonMaps::build`] turns them into
-//! kd-trees plus each map's polygons for the geometry-based estimators. The paper's scenes are
-//! in [`scenes`].
+//! kd-trees plus each map's polygons for the geometry-based estimators (coplanar, edge-connected
+//! faces merged into larger convex polygons, so a finely split wall costs one clip). The
+//! paper's scenes, and scale scenes for measuring how cost grows, are in [`scenes`].
 //!
 //! # Conventions
 //!
@@ -21,9 +22,16 @@
 //!   (the key hashed into both the PCG state and its increment, so neighbouring paths and
 //!   seeds are independent), so results are bit-identical for any number of threads.
 //! - Ray queries ([`Scene::intersect`], [`Scene::occluded`]) are watertight: no ray slips
-//!   between triangles that share an edge. Scenes of up to 64 primitives test every triangle
-//!   (four at a time); larger ones go through an obvhs BVH, which is tested to find exactly
-//!   the same hits, also right next to the ray's origin and along the axes.
+//!   between triangles that share an edge. Scenes of up to 64 triangles test every triangle
+//!   (four at a time); larger ones go through an obvhs 8-wide BVH built by our own binned-SAH
+//!   builder (O(n log n) on any input, a triangle fan included), which is tested to find
+//!   exactly the same hits, also right next to the ray's origin and along the axes. Analytic
+//!   shapes are searched apart from the triangles.
+//! - Memory: a built scene holds 77–90 bytes per triangle ([`Scene::heap_bytes`]: the
+//!   half-edge mesh, each triangle's corners and part once, the BVH nodes); building it peaks
+//!   near 400 bytes per triangle. Ray cost grows with the log of the triangle count plus
+//!   cache misses: 24 → 240k triangles costs about 4–5× per path-traced sample (see
+//!   `examples/scale.rs`).
 //!
 //! # Features
 //!

@@ -1,5 +1,5 @@
 //! The built-in scenes: each builds, its meshes pass `validate()`, its camera looks at it,
-//! its lights have power, and its geometry is as DESIGN.md section 8 describes.
+//! its lights have power, and its geometry is as the report describes.
 
 use pm_trace::glam::Vec3;
 use pm_trace::{Material, Ray, RayKind, Scene, scenes};

@@ -1,4 +1,4 @@
-//! Render modes: what radiance a camera ray carries (DESIGN.md section 7). `Visualize` shows the
+//! Render modes: what radiance a camera ray carries. `Visualize` shows the
 //! photon maps directly, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
 //! unbiased reference.
 

@@ -100,9 +100,12 @@ pub struct GltfOptions {
     /// When the file has neither punctual lights nor emissive surfaces, add a point light at
     /// the camera (a "headlight") so the scene still renders (on by default).
     pub default_light: bool,
-    /// The most triangles the scene may hold after instancing (20 million by default, about
-    /// 1 GB of geometry). Many nodes may place the same mesh, so a small file can describe a
-    /// huge scene; past this limit loading stops with an error instead of exhausting memory.
+    /// The most triangles the scene may hold after instancing (20 million by default). A built
+    /// scene holds 77–90 bytes per triangle (mesh, triangles, BVH; see `Scene::heap_bytes`),
+    /// about 1.8 GB at this limit, and building it peaks near 400 bytes per triangle (the
+    /// binary BVH and its 8-wide conversion), about 8 GB; photon maps come on top. Many nodes
+    /// may place the same mesh, so a small file can describe a huge scene; past this limit
+    /// loading stops with an error instead of exhausting memory.
     pub max_triangles: u64,
 }
 

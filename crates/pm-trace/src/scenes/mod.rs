@@ -1,4 +1,4 @@
-//! The report's built-in scenes by name (DESIGN.md section 8), each with its camera.
+//! The report's built-in scenes by name, each with its camera, and the scale scenes.
 
 mod accordion;
 mod cornell;
