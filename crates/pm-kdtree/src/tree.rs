@@ -141,6 +141,16 @@ impl PhotonTree {
         tree
     }
 
+    /// Bytes this tree holds on the heap: 20 per photon (position and packed payload) plus
+    /// 5 per inner node (split value and axis), one inner node per leaf of up to
+    /// [`LEAF_CAPACITY`] photons: under 20.3 bytes per photon in all.
+    pub fn heap_bytes(&self) -> usize {
+        (self.xs.capacity() + self.ys.capacity() + self.zs.capacity() + self.splits.capacity())
+            * size_of::<f32>()
+            + self.payload.capacity() * size_of::<u64>()
+            + self.axes.capacity()
+    }
+
     /// Number of photons.
     pub fn len(&self) -> usize {
         self.xs.len()

@@ -22,6 +22,25 @@ fn compact_photon_is_20_bytes() {
     assert_eq!(size_of::<CompactPhoton>(), 20);
 }
 
+#[test]
+fn a_tree_holds_at_most_21_bytes_per_photon() {
+    let mut rng = Rng::new(seed());
+    for n in [1_000usize, 100_000] {
+        let photons: Vec<Photon> = (0..n)
+            .map(|_| Photon {
+                position: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
+                ..photon(Vec3::ONE, Vec3::Y, PhotonKind::Direct)
+            })
+            .collect();
+        let tree = PhotonTree::build(photons).unwrap();
+        let per_photon = tree.heap_bytes() as f64 / n as f64;
+        assert!(
+            (20.0..=21.0).contains(&per_photon),
+            "{n} photons: {per_photon:.2} bytes each"
+        );
+    }
+}
+
 /// Relative error of a decoded channel against the exact input, in f64.
 fn relative_error(decoded: f32, exact: f32) -> f64 {
     (decoded as f64 / exact as f64 - 1.0).abs()
