@@ -370,8 +370,9 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
 }
 
 /// Part of every cached reference's file name: bump it when a built-in scene or the path
-/// tracer changes, so that no result is measured against a stale reference.
-const REFERENCE_VERSION: &str = "v1";
+/// tracer changes, so that no result is measured against a stale reference (v2: independent,
+/// hashed random streams).
+const REFERENCE_VERSION: &str = "v2";
 
 /// Loads the cached reference, or renders it as two half-sample images with independent seeds
 /// (their difference gives the reference's own noise) and caches both.
