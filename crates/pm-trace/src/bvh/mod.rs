@@ -13,15 +13,16 @@ use crate::{PartId, Ray};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
-use obvhs::ray::RayHit;
 
 mod batch;
 mod sah;
 mod scan;
+mod traverse;
 mod watertight;
 
 use batch::TriangleBatches;
 use scan::BoundsScan;
+use traverse::for_each_leaf_primitive;
 pub(crate) use watertight::WatertightRay;
 
 /// Triangle sets (and shape sets) of at most this many are searched by a flat scan instead
@@ -123,38 +124,6 @@ impl std::fmt::Debug for SceneBvh {
             .field("triangles", &self.triangles.len())
             .field("shapes", &self.shapes.len())
             .finish()
-    }
-}
-
-/// How far (in ray parameter units) the obvhs traversal starts behind the true origin.
-///
-/// obvhs's node test raises every child box's entry distance to at least 1e-4 (an absolute
-/// `EPSILON` in `cwbvh::node`), so a box the ray leaves before `t = 1e-4` was culled: a wall
-/// within 0.1 mm of the origin (in metres) was never hit, and rays starting near a corner
-/// passed through the adjacent wall. Traversing from `origin − BACKSTEP · direction` puts
-/// every true distance `t ≥ 0` at `t + BACKSTEP > 1e-4`; the exact tests keep the true origin.
-const BACKSTEP: f32 = 2e-4;
-
-/// The obvhs ray for distances `(t_min, t_max)` of `ray`, started [`BACKSTEP`] behind it.
-///
-/// Two fixes to what `obvhs::ray::Ray::new` would make:
-/// - its node test picks slab sides by `direction < 0` but inverts −0.0 to a large *negative*
-///   number, so an axis-aligned ray with a −0.0 component missed every node (found by the
-///   watertightness test); adding +0.0 turns −0.0 into +0.0;
-/// - it inverts any component below `f32::EPSILON` to `±1/f32::EPSILON`, so a ray running
-///   along an axis 1e-7 inside a box's face saw that box end after t ≈ 0.8 and missed what
-///   lies beyond. The inverse here is `1/d` clamped to ±1e30 (a zero component gives 1e30,
-///   and `0 · 1e30` stays 0 rather than NaN), as in the flat scan's slab test.
-#[inline]
-fn obvhs_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
-    let direction = Vec3A::from(ray.direction + Vec3::ZERO);
-    let origin = Vec3A::from(ray.origin) - direction * BACKSTEP;
-    obvhs::ray::Ray {
-        origin,
-        direction,
-        inv_direction: direction.recip().clamp(Vec3A::splat(-1e30), Vec3A::splat(1e30)),
-        tmin: t_min + BACKSTEP,
-        tmax: t_max + BACKSTEP,
     }
 }
 
@@ -317,17 +286,16 @@ impl SceneBvh {
         t_max: f32,
         accept: &impl Fn(PartId) -> bool,
     ) -> Option<(f32, HitPrimitive)> {
-        // The exact closest hit is kept here; obvhs only gets a distance to prune by
-        // (shifted by BACKSTEP and rounded up a little, so pruning stays conservative).
         let mut best = (t_max, u32::MAX);
-        bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
-            let t = w.intersect_triangle(&self.triangles[i].v, t_min, best.0);
-            if t < best.0 && accept(self.triangles[i].part) {
+        for_each_leaf_primitive(bvh, ray, t_min, t_max, |i, limit| {
+            let record = &self.triangles[i];
+            let t = w.intersect_triangle(&record.v, t_min, best.0);
+            if t < best.0 && accept(record.part) {
                 best = (t, i as u32);
-                (t + BACKSTEP) * (1.0 + 1e-6)
-            } else {
-                f32::INFINITY
+                // Rounded up a little, so that pruning by it stays conservative.
+                *limit = t * (1.0 + 1e-6);
             }
+            true
         });
         (best.1 != u32::MAX).then_some((best.0, HitPrimitive::Triangle(best.1)))
     }
@@ -365,18 +333,16 @@ impl SceneBvh {
             }
             Search::Bvh(bvh) => {
                 let mut best = (t_max, u32::MAX);
-                bvh.ray_traverse(obvhs_ray(ray, t_min, t_max), &mut RayHit::none(), |_, i| {
+                for_each_leaf_primitive(bvh, ray, t_min, t_max, |i, limit| {
                     let s = &self.shapes[i];
-                    if !accept(s.part()) {
-                        return f32::INFINITY;
+                    if accept(s.part()) {
+                        let t = s.intersect(ray.origin, ray.direction, t_min, best.0);
+                        if t < best.0 {
+                            best = (t, i as u32);
+                            *limit = t * (1.0 + 1e-6);
+                        }
                     }
-                    let t = s.intersect(ray.origin, ray.direction, t_min, best.0);
-                    if t < best.0 {
-                        best = (t, i as u32);
-                        (t + BACKSTEP) * (1.0 + 1e-6)
-                    } else {
-                        f32::INFINITY
-                    }
+                    true
                 });
                 best
             }
@@ -403,16 +369,16 @@ impl SceneBvh {
                 );
                 hit
             }
-            Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |_, i| {
-                // Any distance below obvhs's (shifted) t_max reports the hit.
-                if w.intersect_triangle(&self.triangles[i].v, t_min, t_max)
-                    .is_finite()
-                {
-                    f32::NEG_INFINITY
-                } else {
-                    f32::INFINITY
-                }
-            }),
+            Search::Bvh(bvh) => {
+                let mut hit = false;
+                for_each_leaf_primitive(bvh, ray, t_min, t_max, |i, _| {
+                    hit = w
+                        .intersect_triangle(&self.triangles[i].v, t_min, t_max)
+                        .is_finite();
+                    !hit
+                });
+                hit
+            }
         };
         triangle_hit || self.any_shape_hit(ray, t_min, t_max)
     }
@@ -439,9 +405,14 @@ impl SceneBvh {
                 );
                 hit
             }
-            Search::Bvh(bvh) => !bvh.ray_traverse_miss(obvhs_ray(ray, t_min, t_max), |_, i| {
-                if hits(i) { f32::NEG_INFINITY } else { f32::INFINITY }
-            }),
+            Search::Bvh(bvh) => {
+                let mut hit = false;
+                for_each_leaf_primitive(bvh, ray, t_min, t_max, |i, _| {
+                    hit = hits(i);
+                    !hit
+                });
+                hit
+            }
         }
     }
 }
