@@ -41,14 +41,15 @@ pub mod estimator;
 pub mod image;
 pub mod mode;
 pub mod progress;
+pub mod progressive;
 pub mod renderer;
 pub mod settings;
 pub mod stats;
 
 pub use error::RenderError;
 pub use estimator::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
-    GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
+    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
+    GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
 };
 pub use image::Image;
 pub use mode::{Lighting, Mode};

@@ -33,6 +33,7 @@ fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
         photons: 30_001,
         seed: 42,
         max_bounces: 64,
+        pass: 0,
     };
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
