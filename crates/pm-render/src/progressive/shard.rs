@@ -250,10 +250,18 @@ mod exr_io {
         pub fn read_exr(path: impl AsRef<Path>) -> Result<Shard, ShardError> {
             let path = path.as_ref();
             let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| io_error(path, e))?;
-            let attributes = meta
+            // The reader files unknown text attributes under the layer, whichever part of the
+            // header they were written to: look in both.
+            let attributes: std::collections::HashMap<Text, AttributeValue> = meta
                 .headers
                 .first()
-                .map(|h| h.shared_attributes.other.clone())
+                .map(|h| {
+                    let shared = h.shared_attributes.other.iter();
+                    shared
+                        .chain(h.own_attributes.other.iter())
+                        .map(|(k, v)| (k.clone(), v.clone()))
+                        .collect()
+                })
                 .unwrap_or_default();
             let get = |name: &'static str| -> Result<String, ShardError> {
                 match attributes.get(&Text::from(name)) {
