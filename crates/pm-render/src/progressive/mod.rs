@@ -193,10 +193,8 @@ pub struct ProgressiveStats {
     pub threads: usize,
     /// Partitioning the scene and tracing and building the pilot maps.
     pub pilot: Duration,
-    /// Photon tracing, summed over passes.
+    /// Photon tracing and map building, summed over passes.
     pub trace: Duration,
-    /// Map building, summed over passes.
-    pub build: Duration,
     /// Rendering, summed over passes.
     pub render: Duration,
     /// Wall time of the whole run.
