@@ -76,7 +76,7 @@ fn geometry_within<M: VolumeMetric>(
     options: &EstimatorOptions,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    if map.tree.is_empty() || !(extent > 0.0) {
+    if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
         return Vec3::ZERO;
     }
     let EstimatorScratch {
@@ -115,7 +115,7 @@ impl FixedVolumeEstimator for Disc {
         options: &EstimatorOptions,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        if map.tree.is_empty() || !(extent > 0.0) {
+        if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
             return Vec3::ZERO;
         }
         gather_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
