@@ -1,5 +1,6 @@
 //! Equal-time convergence: relative RMSE against a path-traced reference versus wall time for
-//! the progressive renderer (cube + crease maps) and the SPPM baseline (one global map), on
+//! the progressive renderer (cube + crease maps; photons for all light, or shadow rays for
+//! direct light as SPPM has it) and the SPPM baseline (one global map), on
 //! the report's four scenes. Prints a Markdown table.
 //!
 //! `cargo run --release --example convergence -- --size 96 --budgets 0.5,1,2,4,8`
@@ -47,8 +48,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         seed: 1,
         ..RenderSettings::default()
     };
-    println!("| scene | budget (s) | progressive passes | progressive rel. RMSE | SPPM passes | SPPM rel. RMSE | SPPM / progressive |");
-    println!("|---|---|---|---|---|---|---|");
+    println!(
+        "| scene | budget (s) | progressive passes | progressive rel. RMSE | progressive + shadow rays passes | rel. RMSE | SPPM passes | SPPM rel. RMSE | SPPM / progressive | SPPM / progressive + shadow rays |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for name in args.scenes.split(',') {
         let scene = scenes::build(name.trim())?;
         let start = Instant::now();
@@ -66,28 +69,35 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         eprintln!("{name}: reference in {:.1} s", start.elapsed().as_secs_f64());
         for &budget in &budgets {
             let time = Some(Duration::from_secs_f64(budget));
-            let progressive = ProgressiveRenderer::new(
-                EstimatorKind::GeometryCube,
-                ProgressiveSettings {
-                    passes: None,
-                    time_budget: time,
-                    ..ProgressiveSettings::new(base, 1)
-                },
-            )
-            .render(&scene, &CreaseAngle::default(), &())?;
+            let progressive = |mode| {
+                ProgressiveRenderer::new(
+                    EstimatorKind::GeometryCube,
+                    ProgressiveSettings {
+                        passes: None,
+                        time_budget: time,
+                        ..ProgressiveSettings::new(RenderSettings { mode, ..base }, 1)
+                    },
+                )
+                .render(&scene, &CreaseAngle::default(), &())
+            };
+            let visualize = progressive(Mode::Visualize)?;
+            let shadow = progressive(Mode::ShadowRays)?;
             let sppm = SppmRenderer::new(SppmSettings {
                 passes: None,
                 time_budget: time,
                 ..SppmSettings::new(base, 1)
             })
             .render(&scene, &())?;
-            let p = progressive.accumulation.mean().relative_rmse(&reference)?;
+            let p = visualize.accumulation.mean().relative_rmse(&reference)?;
+            let q = shadow.accumulation.mean().relative_rmse(&reference)?;
             let s = sppm.image.relative_rmse(&reference)?;
             println!(
-                "| {name} | {budget} | {} | {p:.4} | {} | {s:.4} | {:.2} |",
-                progressive.stats.passes,
+                "| {name} | {budget} | {} | {p:.4} | {} | {q:.4} | {} | {s:.4} | {:.2} | {:.2} |",
+                visualize.stats.passes,
+                shadow.stats.passes,
                 sppm.stats.passes,
-                s / p
+                s / p,
+                s / q
             );
         }
     }
