@@ -17,6 +17,7 @@ fn bench_trace(c: &mut Criterion) {
         photons,
         seed: 1,
         max_bounces: 64,
+        pass: 0,
     };
     // The throughput below counts emitted paths; each stores about 1.7 photons here.
     let stored = trace_photons(&scene, &maps, &options)

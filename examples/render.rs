@@ -15,6 +15,9 @@ use std::fs::{self, File};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+#[path = "render/progressive.rs"]
+mod progressive;
+
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
 #[derive(Parser, Debug)]
 #[command(version, about)]
@@ -29,7 +32,7 @@ struct Args {
     /// Radiance estimator: disc | cube | ball.
     #[arg(long, default_value = "cube")]
     estimator: String,
-    /// Render mode: visualize | shadow-rays | path-trace.
+    /// Render mode: visualize | shadow-rays | path-trace | progressive | sppm.
     #[arg(long, default_value = "visualize")]
     mode: String,
     /// Photon paths emitted from the lights.
@@ -63,6 +66,18 @@ struct Args {
     /// 2×2 grid.
     #[arg(long)]
     compare: bool,
+    /// Progressive and SPPM modes: passes to render (default 16 without --time).
+    #[arg(long)]
+    passes: Option<u64>,
+    /// Progressive mode: the first pass of this shard.
+    #[arg(long, default_value_t = 0)]
+    first_pass: u64,
+    /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
+    #[arg(long)]
+    time: Option<f64>,
+    /// Merge progressive shards (EXR files) into --out.
+    #[arg(long, num_args = 1..)]
+    merge: Vec<PathBuf>,
 }
 
 /// Makes a partitioner.
@@ -114,9 +129,12 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    if !args.merge.is_empty() {
+        return progressive::merge(args, &args.merge);
+    }
     let (width, height) = parse_image_size(&args.size).map_err(|e| e.to_string())?;
-    let mode: Mode = args
-        .mode
+    let progressive_mode = matches!(args.mode.as_str(), "progressive" | "sppm");
+    let mode: Mode = if progressive_mode { "visualize" } else { &args.mode }
         .parse()
         .map_err(|e: photon_maps::render::RenderError| e.to_string())?;
     let estimator: EstimatorKind = args
@@ -136,6 +154,9 @@ fn run(args: &Args) -> Result<(), String> {
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
+    if progressive_mode {
+        return progressive::run(args, settings, estimator);
+    }
 
     let (_, scene_name) = load_scene(&args.scene)?;
     let base = args

@@ -119,6 +119,7 @@ fn queries_ray_casts_and_estimators_allocate_nothing_once_warm() {
         photons: 20_000,
         seed: 3,
         max_bounces: 64,
+        pass: 0,
     };
     let maps = PhotonMaps::build(
         &scene,

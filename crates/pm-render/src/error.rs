@@ -100,6 +100,15 @@ pub enum RenderError {
         /// What failed.
         message: String,
     },
+    /// A progressive render in a mode other than visualize or shadow-rays.
+    #[error("mode {0} cannot render progressively (expected visualize or shadow-rays)")]
+    UnsupportedMode(crate::Mode),
+    /// Knaus & Zwicker's α outside (0, 1).
+    #[error("alpha must lie strictly between 0 and 1, got {0}")]
+    BadAlpha(f32),
+    /// A progressive render with zero passes, or with neither passes nor a time budget.
+    #[error("a progressive render needs at least one pass or a time budget")]
+    ZeroPasses,
     /// Photon tracing refused the scene or the options (no lights, zero power, …).
     #[error("photon tracing: {0}")]
     Trace(#[from] pm_trace::TraceError),

@@ -10,6 +10,9 @@
 //! - [`Renderer`]: photon tracing, map building and the image in tiles on rayon workers; the
 //!   image is bit-identical for any thread count. [`Progress`] observes it; [`RenderStats`]
 //!   times each phase.
+//! - [`progressive`]: a consistent progressive renderer (Knaus & Zwicker passes with
+//!   fixed-volume estimates, [`FixedVolumeEstimator`]) that stays leak-free and edge-true at
+//!   every pass, shards of passes that merge exactly, and the SPPM baseline.
 //! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`).
 //!
 //! Conventions: metres, watts, f32; right-handed with +y up; colour is linear RGB with
@@ -41,14 +44,15 @@ pub mod estimator;
 pub mod image;
 pub mod mode;
 pub mod progress;
+pub mod progressive;
 pub mod renderer;
 pub mod settings;
 pub mod stats;
 
 pub use error::RenderError;
 pub use estimator::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
-    GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
+    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
+    GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
 };
 pub use image::Image;
 pub use mode::{Lighting, Mode};

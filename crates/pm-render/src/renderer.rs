@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// Keeps the pixel streams apart from the photon-path streams of the same seed.
-const PIXEL_SEED_SALT: u64 = 0x5DEE_CE66_D1CE_4E5B;
+pub(crate) const PIXEL_SEED_SALT: u64 = 0x5DEE_CE66_D1CE_4E5B;
 
 /// An image and the figures of the render that made it.
 #[derive(Clone, Debug)]
@@ -177,14 +177,14 @@ impl<E: Estimator> Renderer<E> {
 
 /// A rectangle of pixels rendered by one worker.
 #[derive(Clone, Copy, Debug)]
-struct Tile {
-    x: u32,
-    y: u32,
-    width: u32,
-    height: u32,
+pub(crate) struct Tile {
+    pub(crate) x: u32,
+    pub(crate) y: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
 }
 
-fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+pub(crate) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     let mut out = Vec::new();
     for y in (0..height).step_by(size as usize) {
         for x in (0..width).step_by(size as usize) {

@@ -50,7 +50,7 @@
 //!     .light(PointLight::new(Vec3::new(0.0, 1.0, 0.0), Vec3::splat(100.0)))
 //!     .build()?;
 //! let maps = CreaseAngle::default().partition(&scene);
-//! let traced = trace_photons(&scene, &maps, &TraceOptions { photons: 10_000, seed: 1, max_bounces: 8 })?;
+//! let traced = trace_photons(&scene, &maps, &TraceOptions { photons: 10_000, seed: 1, max_bounces: 8, ..TraceOptions::default() })?;
 //! // Seen from the light, the floor covers 1/6 of all directions: about 1,667 photons land on it
 //! // (bounced photons fly up and away).
 //! let stored = traced.stats().total_stored();

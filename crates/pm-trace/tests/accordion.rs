@@ -15,6 +15,7 @@ fn facet_irradiance_ratio_is_cos15_over_cos75() {
             photons: n,
             seed: 8,
             max_bounces: 8,
+            pass: 0,
         },
     )
     .unwrap();

@@ -33,6 +33,7 @@ fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
         photons: 30_001,
         seed: 42,
         max_bounces: 64,
+        pass: 0,
     };
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -53,4 +54,25 @@ fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
     // A different seed gives different photons (the comparison can fail).
     let other = bits(&trace_photons(&scene, &maps, &TraceOptions { seed: 43, ..options }).unwrap());
     assert!(other != one);
+}
+
+#[test]
+fn pass_zero_is_the_plain_trace_and_other_passes_are_fresh_photons() {
+    use pm_trace::Rng;
+    let scene = scenes::build("accordion").unwrap();
+    let maps = CreaseAngle::default().partition(&scene);
+    let options = TraceOptions {
+        photons: 3_000,
+        seed: 9,
+        ..TraceOptions::default()
+    };
+    assert_eq!(options.pass, 0, "pass 0 is the default");
+    assert_eq!(Rng::new(9, 17), Rng::for_pass(9, 0, 17));
+    let plain = bits(&trace_photons(&scene, &maps, &options).unwrap());
+    let pass = |pass| bits(&trace_photons(&scene, &maps, &TraceOptions { pass, ..options }).unwrap());
+    assert!(pass(0) == plain);
+    let (one, two) = (pass(1), pass(2));
+    assert!(one != plain && two != plain && one != two, "passes share photons");
+    // The same pass is the same photons wherever it is traced.
+    assert!(pass(1) == one);
 }

@@ -70,6 +70,7 @@ fn custom_light_and_partitioner_drive_tracing() {
             photons: 1000,
             seed: 0,
             max_bounces: 4,
+            pass: 0,
         },
     )
     .unwrap();

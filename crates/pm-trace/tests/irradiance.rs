@@ -33,6 +33,7 @@ fn count_direct(scene: &Scene, n: u32, inside: impl Fn(Vec3) -> bool) -> (u64, f
             photons: n,
             seed: 11,
             max_bounces: 4,
+            pass: 0,
         },
     )
     .unwrap();

@@ -113,6 +113,7 @@ fn photons_land_in_the_map_of_the_surface_they_hit_in_every_built_in_scene() {
                     photons: 20_000,
                     seed: 3,
                     max_bounces: 32,
+                    pass: 0,
                 },
             )
             .unwrap();

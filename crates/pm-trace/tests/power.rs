@@ -46,6 +46,7 @@ fn black_box_stores_exactly_the_light_power_as_direct_photons() {
             photons: 100_000,
             seed: 9,
             max_bounces: 16,
+            pass: 0,
         },
     )
     .unwrap();
@@ -89,6 +90,7 @@ fn grey_box_stores_power_over_one_minus_albedo_within_three_standard_errors() {
             photons: n,
             seed: 5,
             max_bounces: 200,
+            pass: 0,
         },
     )
     .unwrap();
@@ -118,6 +120,7 @@ fn cornell_box_photons_share_the_light_power() {
             photons: 20_000,
             seed: 1,
             max_bounces: 64,
+            pass: 0,
         },
     )
     .unwrap();
@@ -154,6 +157,7 @@ fn lossless_glass_and_mirror_spheres_pass_all_power_on_as_caustics() {
                 photons: n,
                 seed: 2,
                 max_bounces: 64,
+                pass: 0,
             },
         )
         .unwrap();

@@ -117,7 +117,7 @@ pub fn irradiance_in_volume<V: GatherVolume>(
 
 /// Fills `faces` with (area inside `volume`, normal × `orientation`) of every polygon that has
 /// area inside it.
-fn collect_faces<V: GatherVolume>(
+pub(super) fn collect_faces<V: GatherVolume>(
     volume: &V,
     polygons: &PolygonSet,
     orientation: f32,
@@ -140,7 +140,7 @@ fn collect_faces<V: GatherVolume>(
     }
 }
 
-fn spread_power(normal: Vec3, photons: &[GatheredPhoton], faces: &[(f32, Vec3)]) -> Vec3 {
+pub(super) fn spread_power(normal: Vec3, photons: &[GatheredPhoton], faces: &[(f32, Vec3)]) -> Vec3 {
     let normal = snap_normal(normal, faces);
     let mut e = Vec3::ZERO;
     for p in photons {

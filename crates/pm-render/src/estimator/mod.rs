@@ -3,11 +3,13 @@
 //! trait is generic-friendly; [`EstimatorKind`] picks one at run time.
 
 mod disc;
+mod fixed;
 mod geometry;
 mod kind;
 mod options;
 
 pub use disc::Disc;
+pub use fixed::FixedVolumeEstimator;
 pub use geometry::{GeometryBall, GeometryCube, VolumeMetric, irradiance_in_volume};
 pub use kind::EstimatorKind;
 pub use options::EstimatorOptions;

@@ -4,7 +4,7 @@
 
 mod direct;
 mod path_trace;
-mod scatter;
+pub(crate) mod scatter;
 mod visualize;
 
 pub use direct::direct_irradiance;

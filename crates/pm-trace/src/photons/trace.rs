@@ -1,5 +1,5 @@
 //! Deterministic parallel photon tracing: every path draws from its own random stream
-//! `(seed, path index)`, chunks of paths run on rayon and are merged in path order, so the
+//! `(seed, pass, path index)`, chunks of paths run on rayon and are merged in path order, so the
 //! stored photons are bit-identical for any thread count.
 
 use super::scatter::{fresnel_dielectric, reflect, refract};
@@ -18,19 +18,25 @@ const CHUNK: u32 = 512;
 pub struct TraceOptions {
     /// Number of emitted photon paths (each starts with `Φ_total / photons` on average).
     pub photons: u32,
-    /// Seed of the random streams (path `i` uses stream `i`).
+    /// Seed of the random streams (path `i` of pass `p` draws from
+    /// [`Rng::for_pass`]`(seed, p, i)`).
     pub seed: u64,
+    /// Pass of a progressive render: each pass traces a fresh, independent set of paths.
+    /// Pass 0 (the default) is a single render's trace: `Rng::for_pass(seed, 0, i)` is
+    /// `Rng::new(seed, i)`.
+    pub pass: u64,
     /// Longest path (surface interactions); Russian roulette ends paths long before in
     /// practice. The cut-off loses the power of longer paths.
     pub max_bounces: u32,
 }
 
 impl Default for TraceOptions {
-    /// 100,000 photons (the paper's count), seed 0, at most 64 bounces.
+    /// 100,000 photons (the paper's count), seed 0, pass 0, at most 64 bounces.
     fn default() -> Self {
         TraceOptions {
             photons: 100_000,
             seed: 0,
+            pass: 0,
             max_bounces: 64,
         }
     }
@@ -249,7 +255,7 @@ fn trace_path(
     path: u32,
     out: &mut Vec<(u32, Photon)>,
 ) {
-    let mut rng = Rng::new(options.seed, path as u64);
+    let mut rng = Rng::for_pass(options.seed, options.pass, path as u64);
     let (li, photon_power) = picker.pick(&mut rng);
     let emitted = scene.lights()[li].emit(&mut rng);
     let mut power = photon_power * emitted.weight;

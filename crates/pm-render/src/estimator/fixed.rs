@@ -1,0 +1,241 @@
+//! Fixed-volume estimates: every photon of a map inside a gather volume of a given size, over
+//! that volume's area (the disc π r², or the geometric area of the map's polygons inside it).
+//! Progressive rendering needs them: a volume chosen before the photons are seen makes each
+//! estimate unbiased for the irradiance smoothed over that volume.
+
+use super::geometry::{collect_faces, spread_power};
+use super::{
+    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
+    GeometryCube, MapView, SurfacePoint, VolumeMetric, find_nearest,
+};
+use glam::Vec3;
+use pm_kdtree::{Chebyshev, Euclidean, Metric, PhotonTree};
+use std::f32::consts::PI;
+
+/// An estimator that can also estimate in a volume of a given extent (a radius, or a cube's
+/// half-size), and say which extent its k-nearest search would choose.
+///
+/// Implemented by [`Disc`], [`GeometryCube`], [`GeometryBall`] and [`EstimatorKind`]; the
+/// progressive renderer is generic over it.
+pub trait FixedVolumeEstimator: Estimator {
+    /// The extent of this estimator's k-nearest search at `at` in `map` (the k-th distance
+    /// under its metric, or `options.max_distance` when fewer than k photons lie within it).
+    /// `None` when the k nearest all sit at `at` itself (a zero extent).
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32>;
+
+    /// Irradiance at `at` from *every* photon of `map` within `extent` under this estimator's
+    /// metric (options' kinds and back-face rejection applied; `k` and `max_distance` unused),
+    /// divided by the volume's area: `π extent²` for the disc, the area of the map's polygons
+    /// inside the cube or ball for the geometry estimators.
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3;
+}
+
+/// Decodes every photon within `extent` of `at` (under `M`) that `options` accepts into
+/// `scratch.photons`, with powers relative to the tree's scale.
+fn gather_within<M: Metric>(
+    at: SurfacePoint,
+    tree: &PhotonTree,
+    extent: f32,
+    options: &EstimatorOptions,
+    photons: &mut Vec<GatheredPhoton>,
+) {
+    photons.clear();
+    tree.for_each_within::<M>(at.position, extent, |index, _| {
+        let p = tree.get(index);
+        if !options.kinds.accepts(p.kind()) {
+            return;
+        }
+        let direction = p.direction_l1();
+        if options.reject_behind && direction.dot(at.normal) >= 0.0 {
+            return;
+        }
+        photons.push(GatheredPhoton {
+            power: p.relative_power(),
+            direction,
+        });
+    });
+}
+
+fn geometry_within<M: VolumeMetric>(
+    at: SurfacePoint,
+    map: MapView<'_>,
+    extent: f32,
+    options: &EstimatorOptions,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let EstimatorScratch {
+        clip,
+        photons,
+        faces,
+        candidates,
+        ..
+    } = scratch;
+    gather_within::<M>(at, map.tree, extent, options, photons);
+    if photons.is_empty() {
+        return Vec3::ZERO;
+    }
+    let volume = M::volume(at.position, extent);
+    let orientation = if at.front_face { 1.0 } else { -1.0 };
+    collect_faces(&volume, map.polygons, orientation, clip, candidates, faces);
+    spread_power(at.normal, photons, faces) * map.tree.power_scale().watts()
+}
+
+impl FixedVolumeEstimator for Disc {
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        nearest_or_max::<Euclidean>(at, map, options, scratch)
+    }
+
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
+            return Vec3::ZERO;
+        }
+        gather_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
+        let relative: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
+        relative * (map.tree.power_scale().watts() / (PI * extent * extent))
+    }
+}
+
+impl FixedVolumeEstimator for GeometryCube {
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        nearest_or_max::<Chebyshev>(at, map, options, scratch)
+    }
+
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        geometry_within::<Chebyshev>(at, map, extent, options, scratch)
+    }
+}
+
+impl FixedVolumeEstimator for GeometryBall {
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        nearest_or_max::<Euclidean>(at, map, options, scratch)
+    }
+
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        geometry_within::<Euclidean>(at, map, extent, options, scratch)
+    }
+}
+
+impl FixedVolumeEstimator for EstimatorKind {
+    #[inline]
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        match self {
+            EstimatorKind::Disc => Disc.nearest_extent(at, map, options, scratch),
+            EstimatorKind::GeometryCube => GeometryCube.nearest_extent(at, map, options, scratch),
+            EstimatorKind::GeometryBall => GeometryBall.nearest_extent(at, map, options, scratch),
+        }
+    }
+
+    #[inline]
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        match self {
+            EstimatorKind::Disc => Disc.irradiance_within(at, map, extent, options, scratch),
+            EstimatorKind::GeometryCube => GeometryCube.irradiance_within(at, map, extent, options, scratch),
+            EstimatorKind::GeometryBall => GeometryBall.irradiance_within(at, map, extent, options, scratch),
+        }
+    }
+}
+
+impl<E: FixedVolumeEstimator + ?Sized> FixedVolumeEstimator for &E {
+    fn nearest_extent(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        (**self).nearest_extent(at, map, options, scratch)
+    }
+
+    fn irradiance_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        (**self).irradiance_within(at, map, extent, options, scratch)
+    }
+}
+
+/// The k-nearest extent, or the maximum distance in an empty map (a map the pilot missed
+/// still gets a volume to gather in).
+fn nearest_or_max<M: Metric>(
+    at: SurfacePoint,
+    map: MapView<'_>,
+    options: &EstimatorOptions,
+    scratch: &mut EstimatorScratch,
+) -> Option<f32> {
+    if map.tree.is_empty() {
+        return Some(options.max_distance);
+    }
+    find_nearest::<M>(at, map, options, scratch)
+}

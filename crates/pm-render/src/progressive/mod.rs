@@ -1,0 +1,396 @@
+//! Progressive, consistent photon mapping whose every pass is leak-free and edge-true.
+//!
+//! Passes 0, 1, 2, … each trace a fresh, independent set of photons (path `p` of pass `i`
+//! draws from [`pm_trace::Rng::for_pass`]`(seed, i, p)`), build the maps the partition gives
+//! (crease or contact maps keep photons on the surfaces they belong to), render one jittered
+//! sample per pixel from streams `(seed, i, pixel)`, and add it to a running sum. Photons of
+//! earlier passes are dropped: memory is one pass's maps, the pilot maps (below) and the sum.
+//!
+//! # The scheme and why
+//!
+//! Knaus & Zwicker (2011) make photon mapping consistent by averaging independent passes
+//! whose gather radius shrinks as `r_i² = r_0² · s_i²` with `s_i² = Π_{j<i} (j + α)/(j + 1)`
+//! (α = 2/3 by default): the variance of pass i grows as `1/r_i²`, slowly enough that the
+//! variance of the average falls as `N^(−α)`, while the bias of pass i, proportional to
+//! `r_i²`, falls as well; the mean squared error falls as `N^(−2/3)` for α = 2/3.
+//!
+//! Their argument needs each pass's estimate to be an unbiased estimate of the irradiance
+//! smoothed over a volume that does *not* depend on that pass's photons. A k-nearest estimate
+//! violates this: its radius is the k-th photon's distance, so it is biased even on a
+//! uniformly lit plane (the k-th photon sits on the rim; the estimate is `k/(k−1)` times too
+//! high in expectation), a bias that does not shrink with the radius and would dominate at
+//! small k. So here:
+//!
+//! - The volume at a surface point x is fixed by a **pilot** photon map, traced once from its
+//!   own streams (pass [`PILOT_PASS`]) with the same settings and partition: `r_pilot(x)` is
+//!   the estimator's k-nearest extent at x in the pilot map of x's map (the k-th Euclidean
+//!   distance for the disc and ball, the k-th Chebyshev distance — a cube's half-size — for
+//!   the cube; the maximum distance where fewer than k are found). Every shard rebuilds the
+//!   same pilot, so the volume is a deterministic function of x. It adapts to the photon
+//!   density as the k-nearest estimate does.
+//! - Pass i gathers **every** photon of x's map within `r_i(x) = r_pilot(x) · s_i` and divides
+//!   by the volume's area: `π r_i²` for the disc, and for the cube and the ball the area of the
+//!   map's own polygons inside it (Hey & Purgathofer's estimate,
+//!   [`FixedVolumeEstimator::irradiance_within`]). Given the pilot, the pass's estimate is then
+//!   exactly unbiased for the irradiance smoothed over the pass's volume, the geometric area
+//!   keeps edges true at every radius, and the smoothing bias vanishes as `s_i → 0`.
+//!
+//! The passes are independent given their index, so a run can be split into shards of passes
+//! rendered anywhere and merged ([`Shard::merge`]).
+
+mod radiance;
+mod schedule;
+mod shard;
+mod sppm;
+
+pub use schedule::radius_scale;
+pub use shard::{Shard, ShardError};
+pub use sppm::{SppmRendered, SppmRenderer, SppmSettings};
+
+use crate::renderer::{PIXEL_SEED_SALT, tiles};
+use crate::{EstimatorScratch, FixedVolumeEstimator, Image, Mode, Progress, RenderError, RenderSettings};
+use glam::{DVec3, Vec3};
+use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
+use radiance::PassLighting;
+use rayon::prelude::*;
+use std::ops::Range;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// The pass index whose photon streams trace the pilot map (never a render pass).
+pub const PILOT_PASS: u64 = u64::MAX;
+
+/// Settings of a progressive render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProgressiveSettings {
+    /// Image, photons *per pass*, k (for the pilot's extents), maximum distance, seed,
+    /// threads. `mode` must be [`Mode::Visualize`] (photons for all light) or
+    /// [`Mode::ShadowRays`] (direct light by shadow rays, photons for the rest).
+    pub render: RenderSettings,
+    /// Knaus & Zwicker's α in (0, 1): the share of the previous pass's volume kept (default 2/3).
+    pub alpha: f32,
+    /// The first pass rendered (0 for a whole run; a shard's start otherwise).
+    pub first_pass: u64,
+    /// Passes to render; `None` renders until the time budget is spent.
+    pub passes: Option<u64>,
+    /// Stop after the pass that spends this budget (wall time, including the pilot).
+    pub time_budget: Option<Duration>,
+}
+
+impl ProgressiveSettings {
+    /// The default α.
+    pub const DEFAULT_ALPHA: f32 = 2.0 / 3.0;
+
+    /// `passes` passes from pass 0 with α = 2/3 and `render`'s settings.
+    pub fn new(render: RenderSettings, passes: u64) -> Self {
+        ProgressiveSettings {
+            render,
+            alpha: Self::DEFAULT_ALPHA,
+            first_pass: 0,
+            passes: Some(passes),
+            time_budget: None,
+        }
+    }
+
+    /// Checks the render settings, the mode, α, and that the run will stop.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        self.render.validate()?;
+        if !matches!(self.render.mode, Mode::Visualize | Mode::ShadowRays) {
+            return Err(RenderError::UnsupportedMode(self.render.mode));
+        }
+        if !(self.alpha > 0.0 && self.alpha < 1.0) {
+            return Err(RenderError::BadAlpha(self.alpha));
+        }
+        match (self.passes, self.time_budget) {
+            (Some(0), _) | (None, None) => Err(RenderError::ZeroPasses),
+            _ => Ok(()),
+        }
+    }
+
+    /// A text naming every setting that changes the image (not the pass range, threads or
+    /// tiles): shards merge only when theirs are equal.
+    pub fn identity(&self) -> String {
+        let s = &self.render;
+        let max_distance = s
+            .max_distance
+            .map_or_else(|| "default".to_owned(), |d| format!("{d:e}"));
+        format!(
+            "progressive size={}x{} spp={} photons={} k={} max_distance={} reject_behind={} mode={} seed={} alpha={:e}",
+            s.width,
+            s.height,
+            s.samples_per_pixel,
+            s.photons,
+            s.k,
+            max_distance,
+            s.reject_behind,
+            s.mode,
+            s.seed,
+            self.alpha
+        )
+    }
+}
+
+/// The running sum of a progressive render's passes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accumulation {
+    width: u32,
+    height: u32,
+    sum: Vec<DVec3>,
+    first_pass: u64,
+    passes: u64,
+}
+
+impl Accumulation {
+    /// An empty sum starting at pass `first_pass`.
+    pub fn new(width: u32, height: u32, first_pass: u64) -> Result<Self, RenderError> {
+        crate::image::check_image_size(width, height)?;
+        Ok(Accumulation {
+            width,
+            height,
+            sum: vec![DVec3::ZERO; width as usize * height as usize],
+            first_pass,
+            passes: 0,
+        })
+    }
+
+    /// The passes summed.
+    pub fn pass_range(&self) -> Range<u64> {
+        self.first_pass..self.first_pass + self.passes
+    }
+
+    /// Number of passes summed.
+    pub fn passes(&self) -> u64 {
+        self.passes
+    }
+
+    /// The per-pixel sums of the passes' radiance, row by row.
+    pub fn sum(&self) -> &[DVec3] {
+        &self.sum
+    }
+
+    /// The mean of the passes: the progressive estimate (black before any pass).
+    pub fn mean(&self) -> Image {
+        let n = self.passes.max(1) as f64;
+        let pixels = self.sum.iter().map(|s| (*s / n).as_vec3()).collect();
+        // The size was checked when the sum was made.
+        Image::from_pixels(self.width, self.height, pixels).unwrap_or_else(|_| unreachable!())
+    }
+}
+
+/// Counts and timings of a progressive render.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ProgressiveStats {
+    /// Passes rendered.
+    pub passes: u64,
+    /// Photon paths emitted over all passes (not counting the pilot).
+    pub photons_emitted: u64,
+    /// Photons stored over all passes.
+    pub photons_stored: u64,
+    /// Number of photon maps.
+    pub map_count: u32,
+    /// Worker threads used.
+    pub threads: usize,
+    /// Partitioning the scene and tracing and building the pilot maps.
+    pub pilot: Duration,
+    /// Photon tracing and map building, summed over passes.
+    pub trace: Duration,
+    /// Rendering, summed over passes.
+    pub render: Duration,
+    /// Wall time of the whole run.
+    pub total: Duration,
+}
+
+/// A progressive render's sum and figures.
+#[derive(Clone, Debug)]
+pub struct ProgressiveRendered {
+    /// The sum of the passes (its [`Accumulation::mean`] is the image).
+    pub accumulation: Accumulation,
+    /// Counts and timings.
+    pub stats: ProgressiveStats,
+}
+
+/// Renders progressively with one fixed-volume estimator.
+///
+/// ```no_run
+/// # use pm_render::{EstimatorKind, RenderSettings};
+/// # use pm_render::progressive::{ProgressiveRenderer, ProgressiveSettings};
+/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// let settings = ProgressiveSettings::new(RenderSettings { photons: 50_000, ..Default::default() }, 32);
+/// let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
+///     .render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// let image = out.accumulation.mean();
+/// # Ok(()) }
+/// ```
+#[derive(Clone, Debug)]
+pub struct ProgressiveRenderer<E> {
+    estimator: E,
+    settings: ProgressiveSettings,
+}
+
+impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
+    /// A renderer with this estimator and these settings.
+    pub fn new(estimator: E, settings: ProgressiveSettings) -> Self {
+        ProgressiveRenderer { estimator, settings }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ProgressiveSettings {
+        &self.settings
+    }
+
+    /// Traces the pilot, then renders the passes (`settings.passes` of them from
+    /// `settings.first_pass`, or until the time budget is spent) into a sum.
+    pub fn render<P: Partitioner + ?Sized>(
+        &self,
+        scene: &Scene,
+        partitioner: &P,
+        progress: &dyn Progress,
+    ) -> Result<ProgressiveRendered, RenderError> {
+        self.settings.validate()?;
+        let start = Instant::now();
+        let assignment = partitioner.partition(scene);
+        in_pool(self.settings.render.threads, || {
+            self.render_in_pool(scene, &assignment, progress, start)
+        })?
+    }
+
+    fn render_in_pool(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        progress: &dyn Progress,
+        start: Instant,
+    ) -> Result<ProgressiveRendered, RenderError> {
+        let s = &self.settings;
+        let r = &s.render;
+        let mut stats = ProgressiveStats {
+            threads: rayon::current_num_threads(),
+            map_count: assignment.map_count(),
+            ..ProgressiveStats::default()
+        };
+        progress.phase("pilot");
+        let pilot = trace_and_build(scene, assignment, r, PILOT_PASS)?.0;
+        stats.pilot = start.elapsed();
+        let options = r.estimator_options(&scene.bounds());
+        options.validate()?;
+        let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
+        let tiles = tiles(r.width, r.height, r.tile_size);
+        loop {
+            if s.passes.is_some_and(|n| accumulation.passes >= n) {
+                break;
+            }
+            let pass = s.first_pass + accumulation.passes;
+            progress.phase("trace");
+            let t = Instant::now();
+            let (maps, stored) = trace_and_build(scene, assignment, r, pass)?;
+            stats.trace += t.elapsed();
+            stats.photons_emitted += u64::from(r.photons);
+            stats.photons_stored += stored;
+            progress.phase("render");
+            let t = Instant::now();
+            let lighting = PassLighting {
+                scene,
+                maps: &maps,
+                pilot: &pilot,
+                estimator: &self.estimator,
+                options: &options,
+                scale: radius_scale(pass, f64::from(s.alpha)) as f32,
+                shadow_rays: r.mode == Mode::ShadowRays,
+            };
+            render_pass(&lighting, r, pass, &tiles, &mut accumulation.sum, progress);
+            drop(maps);
+            stats.render += t.elapsed();
+            accumulation.passes += 1;
+            progress.pass_done(accumulation.passes, stats.photons_emitted);
+            if s.time_budget.is_some_and(|b| start.elapsed() >= b) {
+                break;
+            }
+        }
+        stats.passes = accumulation.passes;
+        stats.total = start.elapsed();
+        Ok(ProgressiveRendered { accumulation, stats })
+    }
+}
+
+/// Traces pass `pass`'s photons and builds its maps; also the photons stored.
+pub(crate) fn trace_and_build(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    settings: &RenderSettings,
+    pass: u64,
+) -> Result<(PhotonMaps, u64), RenderError> {
+    let options = TraceOptions {
+        photons: settings.photons,
+        seed: settings.seed,
+        pass,
+        ..TraceOptions::default()
+    };
+    let traced = trace_photons(scene, assignment, &options)?;
+    let stored = traced.stats().total_stored();
+    Ok((PhotonMaps::build(scene, assignment, traced)?, stored))
+}
+
+/// Runs `f` on a pool of `threads` workers (0: the current pool).
+pub(crate) fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
+    if threads == 0 {
+        return Ok(f());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| RenderError::Threads(e.to_string()))?;
+    Ok(pool.install(f))
+}
+
+/// Renders one pass in tiles and adds it to `sum`; every (pass, pixel, sample) draws from its
+/// own stream and each pixel gets one addition per pass, so the sum is the same for any
+/// thread count.
+fn render_pass<E: FixedVolumeEstimator>(
+    lighting: &PassLighting<'_, E>,
+    s: &RenderSettings,
+    pass: u64,
+    tiles: &[crate::renderer::Tile],
+    sum: &mut [DVec3],
+    progress: &dyn Progress,
+) {
+    let camera = lighting.scene.camera();
+    let aspect = s.width as f32 / s.height as f32;
+    let spp = s.samples_per_pixel as u64;
+    let seed = s.seed ^ PIXEL_SEED_SALT;
+    let width = s.width as usize;
+    let sum = Mutex::new(sum);
+    let done = AtomicUsize::new(0);
+    tiles.par_iter().for_each_init(
+        || (EstimatorScratch::new(), Vec::<Vec3>::new()),
+        |(scratch, pixels), tile| {
+            pixels.clear();
+            for y in tile.y..tile.y + tile.height {
+                for x in tile.x..tile.x + tile.width {
+                    let pixel = y as u64 * s.width as u64 + x as u64;
+                    let mut l = Vec3::ZERO;
+                    for sample in 0..spp {
+                        let mut rng = Rng::for_pass(seed, pass, pixel * spp + sample);
+                        let u = (x as f32 + rng.next_f32()) / s.width as f32;
+                        let v = (y as f32 + rng.next_f32()) / s.height as f32;
+                        let radiance = lighting.radiance(camera.ray(u, v, aspect), &mut rng, scratch);
+                        if radiance.is_finite() {
+                            l += radiance;
+                        }
+                    }
+                    pixels.push(l / spp as f32);
+                }
+            }
+            {
+                let mut sum = sum.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+                for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+                    let start = (tile.y as usize + row) * width + tile.x as usize;
+                    for (acc, p) in sum[start..start + chunk.len()].iter_mut().zip(chunk) {
+                        *acc += p.as_dvec3();
+                    }
+                }
+            }
+            progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
+        },
+    );
+}

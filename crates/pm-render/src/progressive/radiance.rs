@@ -1,0 +1,78 @@
+//! The radiance one camera ray carries in one progressive pass: specular bounces from the
+//! eye, then at the first diffuse hit a fixed-volume estimate in the hit's map, its extent the
+//! pilot map's k-nearest extent there times the pass's shrink factor.
+
+use crate::mode::direct_irradiance;
+use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
+use crate::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
+use glam::Vec3;
+use pm_trace::{Hit, Material, PhotonMaps, Ray, RayKind, Rng, Scene};
+use std::f32::consts::FRAC_1_PI;
+
+/// Everything a pass reads.
+pub(super) struct PassLighting<'a, E> {
+    pub scene: &'a Scene,
+    /// This pass's photons.
+    pub maps: &'a PhotonMaps,
+    /// The pilot photons, which fix the gather volume at each point.
+    pub pilot: &'a PhotonMaps,
+    pub estimator: &'a E,
+    pub options: &'a EstimatorOptions,
+    /// This pass's shrink factor `s_i`.
+    pub scale: f32,
+    /// Direct light by shadow rays (photons of kind direct excluded by `options`).
+    pub shadow_rays: bool,
+}
+
+impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
+    fn irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        let map_id = self.maps.map_of(hit.part) as usize;
+        let (Some(map), Some(pilot)) = (self.maps.maps().get(map_id), self.pilot.maps().get(map_id)) else {
+            return Vec3::ZERO;
+        };
+        let at = SurfacePoint {
+            position: hit.position,
+            normal: hit.normal,
+            front_face: hit.front_face,
+        };
+        let pilot_view = MapView {
+            tree: pilot.tree(),
+            polygons: pilot.geometry(),
+        };
+        let Some(extent) = self
+            .estimator
+            .nearest_extent(at, pilot_view, self.options, scratch)
+        else {
+            return Vec3::ZERO;
+        };
+        let view = MapView {
+            tree: map.tree(),
+            polygons: map.geometry(),
+        };
+        self.estimator
+            .irradiance_within(at, view, extent * self.scale, self.options, scratch)
+    }
+
+    pub fn radiance(&self, mut ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
+        let scene = self.scene;
+        let mut throughput = Vec3::ONE;
+        for _ in 0..=MAX_SPECULAR_BOUNCES {
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
+                break;
+            };
+            if let Material::Lambertian { albedo } = *scene.material(&hit) {
+                let mut e = self.irradiance(&hit, scratch);
+                if self.shadow_rays {
+                    e += direct_irradiance(scene, &hit, rng);
+                }
+                return throughput * (scene.emission(&hit) + albedo * FRAC_1_PI * e);
+            }
+            let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
+                break;
+            };
+            throughput *= factor;
+            ray = next;
+        }
+        Vec3::ZERO
+    }
+}

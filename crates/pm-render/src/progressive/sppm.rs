@@ -1,0 +1,272 @@
+//! Stochastic progressive photon mapping (Hachisuka & Jensen 2009) as pbrt-v4 implements it,
+//! the baseline the leak-free progressive renderer is compared with.
+//!
+//! Per pass, every pixel traces one jittered camera ray through specular bounces, adding
+//! emission and direct light by shadow rays at each diffuse vertex it records as its visible
+//! point; the pass's photons (one global map, photons of kind direct left out since shadow
+//! rays carry direct light, as pbrt deposits no photon at a path's first hit) within the
+//! pixel's radius r add `Φ_p · albedo/π` (zero for photons from behind the surface, as pbrt's
+//! diffuse BSDF gives; no other normal test). Then with M photons found:
+//! `N ← N + αM`, `r ← r·√((N + αM)/(N + M))`, `τ ← (τ + Φ)·(r_new/r)²`, and the pixel's
+//! radiance is `L_direct/passes + τ/(passes · π r²)` (photon powers are already divided by
+//! the photons per pass).
+//!
+//! **Initial radius.** pbrt-v4 takes one radius for the whole image from the user (default 1
+//! scene unit). Here each pixel's radius starts at the k-nearest distance (k from the
+//! settings, Euclidean, photons of the kinds gathered) around its first visible point in that
+//! pass's map, capped by the maximum search distance: the same start the k-nearest renderer
+//! and the progressive renderer's pilot have, so that the comparison does not hinge on a
+//! hand-tuned constant.
+
+use super::{ProgressiveStats, in_pool, trace_and_build};
+use crate::mode::direct_irradiance;
+use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
+use crate::renderer::PIXEL_SEED_SALT;
+use crate::{EstimatorOptions, Image, Mode, Progress, RenderError, RenderSettings};
+use glam::{DVec3, Vec3};
+use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
+use pm_trace::{Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, SingleMap};
+use rayon::prelude::*;
+use std::f32::consts::{FRAC_1_PI, PI};
+use std::time::{Duration, Instant};
+
+/// Settings of an SPPM render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SppmSettings {
+    /// Image, photons per pass, k (for the initial radius), maximum distance (caps it), seed,
+    /// threads. The mode and `reject_behind` are ignored.
+    pub render: RenderSettings,
+    /// α (default 2/3): the share of the new photons kept in N.
+    pub alpha: f32,
+    /// Passes to render; `None` renders until the time budget is spent.
+    pub passes: Option<u64>,
+    /// Stop after the pass that spends this budget.
+    pub time_budget: Option<Duration>,
+}
+
+impl SppmSettings {
+    /// `passes` passes with α = 2/3 and `render`'s settings.
+    pub fn new(render: RenderSettings, passes: u64) -> Self {
+        SppmSettings {
+            render,
+            alpha: 2.0 / 3.0,
+            passes: Some(passes),
+            time_budget: None,
+        }
+    }
+
+    /// Checks the render settings, α and that the run will stop.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        self.render.validate()?;
+        if !(self.alpha > 0.0 && self.alpha < 1.0) {
+            return Err(RenderError::BadAlpha(self.alpha));
+        }
+        match (self.passes, self.time_budget) {
+            (Some(0), _) | (None, None) => Err(RenderError::ZeroPasses),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// One pixel's SPPM state.
+#[derive(Clone, Copy, Debug, Default)]
+struct PixelState {
+    /// Emission and direct light, summed over passes.
+    direct: DVec3,
+    /// Accumulated flux τ.
+    tau: Vec3,
+    /// Photon count N.
+    n: f32,
+    /// Radius r; 0 until the pixel's first visible point.
+    radius: f32,
+}
+
+/// An SPPM render's image and figures.
+#[derive(Clone, Debug)]
+pub struct SppmRendered {
+    /// The radiance estimate after the last pass.
+    pub image: Image,
+    /// Counts and timings (`pilot` is zero: SPPM has none).
+    pub stats: ProgressiveStats,
+}
+
+/// Renders with stochastic progressive photon mapping in one global map.
+#[derive(Clone, Debug)]
+pub struct SppmRenderer {
+    settings: SppmSettings,
+}
+
+impl SppmRenderer {
+    /// A renderer with these settings.
+    pub fn new(settings: SppmSettings) -> Self {
+        SppmRenderer { settings }
+    }
+
+    /// Renders the passes from pass 0 (photon streams `(seed, pass, path)` as in the
+    /// progressive renderer).
+    pub fn render(&self, scene: &Scene, progress: &dyn Progress) -> Result<SppmRendered, RenderError> {
+        self.settings.validate()?;
+        let start = Instant::now();
+        let assignment = SingleMap.partition(scene);
+        in_pool(self.settings.render.threads, || {
+            let s = &self.settings;
+            let r = &s.render;
+            let mut options = RenderSettings {
+                mode: Mode::ShadowRays,
+                reject_behind: true,
+                ..*r
+            }
+            .estimator_options(&scene.bounds());
+            options.kinds = KindMask::NOT_DIRECT;
+            options.validate()?;
+            let mut stats = ProgressiveStats {
+                threads: rayon::current_num_threads(),
+                map_count: 1,
+                ..ProgressiveStats::default()
+            };
+            let width = r.width as usize;
+            crate::image::check_image_size(r.width, r.height)?;
+            let mut state = vec![PixelState::default(); width * r.height as usize];
+            let mut passes = 0u64;
+            loop {
+                if s.passes.is_some_and(|n| passes >= n) {
+                    break;
+                }
+                progress.phase("trace");
+                let t = Instant::now();
+                let (maps, stored) = trace_and_build(scene, &assignment, r, passes)?;
+                stats.trace += t.elapsed();
+                stats.photons_emitted += u64::from(r.photons);
+                stats.photons_stored += stored;
+                progress.phase("render");
+                let t = Instant::now();
+                let pass = Pass {
+                    scene,
+                    maps: &maps,
+                    options: &options,
+                    settings: r,
+                    alpha: s.alpha,
+                    pass: passes,
+                };
+                state.par_chunks_mut(width).enumerate().for_each_init(
+                    Neighbours::new,
+                    |neighbours, (y, row)| {
+                        for (x, pixel) in row.iter_mut().enumerate() {
+                            pass.update(x as u32, y as u32, pixel, neighbours);
+                        }
+                    },
+                );
+                stats.render += t.elapsed();
+                passes += 1;
+                progress.pass_done(passes, stats.photons_emitted);
+                if s.time_budget.is_some_and(|b| start.elapsed() >= b) {
+                    break;
+                }
+            }
+            let n = passes.max(1) as f64;
+            let pixels = state
+                .iter()
+                .map(|p| {
+                    let indirect = if p.radius > 0.0 {
+                        p.tau.as_dvec3() / (n * f64::from(PI * p.radius * p.radius))
+                    } else {
+                        DVec3::ZERO
+                    };
+                    (p.direct / n + indirect).as_vec3()
+                })
+                .collect();
+            stats.passes = passes;
+            stats.total = start.elapsed();
+            Ok(SppmRendered {
+                image: Image::from_pixels(r.width, r.height, pixels)?,
+                stats,
+            })
+        })?
+    }
+}
+
+/// One pass's photons and what the per-pixel update reads.
+struct Pass<'a> {
+    scene: &'a Scene,
+    maps: &'a PhotonMaps,
+    options: &'a EstimatorOptions,
+    settings: &'a RenderSettings,
+    alpha: f32,
+    pass: u64,
+}
+
+impl Pass<'_> {
+    fn update(&self, x: u32, y: u32, pixel: &mut PixelState, neighbours: &mut Neighbours) {
+        let s = self.settings;
+        let scene = self.scene;
+        let pixel_index = y as u64 * s.width as u64 + x as u64;
+        let mut rng = Rng::for_pass(s.seed ^ PIXEL_SEED_SALT, self.pass, pixel_index);
+        let u = (x as f32 + rng.next_f32()) / s.width as f32;
+        let v = (y as f32 + rng.next_f32()) / s.height as f32;
+        let mut ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
+        let mut throughput = Vec3::ONE;
+        for _ in 0..=MAX_SPECULAR_BOUNCES {
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
+                return;
+            };
+            if let Material::Lambertian { albedo } = *scene.material(&hit) {
+                let direct =
+                    scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng);
+                let direct = throughput * direct;
+                if direct.is_finite() {
+                    pixel.direct += direct.as_dvec3();
+                }
+                let tree = self.maps.map(0).tree();
+                if pixel.radius == 0.0 {
+                    pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
+                }
+                let (phi, m) = gather(tree, hit.position, hit.normal, pixel.radius, self.options);
+                if m > 0 {
+                    let m = m as f32;
+                    let n_new = pixel.n + self.alpha * m;
+                    let r_new = pixel.radius * (n_new / (pixel.n + m)).sqrt();
+                    let ratio = (r_new / pixel.radius).powi(2);
+                    pixel.tau = (pixel.tau + throughput * albedo * FRAC_1_PI * phi) * ratio;
+                    pixel.n = n_new;
+                    pixel.radius = r_new;
+                }
+                return;
+            }
+            let Some((next, factor)) = specular_bounce(scene, &hit, &ray, &mut rng) else {
+                return;
+            };
+            throughput *= factor;
+            ray = next;
+        }
+    }
+}
+
+/// The k-nearest distance at `at` (capped by the maximum distance).
+fn initial_radius(
+    tree: &PhotonTree,
+    at: Vec3,
+    options: &EstimatorOptions,
+    neighbours: &mut Neighbours,
+) -> f32 {
+    tree.nearest_k::<Euclidean>(at, options.k, options.max_distance, options.kinds, neighbours);
+    let r = neighbours.extent();
+    if r > 0.0 { r } else { options.max_distance }
+}
+
+/// Power (watts) and count of the photons within `radius` of `at` arriving from the side
+/// `normal` faces.
+fn gather(tree: &PhotonTree, at: Vec3, normal: Vec3, radius: f32, options: &EstimatorOptions) -> (Vec3, u32) {
+    let mut power = Vec3::ZERO;
+    let mut count = 0u32;
+    tree.for_each_within::<Euclidean>(at, radius, |i, _| {
+        let p = tree.get(i);
+        if !options.kinds.accepts(p.kind()) {
+            return;
+        }
+        count += 1;
+        if p.direction_l1().dot(normal) < 0.0 {
+            power += p.relative_power();
+        }
+    });
+    (power * tree.power_scale().watts(), count)
+}

@@ -1,0 +1,268 @@
+//! `--mode progressive|sppm` and `--merge`: progressive renders in shards of passes that merge
+//! exactly, and the SPPM baseline. Kept apart from the single-pass command line.
+
+use super::{Args, check_writable, json_number, json_string, load_scene, partitioner, say};
+use indicatif::{ProgressBar, ProgressStyle};
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
+};
+use photon_maps::render::{EstimatorKind, Mode, Progress, RenderSettings};
+use std::fmt::Write as _;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// Runs `--mode progressive` or `--mode sppm` with the common settings already parsed.
+pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) -> Result<(), String> {
+    if args.compare {
+        return Err(
+            "--compare renders single passes; it does not combine with --mode progressive|sppm".into(),
+        );
+    }
+    let budget = match args.time {
+        Some(t) if t.is_finite() && t >= 0.0 => Some(Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(format!(
+                "--time must be a non-negative number of seconds, got {t}"
+            ));
+        }
+        None => None,
+    };
+    let passes = match (args.passes, budget) {
+        (None, None) => Some(16),
+        (p, _) => p,
+    };
+    let sppm = args.mode == "sppm";
+    if sppm && args.first_pass != 0 {
+        return Err("--first-pass: SPPM runs are not shardable".into());
+    }
+    // Progressive passes render like `visualize` (photons for all light).
+    settings.mode = Mode::Visualize;
+    let (scene_name, scene_id) = scene_identity(&args.scene)?;
+    let base = args
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
+    let (exr_path, png_path) = (base.with_extension("exr"), base.with_extension("png"));
+    for path in [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
+        .into_iter()
+        .flatten()
+    {
+        check_writable(path)?;
+    }
+    let bar = PassBar::new(passes);
+    let (image, stats, range, identity) = if sppm {
+        let scene = load_scene(&args.scene)?.0;
+        let s = SppmSettings {
+            passes,
+            time_budget: budget,
+            ..SppmSettings::new(settings, 1)
+        };
+        let out = SppmRenderer::new(s)
+            .render(&scene, &bar)
+            .map_err(|e| e.to_string())?;
+        bar.0.finish_and_clear();
+        out.image.write_exr(&exr_path).map_err(|e| e.to_string())?;
+        let identity = format!("sppm k={} photons={} seed={}", args.k, args.photons, args.seed);
+        (out.image, out.stats.clone(), 0..out.stats.passes, identity)
+    } else {
+        let partition = partitioner(&args.maps)?;
+        let scene = partition
+            .prepare_scene(load_scene(&args.scene)?.0)
+            .map_err(|e| e.to_string())?;
+        let s = ProgressiveSettings {
+            first_pass: args.first_pass,
+            passes,
+            time_budget: budget,
+            ..ProgressiveSettings::new(settings, 1)
+        };
+        let out = ProgressiveRenderer::new(estimator, s)
+            .render(&scene, &*partition, &bar)
+            .map_err(|e| e.to_string())?;
+        bar.0.finish_and_clear();
+        let identity = format!("{} maps={} estimator={}", s.identity(), args.maps, estimator);
+        let a = &out.accumulation;
+        let shard = Shard::new(a.mean(), a.pass_range().start, a.passes(), &scene_id, &identity)
+            .map_err(|e| e.to_string())?;
+        shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
+        (a.mean(), out.stats, a.pass_range(), identity)
+    };
+    image
+        .write_png(&png_path, args.exposure)
+        .map_err(|e| e.to_string())?;
+    let m = image.mean();
+    say(&format!(
+        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        args.mode,
+        range.start,
+        range.end,
+        stats.passes,
+        stats.photons_emitted,
+        stats.pilot.as_secs_f64(),
+        stats.trace.as_secs_f64(),
+        stats.render.as_secs_f64(),
+        stats.total.as_secs_f64(),
+        m.x,
+        m.y,
+        m.z
+    ));
+    say(&format!(
+        "wrote {} and {}",
+        exr_path.display(),
+        png_path.display()
+    ));
+    if let Some(path) = &args.stats_json {
+        let json = stats_json(
+            &args.mode,
+            &scene_id,
+            &identity,
+            range,
+            Some(&stats),
+            m.to_array(),
+        );
+        fs::write(path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+        say(&format!("wrote {}", path.display()));
+    }
+    Ok(())
+}
+
+/// `--merge SHARD.exr … --out OUT.exr`: the image one run of all the shards' passes gives.
+pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
+    let out = args.out.clone().ok_or("--merge needs --out OUT.exr")?;
+    let (exr_path, png_path) = (out.with_extension("exr"), out.with_extension("png"));
+    for path in [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
+        .into_iter()
+        .flatten()
+    {
+        check_writable(path)?;
+    }
+    let read = shards
+        .iter()
+        .map(|p| Shard::read_exr(p).map_err(|e| e.to_string()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let merged = Shard::merge(&read).map_err(|e| e.to_string())?;
+    merged.write_exr(&exr_path).map_err(|e| e.to_string())?;
+    merged
+        .mean()
+        .write_png(&png_path, args.exposure)
+        .map_err(|e| e.to_string())?;
+    let range = merged.pass_range();
+    let m = merged.mean().mean();
+    say(&format!(
+        "merged {} shards: passes {}..{} of {}, mean rgb ({:.4}, {:.4}, {:.4})",
+        read.len(),
+        range.start,
+        range.end,
+        merged.scene(),
+        m.x,
+        m.y,
+        m.z
+    ));
+    say(&format!(
+        "wrote {} and {}",
+        exr_path.display(),
+        png_path.display()
+    ));
+    if let Some(path) = &args.stats_json {
+        let json = stats_json(
+            "merge",
+            merged.scene(),
+            merged.settings(),
+            range,
+            None,
+            m.to_array(),
+        );
+        fs::write(path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+        say(&format!("wrote {}", path.display()));
+    }
+    Ok(())
+}
+
+/// The scene's name for output files, and its identity for shards: the name and a 64-bit
+/// FNV-1a hash of the glTF file's bytes (or of the built-in scene's name).
+fn scene_identity(arg: &str) -> Result<(String, String), String> {
+    let (_, name) = load_scene(arg)?;
+    let path = Path::new(arg);
+    let bytes = if path.is_file() {
+        fs::read(path).map_err(|e| format!("{arg}: {e}"))?
+    } else {
+        arg.as_bytes().to_vec()
+    };
+    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    Ok((name.clone(), format!("{name} fnv1a64:{hash:016x}")))
+}
+
+fn stats_json(
+    mode: &str,
+    scene: &str,
+    settings: &str,
+    range: std::ops::Range<u64>,
+    stats: Option<&ProgressiveStats>,
+    mean: [f32; 3],
+) -> String {
+    let mut o = String::from("{");
+    let _ = write!(
+        o,
+        "\"mode\": {}, \"scene\": {}, \"settings\": {}, \"first_pass\": {}, \"end_pass\": {}, \"passes\": {}, ",
+        json_string(mode),
+        json_string(scene),
+        json_string(settings),
+        range.start,
+        range.end,
+        range.end - range.start,
+    );
+    if let Some(s) = stats {
+        let _ = write!(
+            o,
+            "\"photons_emitted\": {}, \"photons_stored\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",
+            s.photons_emitted,
+            s.photons_stored,
+            s.map_count,
+            s.threads,
+            json_number(s.pilot.as_secs_f64()),
+            json_number(s.trace.as_secs_f64()),
+            json_number(s.render.as_secs_f64()),
+            json_number(s.total.as_secs_f64()),
+        );
+    }
+    let _ = writeln!(
+        o,
+        "\"mean_rgb\": [{}, {}, {}]}}",
+        json_number(mean[0] as f64),
+        json_number(mean[1] as f64),
+        json_number(mean[2] as f64)
+    );
+    o
+}
+
+/// An indicatif bar of passes, with elapsed time and photons traced (hidden without a TTY).
+struct PassBar(ProgressBar);
+
+impl PassBar {
+    fn new(passes: Option<u64>) -> Self {
+        let bar = ProgressBar::new(passes.unwrap_or(0));
+        let template = if passes.is_some() {
+            "{msg:>10} [{bar:40}] {pos}/{len} passes {elapsed} {prefix} photons"
+        } else {
+            "{msg:>10} {pos} passes {elapsed} {prefix} photons"
+        };
+        if let Ok(style) = ProgressStyle::with_template(template) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_prefix("0");
+        PassBar(bar)
+    }
+}
+
+impl Progress for PassBar {
+    fn phase(&self, name: &'static str) {
+        self.0.set_message(name);
+    }
+    fn tiles_done(&self, _done: usize, _total: usize) {}
+    fn pass_done(&self, passes: u64, photons: u64) {
+        self.0.set_position(passes);
+        self.0.set_prefix(photons.to_string());
+    }
+}

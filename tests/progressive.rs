@@ -1,0 +1,225 @@
+//! The progressive renderer: leak-free at every pass (crease maps in lit-unlit-rooms, contact
+//! maps in touching-rooms) for every estimator, while SPPM's one map leaks; bit-identical for
+//! 1, 2 and 3 threads; shards merge into the single run and mismatched shards are refused.
+
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, Shard, ShardError, SppmRenderer, SppmSettings,
+};
+use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene, scenes};
+
+const W: u32 = 48;
+const H: u32 = 24;
+/// The dark room's interior starts here (room 1 m, wall 0.02 m); a margin keeps away from it.
+const DARK_ROOM_X: f32 = 1.02 + 0.01;
+
+/// Pixels whose four corner rays all hit the dark room: every sample inside shows it.
+fn dark_room_pixels(scene: &Scene) -> Vec<usize> {
+    let camera = scene.camera();
+    let aspect = W as f32 / H as f32;
+    let in_dark = |u: f32, v: f32| {
+        let ray = camera.ray(u, v, aspect);
+        scene
+            .intersect(&ray, f32::INFINITY, RayKind::Camera)
+            .is_some_and(|h| h.position.x > DARK_ROOM_X)
+    };
+    (0..W * H)
+        .filter(|&i| {
+            let (x, y) = ((i % W) as f32, (i / W) as f32);
+            [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
+                .iter()
+                .all(|&(dx, dy)| in_dark((x + dx) / W as f32, (y + dy) / H as f32))
+        })
+        .map(|i| i as usize)
+        .collect()
+}
+
+fn render_settings(photons: u32, threads: usize) -> RenderSettings {
+    RenderSettings {
+        width: W,
+        height: H,
+        photons,
+        mode: Mode::Visualize,
+        seed: 5,
+        threads,
+        tile_size: 7,
+        ..RenderSettings::default()
+    }
+}
+
+fn progressive(first_pass: u64, passes: u64, threads: usize) -> ProgressiveSettings {
+    ProgressiveSettings {
+        first_pass,
+        ..ProgressiveSettings::new(render_settings(6_000, threads), passes)
+    }
+}
+
+/// Renders passes 0..4 one at a time and checks the dark room in each pass's own image.
+fn assert_dark_at_every_pass(scene: &Scene, partitioner: &dyn Partitioner, label: &str) {
+    let dark = dark_room_pixels(scene);
+    assert!(
+        dark.len() > (W * H / 20) as usize,
+        "{label}: {} dark pixels",
+        dark.len()
+    );
+    for kind in EstimatorKind::ALL {
+        for pass in [0, 1, 2, 7] {
+            let out = ProgressiveRenderer::new(kind, progressive(pass, 1, 0))
+                .render(scene, partitioner, &())
+                .unwrap();
+            let image = out.accumulation.mean();
+            for &i in &dark {
+                assert_eq!(
+                    image.pixels()[i].to_array(),
+                    [0.0; 3],
+                    "{label} {kind}: pixel {i} leaks in pass {pass}"
+                );
+            }
+            assert!(image.mean().x > 0.0, "{label} {kind}: the lit room must be lit");
+        }
+    }
+}
+
+#[test]
+fn crease_maps_keep_the_dark_room_black_at_every_pass() {
+    let scene = scenes::build("lit-unlit-rooms").unwrap();
+    assert_dark_at_every_pass(&scene, &CreaseAngle::default(), "lit-unlit-rooms");
+}
+
+#[test]
+fn contact_maps_keep_the_touching_dark_room_black_at_every_pass() {
+    let contact = Contact::default();
+    let scene = contact
+        .prepare_scene(scenes::build("touching-rooms").unwrap())
+        .unwrap();
+    assert_dark_at_every_pass(&scene, &contact, "touching-rooms");
+}
+
+#[test]
+fn sppm_with_one_map_leaks_into_the_dark_room() {
+    let scene = scenes::build("lit-unlit-rooms").unwrap();
+    let dark = dark_room_pixels(&scene);
+    let out = SppmRenderer::new(SppmSettings::new(render_settings(6_000, 0), 4))
+        .render(&scene, &())
+        .unwrap();
+    let lit = dark.iter().filter(|&&i| out.image.pixels()[i].x > 0.0).count();
+    assert!(lit > 0, "SPPM's global map should gather through the shared wall");
+    assert!(out.image.mean().x > 0.0);
+    assert_eq!(out.stats.passes, 4);
+}
+
+fn bits(image: &Image) -> Vec<u32> {
+    image
+        .pixels()
+        .iter()
+        .flat_map(|p| p.to_array().map(f32::to_bits))
+        .collect()
+}
+
+#[test]
+fn one_two_and_three_threads_give_bit_identical_images() {
+    let scene = scenes::build("cornell-box").unwrap();
+    for kind in EstimatorKind::ALL {
+        let render = |threads| {
+            let out = ProgressiveRenderer::new(kind, progressive(0, 3, threads))
+                .render(&scene, &CreaseAngle::default(), &())
+                .unwrap();
+            bits(&out.accumulation.mean())
+        };
+        let one = render(1);
+        assert_eq!(one, render(2), "{kind}: 1 and 2 threads differ");
+        assert_eq!(one, render(3), "{kind}: 1 and 3 threads differ");
+    }
+    let sppm = |threads| {
+        let s = SppmSettings::new(render_settings(6_000, threads), 3);
+        bits(&SppmRenderer::new(s).render(&scene, &()).unwrap().image)
+    };
+    let one = sppm(1);
+    assert_eq!(one, sppm(2), "SPPM: 1 and 2 threads differ");
+    assert_eq!(one, sppm(3), "SPPM: 1 and 3 threads differ");
+}
+
+#[test]
+fn merged_shards_equal_the_single_run() {
+    let scene = scenes::build("cornell-box").unwrap();
+    let kind = EstimatorKind::GeometryCube;
+    let run = |first, passes| {
+        let settings = progressive(first, passes, 0);
+        let out = ProgressiveRenderer::new(kind, settings)
+            .render(&scene, &CreaseAngle::default(), &())
+            .unwrap();
+        let a = &out.accumulation;
+        assert_eq!(a.pass_range(), first..first + passes);
+        Shard::new(a.mean(), first, a.passes(), "cornell-box", &settings.identity()).unwrap()
+    };
+    let single = run(0, 5);
+    // Shards given out of order, as a scheduler may finish them.
+    let shards = [run(3, 2), run(0, 1), run(1, 2)];
+    let dir = std::env::temp_dir().join(format!("pm-shards-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let read: Vec<Shard> = shards
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let path = dir.join(format!("shard{i}.exr"));
+            s.write_exr(&path).unwrap();
+            Shard::read_exr(&path).unwrap()
+        })
+        .collect();
+    assert_eq!(read, shards, "shards read back as written");
+    let merged = Shard::merge(&read).unwrap();
+    assert_eq!(merged.pass_range(), 0..5);
+    let mut worst = 0.0f32;
+    for (a, b) in merged.mean().pixels().iter().zip(single.mean().pixels()) {
+        for (a, b) in a.to_array().into_iter().zip(b.to_array()) {
+            worst = worst.max((a - b).abs() / b.abs().max(1e-6));
+        }
+    }
+    assert!(
+        worst <= 1e-4,
+        "merged shards differ from the single run by {worst}"
+    );
+
+    // Refusals.
+    assert!(matches!(
+        Shard::merge(&[shards[1].clone(), shards[1].clone()]),
+        Err(ShardError::Overlap { .. })
+    ));
+    assert!(matches!(
+        Shard::merge(&[shards[1].clone(), shards[0].clone()]),
+        Err(ShardError::Gap { .. })
+    ));
+    let other_scene = Shard::new(shards[0].mean().clone(), 3, 2, "accordion", shards[0].settings()).unwrap();
+    assert!(matches!(
+        Shard::merge(&[shards[1].clone(), shards[2].clone(), other_scene]),
+        Err(ShardError::SceneMismatch { .. })
+    ));
+    let other_settings = Shard::new(shards[0].mean().clone(), 3, 2, "cornell-box", "k=7").unwrap();
+    assert!(matches!(
+        Shard::merge(&[shards[1].clone(), shards[2].clone(), other_settings]),
+        Err(ShardError::SettingsMismatch { .. })
+    ));
+    let plain = dir.join("plain.exr");
+    single.mean().write_exr(&plain).unwrap();
+    assert!(matches!(
+        Shard::read_exr(&plain),
+        Err(ShardError::NotAShard { .. })
+    ));
+    assert!(matches!(Shard::merge(&[]), Err(ShardError::Empty)));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_time_budget_stops_after_the_pass_that_spends_it() {
+    let scene = scenes::build("accordion").unwrap();
+    let settings = ProgressiveSettings {
+        passes: None,
+        time_budget: Some(std::time::Duration::ZERO),
+        ..progressive(0, 1, 0)
+    };
+    let out = ProgressiveRenderer::new(EstimatorKind::Disc, settings)
+        .render(&scene, &CreaseAngle::default(), &())
+        .unwrap();
+    assert_eq!(out.stats.passes, 1);
+    assert_eq!(out.accumulation.passes(), 1);
+}
