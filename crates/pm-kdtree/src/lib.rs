@@ -65,4 +65,4 @@ pub use error::BuildError;
 pub use metric::{Chebyshev, Euclidean, Metric};
 pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind, PowerScale};
 pub use query::{Neighbour, Neighbours};
-pub use tree::{InvariantError, LEAF_CAPACITY, PhotonTree};
+pub use tree::{InvariantError, LEAF_CAPACITY, MAX_COORDINATE, PhotonTree};

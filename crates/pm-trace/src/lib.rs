@@ -76,7 +76,8 @@ pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, Poi
 pub use material::{Material, Surface};
 pub use partition::{Contact, CreaseAngle, MapAssignment, Partitioner, SingleMap};
 pub use photons::{
-    MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons,
+    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats,
+    TracedPhotons, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
