@@ -384,10 +384,10 @@ fn check_lights(lights: &[Box<dyn Light>]) -> Result<(), SceneError> {
             return Err(fail(format!("power {power} W must be finite and not negative")));
         }
         total += power.as_dvec3().element_sum();
-        if total > f32::MAX as f64 / 4.0 {
+        if total > f32::MAX as f64 {
             return Err(fail(format!(
-                "the lights' total power passes {:e} W (f32 overflow)",
-                f32::MAX / 4.0
+                "the lights' total power passes {:e} W, the largest f32",
+                f32::MAX
             )));
         }
     }
