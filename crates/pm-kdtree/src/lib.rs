@@ -11,6 +11,9 @@
 //!   into a reusable [`Neighbours`] buffer that also reports the search extent.
 //! - [`PhotonTree::for_each_within`] visits every photon within a radius.
 //!
+//! Limits: photon coordinates within ±[`MAX_COORDINATE`] (10¹⁸ m), so squared distances
+//! stay finite; [`PhotonTree::build`] refuses others with [`BuildError::PositionOutOfRange`].
+//!
 //! # Conventions
 //!
 //! f32 throughout; positions in metres (right-handed, +y up, as in the rest of the

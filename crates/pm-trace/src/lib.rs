@@ -29,6 +29,14 @@
 //!
 //! - `gltf` (default): the `gltf` module loads `.gltf`/`.glb` scenes safely.
 //!
+//! # Limits
+//!
+//! [`Scene::build`] refuses invalid lights and cameras ([`SceneError::InvalidLight`],
+//! [`SceneError::InvalidCamera`]); [`trace_photons`] traces at most [`MAX_PHOTON_PATHS`] paths
+//! and stores at most [`MAX_STORED_PHOTONS`] photons ([`TraceError::TooManyPhotons`],
+//! [`TraceError::TooManyPhotonsStored`]); the glTF loader's limits are on
+//! `gltf::GltfOptions` (file and buffer bytes, triangles, a scene byte budget).
+//!
 //! # Example
 //!
 //! ```
