@@ -31,7 +31,7 @@
 //!
 //! # Limits
 //!
-//! [`Scene::build`] refuses invalid lights and cameras ([`SceneError::InvalidLight`],
+//! [`SceneBuilder::build`] refuses invalid lights and cameras ([`SceneError::InvalidLight`],
 //! [`SceneError::InvalidCamera`]); [`trace_photons`] traces at most [`MAX_PHOTON_PATHS`] paths
 //! and stores at most [`MAX_STORED_PHOTONS`] photons ([`TraceError::TooManyPhotons`],
 //! [`TraceError::TooManyPhotonsStored`]); the glTF loader's limits are on
