@@ -6,12 +6,15 @@
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
+use photon_maps::render::image::{check_image_size, check_output_path, write_atomically};
 use photon_maps::render::{
-    EstimatorKind, Image, Mode, Progress, RenderSettings, RenderStats, Renderer, parse_image_size,
+    EstimatorKind, Image, Mode, Progress, RenderError, RenderSettings, RenderStats, Renderer,
+    parse_image_size,
 };
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, SingleMap, scenes};
 use std::fmt::Write as _;
-use std::fs::{self, File};
+use std::fs;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -136,11 +139,8 @@ fn run(args: &Args) -> Result<(), String> {
     let progressive_mode = matches!(args.mode.as_str(), "progressive" | "sppm");
     let mode: Mode = if progressive_mode { "visualize" } else { &args.mode }
         .parse()
-        .map_err(|e: photon_maps::render::RenderError| e.to_string())?;
-    let estimator: EstimatorKind = args
-        .estimator
-        .parse()
-        .map_err(|e: photon_maps::render::RenderError| e.to_string())?;
+        .map_err(|e: RenderError| e.to_string())?;
+    let estimator: EstimatorKind = args.estimator.parse().map_err(|e: RenderError| e.to_string())?;
     partitioner(&args.maps)?;
     let settings = RenderSettings {
         width,
@@ -154,23 +154,39 @@ fn run(args: &Args) -> Result<(), String> {
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
+    if args.compare {
+        // The 2×2 grid is checked with the settings, not after four renders.
+        check_image_size(2 * width, 2 * height).map_err(|e| format!("--compare grid: {e}"))?;
+    }
+    if !args.exposure.is_finite() {
+        return Err(RenderError::BadExposure(args.exposure).to_string());
+    }
     if progressive_mode {
         return progressive::run(args, settings, estimator);
     }
 
-    let (_, scene_name) = load_scene(&args.scene)?;
+    let (scene, scene_name) = load_scene(&args.scene)?;
     let base = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
+    if base.is_dir() {
+        return Err(format!(
+            "--out {} is a folder; name a file (its .exr and .png siblings are written)",
+            base.display()
+        ));
+    }
     let (exr_path, png_path) = (base.with_extension("exr"), base.with_extension("png"));
     // Fail on an unwritable output before spending time on the render.
-    for path in [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
+    let outputs: Vec<&Path> = [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
         .into_iter()
         .flatten()
-    {
+        .map(PathBuf::as_path)
+        .collect();
+    for path in &outputs {
         check_writable(path)?;
     }
+    refuse_shared_outputs(&outputs)?;
 
     let variants: Vec<Variant> = if args.compare {
         [
@@ -198,16 +214,19 @@ fn run(args: &Args) -> Result<(), String> {
 
     let mut images = Vec::new();
     let mut records = Vec::new();
+    // The file is parsed once. A partition may re-mesh the scene (contact splits faces); only
+    // `--compare` renders several variants, and its partitions (single, crease) leave the
+    // scene as it is, so the prepared scene serves the next variant.
+    let mut scene = Some(scene);
     for variant in &variants {
         let partition = partitioner(&variant.maps)?;
-        // A partition may re-mesh the scene (contact splits faces), so each variant starts from
-        // a freshly loaded one.
-        let scene = partition
-            .prepare_scene(load_scene(&args.scene)?.0)
+        let prepared = partition
+            .prepare_scene(scene.take().ok_or("no scene")?)
             .map_err(|e| e.to_string())?;
+        let scene = scene.insert(prepared);
         let bar = TileBar::new(variant.label);
         let out = Renderer::new(variant.estimator, settings)
-            .render(&scene, &*partition, &bar)
+            .render(scene, &*partition, &bar)
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
         let mean = out.image.mean().to_array();
@@ -245,7 +264,8 @@ fn run(args: &Args) -> Result<(), String> {
         } else {
             objects.join("") + "\n"
         };
-        fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_atomically(path, |w| w.write_all(text.as_bytes()))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         say(&format!("wrote {}", path.display()));
     }
     Ok(())
@@ -274,7 +294,6 @@ fn load_scene(arg: &str) -> Result<(Scene, String), String> {
 
 /// Prints a line to stdout; a closed pipe (`render | head -1`) is not an error worth a panic.
 fn say(line: &str) {
-    use std::io::Write as _;
     let _ = writeln!(std::io::stdout().lock(), "{line}");
 }
 
@@ -283,20 +302,51 @@ fn load_gltf(path: &Path) -> Result<Scene, String> {
     photon_maps::trace::gltf::load_scene(path).map_err(|e| e.to_string())
 }
 
-/// Creates the parent folder and checks the file can be created, so a bad path fails early.
+/// Creates the parent folder, refuses a target that is not a regular file (a folder, a
+/// device, a FIFO) and checks a file can be made beside it, so a bad path fails before the
+/// render; the target itself is not opened or touched.
 fn check_writable(path: &Path) -> Result<(), String> {
     let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         fs::create_dir_all(parent).map_err(fail)?;
     }
-    let existed = path.exists();
-    File::options()
-        .append(true)
-        .create(true)
-        .open(path)
-        .map_err(fail)?;
-    if !existed {
-        fs::remove_file(path).ok();
+    check_output_path(path).map_err(|e| e.to_string())?;
+    // An empty atomic write to a file that is then removed: the target is never named.
+    let probe = path.with_file_name(format!(
+        ".{}.probe-{}",
+        path.file_name().and_then(|n| n.to_str()).unwrap_or("out"),
+        std::process::id()
+    ));
+    write_atomically(&probe, |_| Ok(())).map_err(fail)?;
+    fs::remove_file(&probe).ok();
+    Ok(())
+}
+
+/// Refuses two outputs that are one file (`--stats-json` naming the image, or a link to it).
+fn refuse_shared_outputs(outputs: &[&Path]) -> Result<(), String> {
+    let identity = |path: &Path| -> PathBuf {
+        // Existing files (and links to them) by their canonical path; new ones by their
+        // canonical folder and name.
+        if let Ok(p) = fs::canonicalize(path) {
+            return p;
+        }
+        let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+        let folder = folder.map_or_else(|| fs::canonicalize("."), fs::canonicalize);
+        match (folder, path.file_name()) {
+            (Ok(folder), Some(name)) => folder.join(name),
+            _ => path.to_path_buf(),
+        }
+    };
+    for (i, a) in outputs.iter().enumerate() {
+        for b in &outputs[i + 1..] {
+            if identity(a) == identity(b) {
+                return Err(format!(
+                    "outputs {} and {} are the same file; give each output its own path",
+                    a.display(),
+                    b.display()
+                ));
+            }
+        }
     }
     Ok(())
 }

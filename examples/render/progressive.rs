@@ -3,12 +3,13 @@
 
 use super::{Args, check_writable, json_number, json_string, load_scene, partitioner, say};
 use indicatif::{ProgressBar, ProgressStyle};
+use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Mode, Progress, RenderSettings};
 use std::fmt::Write as _;
-use std::fs;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -120,7 +121,8 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             Some(&stats),
             m.to_array(),
         );
-        fs::write(path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_atomically(path, |w| w.write_all(json.as_bytes()))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         say(&format!("wrote {}", path.display()));
     }
     Ok(())
@@ -172,7 +174,8 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
             None,
             m.to_array(),
         );
-        fs::write(path, json).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_atomically(path, |w| w.write_all(json.as_bytes()))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         say(&format!("wrote {}", path.display()));
     }
     Ok(())
@@ -183,14 +186,27 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
 fn scene_identity(arg: &str) -> Result<(String, String), String> {
     let (_, name) = load_scene(arg)?;
     let path = Path::new(arg);
-    let bytes = if path.is_file() {
-        fs::read(path).map_err(|e| format!("{arg}: {e}"))?
-    } else {
-        arg.as_bytes().to_vec()
+    let fnv = |h: u64, bytes: &[u8]| {
+        bytes
+            .iter()
+            .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
     };
-    let hash = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    });
+    let mut hash = 0xcbf2_9ce4_8422_2325u64;
+    if path.is_file() {
+        // The loader has checked it is a regular file within its size limit; hashed in chunks.
+        use std::io::Read as _;
+        let mut file = std::fs::File::open(path).map_err(|e| format!("{arg}: {e}"))?;
+        let mut chunk = vec![0u8; 1 << 16];
+        loop {
+            let n = file.read(&mut chunk).map_err(|e| format!("{arg}: {e}"))?;
+            if n == 0 {
+                break;
+            }
+            hash = fnv(hash, &chunk[..n]);
+        }
+    } else {
+        hash = fnv(hash, arg.as_bytes());
+    }
     Ok((name.clone(), format!("{name} fnv1a64:{hash:016x}")))
 }
 

@@ -14,4 +14,13 @@ pub enum BuildError {
         /// The position.
         position: [f32; 3],
     },
+    /// A photon coordinate beyond [`crate::MAX_COORDINATE`], where squared distances would
+    /// overflow f32.
+    #[error("photon {index}: position {position:?} is beyond ±{max:e} m", max = crate::MAX_COORDINATE)]
+    PositionOutOfRange {
+        /// Index in the input.
+        index: usize,
+        /// The position.
+        position: [f32; 3],
+    },
 }

@@ -11,6 +11,9 @@
 //!   into a reusable [`Neighbours`] buffer that also reports the search extent.
 //! - [`PhotonTree::for_each_within`] visits every photon within a radius.
 //!
+//! Limits: photon coordinates within ±[`MAX_COORDINATE`] (10¹⁸ m), so squared distances
+//! stay finite; [`PhotonTree::build`] refuses others with [`BuildError::PositionOutOfRange`].
+//!
 //! # Conventions
 //!
 //! f32 throughout; positions in metres (right-handed, +y up, as in the rest of the
@@ -65,4 +68,4 @@ pub use error::BuildError;
 pub use metric::{Chebyshev, Euclidean, Metric};
 pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind, PowerScale};
 pub use query::{Neighbour, Neighbours};
-pub use tree::{InvariantError, LEAF_CAPACITY, PhotonTree};
+pub use tree::{InvariantError, LEAF_CAPACITY, MAX_COORDINATE, PhotonTree};

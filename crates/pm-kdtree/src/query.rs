@@ -96,7 +96,7 @@ impl PhotonTree {
         }
         out.extent = max_distance;
         out.partial = true;
-        if max_distance.is_nan() || max_distance < 0.0 || !query.is_finite() || self.is_empty() {
+        if max_distance.is_nan() || max_distance < 0.0 || !in_range(query) || self.is_empty() {
             return;
         }
         // The candidates never outnumber the tree: a huge k must not reserve for it.
@@ -133,7 +133,7 @@ impl PhotonTree {
     /// (a photon at distance exactly `radius` included), in no particular order. A negative or
     /// NaN radius, or a non-finite query, visits nothing.
     pub fn for_each_within<M: Metric>(&self, query: Vec3, radius: f32, mut f: impl FnMut(u32, f32)) {
-        if radius.is_nan() || radius < 0.0 || !query.is_finite() || self.is_empty() {
+        if radius.is_nan() || radius < 0.0 || !in_range(query) || self.is_empty() {
             return;
         }
         let mut search = Within::<M, _> {
@@ -346,4 +346,10 @@ impl<M: Metric, F: FnMut(u32, f32)> LeafSearch for Within<'_, M, F> {
             }
         }
     }
+}
+
+/// A finite query point within [`crate::MAX_COORDINATE`] on every axis (farther, squared
+/// distances to the tree's photons could overflow and rank wrongly).
+fn in_range(query: Vec3) -> bool {
+    query.is_finite() && query.abs().max_element() <= crate::MAX_COORDINATE
 }

@@ -79,9 +79,15 @@ pub struct InvariantError {
 /// Split decisions of one subtree: (heap index, split value, axis).
 type Splits = Vec<(usize, f32, u8)>;
 
+/// The largest photon coordinate magnitude a tree accepts, in metres (10¹⁸). Squared
+/// distances between points within it stay finite in f32 (3 · (2 · 10¹⁸)² ≈ 1.2 · 10³⁷ <
+/// 3.4 · 10³⁸); [`PhotonTree::build`] refuses photons beyond it with
+/// [`BuildError::PositionOutOfRange`], and queries from points beyond it find nothing.
+pub const MAX_COORDINATE: f32 = 1e18;
+
 impl PhotonTree {
     /// Builds the tree from photons in full precision (reorders them). Errors on non-finite
-    /// positions.
+    /// positions and on coordinates beyond [`MAX_COORDINATE`].
     ///
     /// The power scale is the largest finite power channel of any photon
     /// ([`PowerScale::for_photons`]), so every channel within 2⁻⁴⁰ of it keeps ±0.35 %;
@@ -266,6 +272,9 @@ fn encode_all(photons: &[Photon]) -> Result<(Vec<CompactPhoton>, PowerScale, u64
         let position = p.position.to_array();
         if !position.iter().all(|c| c.is_finite()) {
             return Err(BuildError::NonFinitePosition { index, position });
+        }
+        if !position.iter().all(|c| c.abs() <= MAX_COORDINATE) {
+            return Err(BuildError::PositionOutOfRange { index, position });
         }
     }
     let scale = PowerScale::for_photons(photons);

@@ -22,7 +22,7 @@ pub enum RenderError {
         height: u32,
     },
     /// An image with more than [`crate::image::MAX_PIXELS`] pixels.
-    #[error("image size {width}x{height}: more than {max} pixels", max = crate::image::MAX_PIXELS)]
+    #[error("image size {width}x{height}: more than the limit of {max} pixels", max = crate::image::MAX_PIXELS)]
     ImageTooLarge {
         /// Width asked for.
         width: u64,
@@ -49,6 +49,15 @@ pub enum RenderError {
     /// An image size that is not `WIDTHxHEIGHT` with both sides at least 1.
     #[error("image size '{0}': expected WIDTHxHEIGHT with both sides at least 1, e.g. 500x500")]
     BadSize(String),
+    /// A PNG exposure that is NaN or infinite.
+    #[error("exposure must be a finite number of stops, got {0}")]
+    BadExposure(f32),
+    /// More samples per pixel than [`crate::RenderSettings::MAX_SAMPLES_PER_PIXEL`].
+    #[error("{0} samples per pixel: more than the limit of {max}", max = crate::RenderSettings::MAX_SAMPLES_PER_PIXEL)]
+    TooManySamples(u32),
+    /// More worker threads than [`crate::RenderSettings::MAX_THREADS`].
+    #[error("{0} threads: more than the limit of {max}", max = crate::RenderSettings::MAX_THREADS)]
+    TooManyThreads(usize),
     /// Zero samples per pixel.
     #[error("samples per pixel must be at least 1")]
     ZeroSamples,

@@ -13,7 +13,13 @@
 //! - [`progressive`]: a consistent progressive renderer (Knaus & Zwicker passes with
 //!   fixed-volume estimates, [`FixedVolumeEstimator`]) that stays leak-free and edge-true at
 //!   every pass, shards of passes that merge exactly, and the SPPM baseline.
-//! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`).
+//! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`),
+//!   each written atomically ([`image::write_atomically`]: a failed write keeps the old file).
+//!
+//! Limits, checked by [`RenderSettings::validate`] before anything is allocated: at most
+//! [`image::MAX_PIXELS`] pixels, [`RenderSettings::MAX_SAMPLES_PER_PIXEL`] samples per pixel,
+//! [`RenderSettings::MAX_THREADS`] threads and [`pm_trace::MAX_PHOTON_PATHS`] photon paths;
+//! past one, a [`RenderError`] naming it.
 //!
 //! Conventions: metres, watts, f32; right-handed with +y up; colour is linear RGB with
 //! Rec. 709 primaries. Irradiance is in W/m², radiance in W/(m²·sr); a Lambertian surface of

@@ -52,14 +52,37 @@ impl Default for RenderSettings {
 }
 
 impl RenderSettings {
-    /// Checks sizes, counts and distances; the error names the bad setting.
+    /// The most samples per pixel (2¹⁶): render time grows with pixels × samples, and more
+    /// than this is refused with [`RenderError::TooManySamples`].
+    pub const MAX_SAMPLES_PER_PIXEL: u32 = 1 << 16;
+
+    /// The most worker threads (512): each is an OS thread with its own stack, and the standard
+    /// library aborts the process when it cannot make one, so more are refused with
+    /// [`RenderError::TooManyThreads`].
+    pub const MAX_THREADS: usize = 512;
+
+    /// Checks sizes, counts and distances before anything is allocated; the error names the
+    /// bad setting and the limit. The limits: [`crate::image::MAX_PIXELS`] pixels,
+    /// [`Self::MAX_SAMPLES_PER_PIXEL`] samples per pixel, [`pm_trace::MAX_PHOTON_PATHS`]
+    /// photon paths and [`Self::MAX_THREADS`] threads.
     pub fn validate(&self) -> Result<(), RenderError> {
         crate::image::check_image_size(self.width, self.height)?;
         if self.samples_per_pixel == 0 {
             return Err(RenderError::ZeroSamples);
         }
+        if self.samples_per_pixel > Self::MAX_SAMPLES_PER_PIXEL {
+            return Err(RenderError::TooManySamples(self.samples_per_pixel));
+        }
         if self.photons == 0 && self.mode.uses_photons() {
             return Err(RenderError::ZeroPhotons);
+        }
+        if self.photons > pm_trace::MAX_PHOTON_PATHS && self.mode.uses_photons() {
+            return Err(RenderError::Trace(pm_trace::TraceError::TooManyPhotons {
+                photons: self.photons,
+            }));
+        }
+        if self.threads > Self::MAX_THREADS {
+            return Err(RenderError::TooManyThreads(self.threads));
         }
         if self.tile_size == 0 {
             return Err(RenderError::ZeroTileSize);

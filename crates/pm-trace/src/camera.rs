@@ -11,14 +11,25 @@ pub struct Camera {
     right: Vec3,
     up: Vec3,
     tan_half_fov: f32,
+    /// Why the view fell back to its default, for [`Camera::validate`].
+    fallback: Option<&'static str>,
 }
 
 impl Camera {
     /// A camera at `position` looking at `look_at`, with `up` pointing up in the image and a
-    /// vertical field of view of `vfov_radians`. Degenerate input (look_at = position, up
-    /// parallel to the view direction) falls back to looking along +z with +y up.
+    /// vertical field of view of `vfov_radians`. An `up` parallel to the view direction falls
+    /// back to +y (or +x); a look-at point equal to the position (or not finite) falls back to
+    /// looking along +z, and [`Camera::validate`] (run by the scene builder) refuses it.
     pub fn new(position: Vec3, look_at: Vec3, up: Vec3, vfov_radians: f32) -> Self {
-        let forward = (look_at - position).try_normalize().unwrap_or(Vec3::Z);
+        let view = look_at - position;
+        let fallback = if !(position.is_finite() && look_at.is_finite()) {
+            Some("position or look-at point is not finite")
+        } else if view.try_normalize().is_none() {
+            Some("look-at point equals the position (no view direction)")
+        } else {
+            None
+        };
+        let forward = view.try_normalize().unwrap_or(Vec3::Z);
         let right = forward
             .cross(up)
             .try_normalize()
@@ -30,7 +41,27 @@ impl Camera {
             right,
             up,
             tan_half_fov: (vfov_radians * 0.5).tan(),
+            fallback,
         }
+    }
+
+    /// Checks the camera: a finite position, a view direction (look-at point not the
+    /// position) and a vertical field of view in (0, π) radians. The reason names the culprit.
+    pub fn validate(&self) -> Result<(), String> {
+        if let Some(reason) = self.fallback {
+            return Err(reason.to_owned());
+        }
+        if !self.position.is_finite() {
+            return Err(format!("position {} is not finite", self.position));
+        }
+        if !(self.tan_half_fov.is_finite() && self.tan_half_fov > 0.0) {
+            let fov = 2.0 * self.tan_half_fov.atan();
+            return Err(format!(
+                "vertical field of view {fov} rad is not in (0, π) (got tan(fov/2) = {})",
+                self.tan_half_fov
+            ));
+        }
+        Ok(())
     }
 
     /// How far from the centre of a box of `size` a camera looking along ±z must stand so

@@ -40,6 +40,21 @@ pub enum SceneError {
         /// What is wrong.
         reason: String,
     },
+    /// A light with a non-finite position or direction, a bad cone, an empty area, negative
+    /// or non-finite power, or a total power past f32's range.
+    #[error("light {light}: {reason}")]
+    InvalidLight {
+        /// Index of the light in the order it was added.
+        light: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A camera with a non-finite position, no view direction or a bad field of view.
+    #[error("camera: {reason}")]
+    InvalidCamera {
+        /// What is wrong.
+        reason: String,
+    },
     /// The scene has no surfaces at all.
     #[error("the scene has no geometry")]
     NoGeometry,
@@ -68,6 +83,19 @@ pub enum TraceError {
     /// Zero photons were asked for.
     #[error("zero photons requested; ask for at least one")]
     ZeroPhotons,
+    /// More photon paths than [`crate::MAX_PHOTON_PATHS`].
+    #[error("{photons} photon paths: more than the limit of {max}", max = crate::MAX_PHOTON_PATHS)]
+    TooManyPhotons {
+        /// Paths asked for.
+        photons: u32,
+    },
+    /// The paths stored more photons than [`crate::MAX_STORED_PHOTONS`] (long diffuse paths in
+    /// a bright closed scene); trace fewer paths.
+    #[error("more than the limit of {limit} stored photons; trace fewer photon paths")]
+    TooManyPhotonsStored {
+        /// The limit.
+        limit: u64,
+    },
     /// The scene has no light.
     #[error("the scene has no light to emit photons from")]
     NoLights,

@@ -37,6 +37,14 @@
 //!
 //! - `gltf` (default): the `gltf` module loads `.gltf`/`.glb` scenes safely.
 //!
+//! # Limits
+//!
+//! [`SceneBuilder::build`] refuses invalid lights and cameras ([`SceneError::InvalidLight`],
+//! [`SceneError::InvalidCamera`]); [`trace_photons`] traces at most [`MAX_PHOTON_PATHS`] paths
+//! and stores at most [`MAX_STORED_PHOTONS`] photons ([`TraceError::TooManyPhotons`],
+//! [`TraceError::TooManyPhotonsStored`]); the glTF loader's limits are on
+//! `gltf::GltfOptions` (file and buffer bytes, triangles, a scene byte budget).
+//!
 //! # Example
 //!
 //! ```
@@ -84,7 +92,8 @@ pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, Poi
 pub use material::{Material, Surface};
 pub use partition::{Contact, CreaseAngle, MapAssignment, Partitioner, SingleMap};
 pub use photons::{
-    MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons,
+    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats,
+    TracedPhotons, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;

@@ -349,7 +349,11 @@ impl SceneBuilder {
         for light in &mut lights {
             light.attach(&bounds);
         }
+        check_lights(&lights)?;
         let camera = self.camera.unwrap_or_else(|| default_camera(&bounds));
+        camera
+            .validate()
+            .map_err(|reason| SceneError::InvalidCamera { reason })?;
         let epsilon = 1e-5 * bounds.size().max_element().max(1.0);
         Ok(Scene {
             meshes,
@@ -366,6 +370,28 @@ impl SceneBuilder {
             bvh: SceneBvh::build(triangles, triangle_parts, shape_prims),
         })
     }
+}
+
+/// Every light valid ([`Light::validate`]) with finite, non-negative power, and the total power
+/// finite (photon tracing divides it among the photons).
+fn check_lights(lights: &[Box<dyn Light>]) -> Result<(), SceneError> {
+    let mut total = 0.0f64;
+    for (i, light) in lights.iter().enumerate() {
+        let fail = |reason: String| SceneError::InvalidLight { light: i, reason };
+        light.validate().map_err(fail)?;
+        let power = light.power();
+        if !power.is_finite() || power.min_element() < 0.0 {
+            return Err(fail(format!("power {power} W must be finite and not negative")));
+        }
+        total += power.as_dvec3().element_sum();
+        if total > f32::MAX as f64 {
+            return Err(fail(format!(
+                "the lights' total power passes {:e} W, the largest f32",
+                f32::MAX
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The distinct surfaces of a scene, each stored once however many parts use it.

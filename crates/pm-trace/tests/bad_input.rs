@@ -43,18 +43,15 @@ fn tracing_without_photons_lights_or_power_is_an_error() {
         Err(TraceError::ZeroPhotons)
     );
 
+    // A light with NaN power is refused when the scene is built, naming the light.
     let nan = Scene::builder()
         .mesh(&quad(), &[[0u32, 1, 2, 3]], grey())
         .light(PointLight::new(Vec3::Y, Vec3::splat(1.0)))
         .light(PointLight::new(Vec3::Y, Vec3::new(f32::NAN, 1.0, 1.0)))
         .build()
-        .unwrap();
-    assert!(matches!(
-        trace_photons(&nan, &maps, &opts),
-        Err(TraceError::InvalidPower { light: 1, .. })
-    ));
-    let msg = trace_photons(&nan, &maps, &opts).unwrap_err().to_string();
-    assert!(msg.contains("light 1"), "{msg}");
+        .unwrap_err();
+    assert!(matches!(nan, SceneError::InvalidLight { light: 1, .. }), "{nan}");
+    assert!(nan.to_string().contains("light 1"), "{nan}");
 }
 
 #[test]

@@ -14,7 +14,9 @@ fn io_error(path: &Path, e: impl std::fmt::Display) -> RenderError {
 }
 
 impl Image {
-    /// Writes the image as a lossless 32-bit float RGB EXR file.
+    /// Writes the image as a lossless 32-bit float RGB EXR file, atomically (see
+    /// [`super::write_atomically`]): on any error the file named, or the link naming it, is
+    /// left as it was.
     pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), RenderError> {
         let path = path.as_ref();
         let w = self.width as usize;
@@ -22,13 +24,16 @@ impl Image {
             let p = self.pixels[y * w + x];
             (p.x, p.y, p.z)
         });
-        exr::prelude::Image::from_encoded_channels(
-            (w, self.height as usize),
-            Encoding::SMALL_LOSSLESS,
-            channels,
-        )
-        .write()
-        .to_file(path)
+        super::write_atomically(path, |writer| {
+            exr::prelude::Image::from_encoded_channels(
+                (w, self.height as usize),
+                Encoding::SMALL_LOSSLESS,
+                channels,
+            )
+            .write()
+            .to_buffered(writer)
+            .map_err(|e| std::io::Error::other(e.to_string()))
+        })
         .map_err(|e| io_error(path, e))
     }
 

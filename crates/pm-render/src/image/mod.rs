@@ -1,5 +1,6 @@
 //! Linear RGB images (the film), with metrics, a 2×2 grid, EXR and PNG files.
 
+mod atomic;
 #[cfg(feature = "exr")]
 mod exr_file;
 mod metrics;
@@ -7,6 +8,7 @@ mod metrics;
 mod png_file;
 mod srgb;
 
+pub use atomic::{check_output_path, write_atomically};
 pub use srgb::{linear_to_srgb8, srgb8_of_image};
 
 use crate::RenderError;
@@ -105,6 +107,7 @@ impl Image {
         for im in &images[1..] {
             check_same_size(images[0], im)?;
         }
+        check_image_size(2 * w, 2 * h)?;
         Image::from_fn(2 * w, 2 * h, |x, y| {
             let cell = (y / h) * 2 + x / w;
             images[cell as usize].pixels[((y % h) * w + x % w) as usize]
@@ -124,12 +127,17 @@ pub(crate) fn check_same_size(a: &Image, b: &Image) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// The most pixels an image may have (2²⁸, 3 GiB of linear RGB): larger sizes are refused with
-/// [`RenderError::ImageTooLarge`] instead of exhausting memory.
-pub const MAX_PIXELS: u64 = 1 << 28;
+/// The most pixels an image may have: 2²⁶ (67,108,864, e.g. 8192×8192). The film holds 12 bytes
+/// a pixel (768 MiB at the limit) and writing it takes about as much again (the PNG's 3 bytes a
+/// pixel, the EXR encoder's blocks); larger sizes are refused with
+/// [`RenderError::ImageTooLarge`] before anything is allocated. A 2×2 grid
+/// ([`Image::grid_2x2`]) counts its four cells.
+pub const MAX_PIXELS: u64 = 1 << 26;
 
-/// Both sides at least 1 and at most [`MAX_PIXELS`] pixels in all.
-pub(crate) fn check_image_size(width: u32, height: u32) -> Result<(), RenderError> {
+/// Checks an image size: both sides at least 1 ([`RenderError::EmptyImage`]) and at most
+/// [`MAX_PIXELS`] pixels in all ([`RenderError::ImageTooLarge`]). Call it before allocating
+/// for an image made of others (a grid of `2w × 2h`).
+pub fn check_image_size(width: u32, height: u32) -> Result<(), RenderError> {
     if width == 0 || height == 0 {
         return Err(RenderError::EmptyImage { width, height });
     }

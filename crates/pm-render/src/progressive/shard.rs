@@ -242,7 +242,14 @@ mod exr_io {
             other.insert(Text::from(PASSES), text(&self.passes.to_string()));
             other.insert(Text::from(SCENE), text(&self.scene));
             other.insert(Text::from(SETTINGS), text(&self.settings));
-            image.write().to_file(path).map_err(|e| io_error(path, e).into())
+            // Atomically: the exr crate's `to_file` deletes the target when a write fails.
+            crate::image::write_atomically(path, |writer| {
+                image
+                    .write()
+                    .to_buffered(writer)
+                    .map_err(|e| std::io::Error::other(e.to_string()))
+            })
+            .map_err(|e| io_error(path, e).into())
         }
 
         /// Reads a shard written by [`Shard::write_exr`]; a plain EXR is

@@ -9,20 +9,21 @@ use gltf::json;
 use json::accessor::{ComponentType, GenericComponentType, IndexComponentType, Type};
 use json::validation::Checked;
 
+use super::buffers::Buffer;
 use super::error::GltfError;
 
 /// Reads accessors of one document against its resolved buffers.
 pub(super) struct AccessorReader<'a> {
     file: &'a Path,
     root: &'a json::Root,
-    buffers: &'a [Vec<u8>],
+    buffers: &'a [Buffer],
     /// Total bytes of all buffers: no accessor may describe more data than the file holds.
     total_bytes: u64,
 }
 
 impl<'a> AccessorReader<'a> {
-    pub(super) fn new(file: &'a Path, root: &'a json::Root, buffers: &'a [Vec<u8>]) -> Self {
-        let total_bytes = buffers.iter().map(|b| b.len() as u64).sum();
+    pub(super) fn new(file: &'a Path, root: &'a json::Root, buffers: &'a [Buffer]) -> Self {
+        let total_bytes = buffers.iter().map(|b| b.as_slice().len() as u64).sum();
         Self {
             file,
             root,
@@ -204,12 +205,16 @@ impl<'a> AccessorReader<'a> {
             .buffer_views
             .get(view)
             .ok_or_else(|| self.error(index, format!("buffer view {view} does not exist")))?;
-        let buffer = self.buffers.get(v.buffer.value()).ok_or_else(|| {
-            self.error(
-                index,
-                format!("buffer view {view}: buffer {} does not exist", v.buffer.value()),
-            )
-        })?;
+        let buffer = self
+            .buffers
+            .get(v.buffer.value())
+            .map(Buffer::as_slice)
+            .ok_or_else(|| {
+                self.error(
+                    index,
+                    format!("buffer view {view}: buffer {} does not exist", v.buffer.value()),
+                )
+            })?;
         let start = v.byte_offset.map_or(0, |o| o.0);
         let length = v.byte_length.0;
         let end = start.checked_add(length).filter(|&e| e <= buffer.len() as u64);

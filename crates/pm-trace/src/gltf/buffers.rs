@@ -2,71 +2,151 @@
 //! GLB binary chunk, and relative paths confined to the scene's folder, each read no further
 //! than the buffer's declared `byteLength`.
 
+use std::collections::HashMap;
 use std::fs::File;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
+use std::rc::Rc;
 
 use gltf::json;
 
 use super::error::{BufferError, GltfError};
 
-/// Resolves every buffer of `root` to its bytes, trimmed to the declared `byteLength`.
+/// The bytes of one buffer: shared with every other buffer entry naming the same file (or the
+/// same GLB chunk), and seen no further than its declared `byteLength`.
+#[derive(Clone, Debug)]
+pub(super) struct Buffer {
+    bytes: Rc<Vec<u8>>,
+    len: usize,
+}
+
+impl Buffer {
+    pub(super) fn as_slice(&self) -> &[u8] {
+        &self.bytes[..self.len]
+    }
+
+    /// Which allocation the bytes live in (shared entries give the same).
+    pub(super) fn identity(&self) -> *const u8 {
+        self.bytes.as_ptr()
+    }
+
+    /// Bytes of the allocation behind this buffer.
+    pub(super) fn held(&self) -> usize {
+        self.bytes.len()
+    }
+}
+
+/// Resolves every buffer of `root` to its bytes, trimmed to the declared `byteLength`. Each
+/// distinct file is read once, the GLB chunk is shared, and the bytes held in all (files, the
+/// chunk and data URIs) are at most `limit`.
 pub(super) fn resolve_buffers(
     file: &Path,
     root: &json::Root,
-    mut blob: Option<Vec<u8>>,
+    blob: Option<Vec<u8>>,
     limit: u64,
-) -> Result<Vec<Vec<u8>>, GltfError> {
+) -> Result<Vec<Buffer>, GltfError> {
     let folder = file
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
+    let mut sources = Sources {
+        folder,
+        blob: blob.map(Rc::new),
+        files: HashMap::new(),
+        held: 0,
+        limit,
+    };
     let mut out = Vec::with_capacity(root.buffers.len());
     for (index, buffer) in root.buffers.iter().enumerate() {
         let declared = buffer.byte_length.0;
-        let bytes =
-            resolve_one(folder, buffer.uri.as_deref(), declared, limit, &mut blob).map_err(|reason| {
-                GltfError::Buffer {
-                    file: file.to_path_buf(),
-                    buffer: index,
-                    reason,
-                }
+        let bytes = sources
+            .resolve(buffer.uri.as_deref(), declared)
+            .map_err(|reason| GltfError::Buffer {
+                file: file.to_path_buf(),
+                buffer: index,
+                reason,
             })?;
         out.push(bytes);
     }
     Ok(out)
 }
 
-fn resolve_one(
-    folder: &Path,
-    uri: Option<&str>,
-    declared: u64,
+/// Where buffer bytes come from, each source read once, and the bytes held so far.
+struct Sources<'a> {
+    folder: &'a Path,
+    blob: Option<Rc<Vec<u8>>>,
+    /// Files already read, by canonical path.
+    files: HashMap<PathBuf, Rc<Vec<u8>>>,
+    held: u64,
     limit: u64,
-    blob: &mut Option<Vec<u8>>,
-) -> Result<Vec<u8>, BufferError> {
-    if declared > limit {
-        return Err(BufferError::TooLarge { declared, limit });
-    }
-    let mut bytes = match uri {
-        None => blob.take().ok_or(BufferError::MissingBinChunk)?,
-        Some(uri) if has_prefix_ignore_case(uri, "data:") => {
-            let bytes = decode_data_uri(uri)?;
-            // A base64 payload may carry up to 3 bytes of padding past byteLength.
-            if bytes.len() as u64 > declared + 3 {
-                return Err(BufferError::LongerThanDeclared { declared });
-            }
-            bytes
+}
+
+impl Sources<'_> {
+    fn resolve(&mut self, uri: Option<&str>, declared: u64) -> Result<Buffer, BufferError> {
+        let limit = self.limit;
+        if declared > limit {
+            return Err(BufferError::TooLarge { declared, limit });
         }
-        Some(uri) => read_confined(folder, uri, declared)?,
-    };
-    if (bytes.len() as u64) < declared {
-        return Err(BufferError::ShorterThanDeclared {
-            declared,
-            actual: bytes.len() as u64,
-        });
+        let bytes = match uri {
+            // The chunk came with the scene file, which is bounded by the same limit.
+            None => self.blob.clone().ok_or(BufferError::MissingBinChunk)?,
+            Some(uri) if has_prefix_ignore_case(uri, "data:") => {
+                let bytes = decode_data_uri(uri)?;
+                // A base64 payload may carry up to 3 bytes of padding past byteLength.
+                if bytes.len() as u64 > declared + 3 {
+                    return Err(BufferError::LongerThanDeclared { declared });
+                }
+                self.hold(bytes.len() as u64)?;
+                Rc::new(bytes)
+            }
+            Some(uri) => {
+                let target = confined_target(self.folder, uri)?;
+                match self.files.get(&target) {
+                    Some(bytes) => {
+                        if bytes.len() as u64 > declared {
+                            return Err(BufferError::LongerThanDeclared { declared });
+                        }
+                        bytes.clone()
+                    }
+                    None => {
+                        let meta = std::fs::metadata(&target).map_err(unreadable(uri))?;
+                        if meta.len() <= declared {
+                            self.hold(meta.len())?;
+                        }
+                        let bytes = Rc::new(read_regular(&target, uri, declared)?);
+                        self.files.insert(target, bytes.clone());
+                        bytes
+                    }
+                }
+            }
+        };
+        if (bytes.len() as u64) < declared {
+            return Err(BufferError::ShorterThanDeclared {
+                declared,
+                actual: bytes.len() as u64,
+            });
+        }
+        Ok(Buffer {
+            bytes,
+            len: declared as usize,
+        })
     }
-    bytes.truncate(declared as usize);
-    Ok(bytes)
+
+    /// Counts `bytes` more held, refusing past the limit.
+    fn hold(&mut self, bytes: u64) -> Result<(), BufferError> {
+        self.held = self.held.saturating_add(bytes);
+        if self.held > self.limit {
+            return Err(BufferError::TotalTooLarge { limit: self.limit });
+        }
+        Ok(())
+    }
+}
+
+fn unreadable(uri: &str) -> impl Fn(std::io::Error) -> BufferError + '_ {
+    move |source| BufferError::Unreadable {
+        uri: uri.to_owned(),
+        source,
+    }
 }
 
 fn has_prefix_ignore_case(s: &str, prefix: &str) -> bool {
@@ -85,10 +165,9 @@ fn has_scheme(s: &str) -> bool {
             .all(|&c| c.is_ascii_alphanumeric() || matches!(c, b'+' | b'-' | b'.'))
 }
 
-/// Reads a relative, percent-encoded path that must stay inside `folder` after decoding and
-/// canonicalisation (symbolic links included), must be a regular file, and must hold no more
-/// than `declared` bytes. At most `declared + 1` bytes are read.
-fn read_confined(folder: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, BufferError> {
+/// The canonical path of a relative, percent-encoded URI that must stay inside `folder` after
+/// decoding and canonicalisation (symbolic links included).
+fn confined_target(folder: &Path, uri: &str) -> Result<PathBuf, BufferError> {
     let owned = || uri.to_owned();
     if has_scheme(uri) {
         return Err(BufferError::Scheme { uri: owned() });
@@ -113,18 +192,26 @@ fn read_confined(folder: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, Buf
     if !target.starts_with(&base) {
         return Err(BufferError::EscapesFolder { uri: owned() });
     }
-    let meta = std::fs::metadata(&target).map_err(unreadable)?;
+    Ok(target)
+}
+
+/// Reads `target`, which must be a regular file (checked before opening: a FIFO would block)
+/// holding no more than `declared` bytes. At most `declared + 1` bytes are read.
+fn read_regular(target: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, BufferError> {
+    let owned = || uri.to_owned();
+    let unreadable = unreadable(uri);
+    let meta = std::fs::metadata(target).map_err(&unreadable)?;
     if !meta.is_file() {
         return Err(BufferError::NotRegularFile { uri: owned() });
     }
     if meta.len() > declared {
         return Err(BufferError::LongerThanDeclared { declared });
     }
-    let file = File::open(&target).map_err(unreadable)?;
+    let file = File::open(target).map_err(&unreadable)?;
     let mut bytes = Vec::with_capacity(meta.len() as usize);
     file.take(declared.saturating_add(1))
         .read_to_end(&mut bytes)
-        .map_err(unreadable)?;
+        .map_err(&unreadable)?;
     if bytes.len() as u64 > declared {
         return Err(BufferError::LongerThanDeclared { declared });
     }

@@ -8,7 +8,7 @@ use gltf::json;
 
 use super::GltfOptions;
 use super::accessor::AccessorReader;
-use super::buffers::resolve_buffers;
+use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
 use super::error::GltfError;
 use super::graph::{root_nodes, walk};
@@ -76,13 +76,52 @@ pub fn read_content(path: &Path, options: &GltfOptions) -> Result<GltfContent, G
     guard(path, || flatten(path, &root, &buffers, options))
 }
 
+/// Bytes held by the distinct buffers (entries sharing one file or chunk counted once).
+fn buffers_held(buffers: &[Buffer]) -> u64 {
+    let mut seen = std::collections::HashSet::new();
+    buffers
+        .iter()
+        .filter(|b| seen.insert(b.identity()))
+        .map(|b| b.held() as u64)
+        .sum()
+}
+
+/// The bytes one placement of primitive `prim` will take, from its accessors' declared counts
+/// (nothing decoded yet): [`GltfOptions::BYTES_PER_VERTEX`] for every vertex decoded and
+/// [`GltfOptions::BYTES_PER_TRIANGLE`] for every triangle it can make. Counts are capped by
+/// what `buffer_bytes` can hold (12 bytes a position, 1 an index): an accessor that claims
+/// more, or does not exist, fails with its own error when read.
+fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes: u64) -> u64 {
+    use json::mesh::{Mode, Semantic};
+    use json::validation::Checked;
+    let count = |a: usize| root.accessors.get(a).map_or(0, |a| a.count.0);
+    let Some(position) = prim.attributes.get(&Checked::Valid(Semantic::Positions)) else {
+        return 0;
+    };
+    let vertices = count(position.value()).min(buffer_bytes / 12);
+    let indices = prim
+        .indices
+        .map_or(vertices, |i| count(i.value()).min(buffer_bytes));
+    let triangles = match prim.mode {
+        Checked::Valid(Mode::Triangles) => indices / 3,
+        Checked::Valid(Mode::TriangleStrip | Mode::TriangleFan) => indices.saturating_sub(2),
+        _ => 0,
+    };
+    vertices
+        .saturating_mul(GltfOptions::BYTES_PER_VERTEX)
+        .saturating_add(triangles.saturating_mul(GltfOptions::BYTES_PER_TRIANGLE))
+}
+
 fn flatten(
     file: &Path,
     root: &json::Root,
-    buffers: &[Vec<u8>],
+    buffers: &[Buffer],
     options: &GltfOptions,
 ) -> Result<GltfContent, GltfError> {
     let reader = AccessorReader::new(file, root, buffers);
+    // The buffers are held while the scene is built from the content.
+    let mut scene_bytes: u64 = buffers_held(buffers);
+    let buffer_bytes: u64 = buffers.iter().map(|b| b.as_slice().len() as u64).sum();
     let roots = root_nodes(file, root)?;
     let placed = walk(file, root, &roots)?;
     let mut content = GltfContent::default();
@@ -113,6 +152,17 @@ fn flatten(
                     })?),
                     None => None,
                 };
+                // Every placement decodes its vertices again: count them, before decoding.
+                scene_bytes = scene_bytes.saturating_add(placement_bytes(root, prim, buffer_bytes));
+                if scene_bytes > options.max_scene_bytes {
+                    return Err(GltfError::SceneTooLarge {
+                        file: file.to_path_buf(),
+                        node: p.index,
+                        mesh: mesh_index,
+                        budget: options.max_scene_bytes,
+                        needed: scene_bytes,
+                    });
+                }
                 match read_primitive(file, &reader, (mesh_index, primitive), prim, p.world)? {
                     PrimitiveGeometry::Triangles { positions, triangles } => {
                         // Each placement decodes its accessors again: count what instancing adds.

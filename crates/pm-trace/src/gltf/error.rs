@@ -92,6 +92,23 @@ pub enum GltfError {
         /// What was wrong.
         reason: String,
     },
+    /// The scene would take more memory than
+    /// [`GltfOptions::max_scene_bytes`](super::GltfOptions) (counted before decoding).
+    #[error(
+        "{file}: node {node} mesh {mesh}: the scene would take more than {budget} bytes (GltfOptions::max_scene_bytes); it needs at least {needed}"
+    )]
+    SceneTooLarge {
+        /// The scene file.
+        file: PathBuf,
+        /// The node whose placement passed the budget.
+        node: usize,
+        /// The mesh it places.
+        mesh: usize,
+        /// The budget in force.
+        budget: u64,
+        /// The bytes counted up to and with this placement.
+        needed: u64,
+    },
     /// The scene builder refused the content (see [`SceneError`](crate::SceneError)).
     #[error("{file}: {source}")]
     Build {
@@ -126,6 +143,7 @@ impl GltfError {
             Self::Primitive { .. } => "primitive",
             Self::Node { .. } => "node",
             Self::Build { .. } => "build",
+            Self::SceneTooLarge { .. } => "scene-too-large",
             Self::Scene { .. } => "scene",
         }
     }
@@ -195,6 +213,13 @@ pub enum BufferError {
         /// The limit in force.
         limit: u64,
     },
+    /// The buffers' files and data URIs together hold more than
+    /// [`GltfOptions::max_file_bytes`](super::GltfOptions) (each distinct file counted once).
+    #[error("the buffers hold more than the limit of {limit} bytes in all")]
+    TotalTooLarge {
+        /// The limit in force.
+        limit: u64,
+    },
     /// A `data:` URI that is not base64 or does not decode.
     #[error("malformed data: URI: {reason}")]
     BadDataUri {
@@ -219,6 +244,7 @@ impl BufferError {
             Self::LongerThanDeclared { .. } => "buffer/longer-than-declared",
             Self::ShorterThanDeclared { .. } => "buffer/shorter-than-declared",
             Self::TooLarge { .. } => "buffer/too-large",
+            Self::TotalTooLarge { .. } => "buffer/total-too-large",
             Self::BadDataUri { .. } => "buffer/bad-data-uri",
             Self::MissingBinChunk => "buffer/missing-bin-chunk",
         }

@@ -11,8 +11,12 @@
 //! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
 //! buffer. A GLB container's length fields are checked against the file before parsing.
 //! Images are never read (textures are not used). Memory is bounded: no accessor may describe
-//! more bytes than the file's buffers hold, and the instanced scene may hold at most
-//! [`GltfOptions::max_triangles`] triangles (many nodes may place one mesh).
+//! more bytes than the file's buffers hold, each buffer file is read once and all buffers
+//! together hold at most [`GltfOptions::max_file_bytes`], and the instanced scene may hold at
+//! most [`GltfOptions::max_triangles`] triangles and take at most
+//! [`GltfOptions::max_scene_bytes`] (counted before decoding; many nodes may place one mesh).
+//! The scene file and every buffer file must be regular files, checked before they are
+//! opened (a FIFO would block).
 //!
 //! The gltf crate panics on some malformed files; the loader checks what it can first (GLB
 //! lengths, `POSITION` accessor indices, accessor and buffer-view bounds, vertex indices)
@@ -95,7 +99,9 @@ pub struct GltfOptions {
     pub light_scale: f32,
     /// Multiplies every emissive surface's radiance (1 by default).
     pub emission_scale: f32,
-    /// The largest scene file or buffer read, in bytes (1 GiB by default).
+    /// The largest scene file read, and the most bytes read for all buffers together (each
+    /// distinct file read once however many `buffers` entries name it), in bytes (1 GiB by
+    /// default).
     pub max_file_bytes: u64,
     /// When the file has neither punctual lights nor emissive surfaces, add a point light at
     /// the camera (a "headlight") so the scene still renders (on by default).
@@ -107,6 +113,13 @@ pub struct GltfOptions {
     /// may place the same mesh, so a small file can describe a huge scene; past this limit
     /// loading stops with an error instead of exhausting memory.
     pub max_triangles: u64,
+    /// The most bytes loading may take (4 GiB by default): the buffers held, plus
+    /// [`Self::BYTES_PER_VERTEX`] for every vertex decoded and [`Self::BYTES_PER_TRIANGLE`] for
+    /// every triangle, counted from the accessors' declared counts *before* each placement of a
+    /// mesh is decoded. Instancing decodes a mesh's vertices once per placing node, so a
+    /// placement of 100,000 vertices and one triangle costs its 100,000 vertices each time.
+    /// Past the budget loading stops with [`GltfError::SceneTooLarge`].
+    pub max_scene_bytes: u64,
 }
 
 /// Loads a `.gltf` or `.glb` file into a [`Scene`] with [`GltfOptions::default`].
@@ -129,15 +142,27 @@ pub fn load_scene_with(path: &Path, options: &GltfOptions) -> Result<Scene, Gltf
 }
 
 impl GltfOptions {
-    /// The glTF units as written, a 1 GiB file limit, 20 million triangles, a headlight for
-    /// unlit files.
+    /// The glTF units as written, a 1 GiB file limit, 20 million triangles, a 4 GiB scene
+    /// budget, a headlight for unlit files.
     pub const DEFAULT: Self = Self {
         light_scale: 1.0,
         emission_scale: 1.0,
         max_file_bytes: 1 << 30,
         default_light: true,
         max_triangles: 20_000_000,
+        max_scene_bytes: 4 << 30,
     };
+
+    /// Bytes counted per decoded vertex against [`Self::max_scene_bytes`]: its world position
+    /// in the loaded content (12), the copy the scene builder takes (12), and the half-edge
+    /// mesh's vertex and welding tables, rounded up (measured in `tests/gltf_budget.rs`).
+    pub const BYTES_PER_VERTEX: u64 = 64;
+
+    /// Bytes counted per triangle against [`Self::max_scene_bytes`]: the peak while the scene
+    /// is built (about 370–400 bytes a triangle: half-edges, the BVH builder's work arrays and
+    /// the compressed BVH, measured in `tests/scene_memory.rs`), plus the content's index
+    /// triple (12), rounded up. The built scene keeps about 80–90 bytes a triangle.
+    pub const BYTES_PER_TRIANGLE: u64 = 450;
 }
 
 impl Default for GltfOptions {

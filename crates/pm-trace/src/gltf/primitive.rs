@@ -58,7 +58,9 @@ pub(super) fn read_primitive(
     for (i, p) in local.iter().enumerate() {
         let w = world.transform_point3(*p);
         if !w.is_finite() {
-            return Err(error(format!("position {i} is not finite: {p}")));
+            return Err(error(format!(
+                "position {i} is not finite in the world: {w} (local {p})"
+            )));
         }
         positions.push(w);
     }

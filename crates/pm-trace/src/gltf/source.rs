@@ -17,13 +17,20 @@ pub(super) fn read_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, GltfError
         file: path.to_path_buf(),
         source,
     };
+    let not_regular = || {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a FIFO, device or folder is never opened)",
+        ))
+    };
+    // Check the type before opening: opening a FIFO blocks until a writer appears.
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
     let file = File::open(path).map_err(io)?;
     let meta = file.metadata().map_err(io)?;
     if !meta.is_file() {
-        return Err(io(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a regular file",
-        )));
+        return Err(not_regular());
     }
     let mut bytes = Vec::with_capacity(meta.len().min(limit) as usize);
     file.take(limit.saturating_add(1))
@@ -117,9 +124,10 @@ pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<(json::Root, Option<Vec
         file: file.to_path_buf(),
         reason,
     })?;
+    // The crate's own messages may start with the words our Display adds.
     let invalid = |e: gltf::Error| GltfError::Parse {
         file: file.to_path_buf(),
-        message: e.to_string(),
+        message: strip_prefix_ignore_case(&e.to_string(), "invalid glTF: ").to_owned(),
     };
     guard(file, || {
         let gltf::Gltf { document, blob } =
@@ -129,6 +137,13 @@ pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<(json::Root, Option<Vec
         let document = gltf::Document::from_json(root).map_err(invalid)?;
         Ok((document.into_json(), blob))
     })
+}
+
+fn strip_prefix_ignore_case<'a>(text: &'a str, prefix: &str) -> &'a str {
+    match text.get(..prefix.len()) {
+        Some(head) if head.eq_ignore_ascii_case(prefix) => &text[prefix.len()..],
+        _ => text,
+    }
 }
 
 /// The gltf crate's validator indexes `accessors` with each `POSITION` attribute unchecked

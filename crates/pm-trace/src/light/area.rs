@@ -85,6 +85,16 @@ impl AreaLight {
 }
 
 impl Light for AreaLight {
+    fn validate(&self) -> Result<(), String> {
+        let area = self.area();
+        if !(area > 0.0 && area.is_finite()) {
+            return Err(format!(
+                "emitting area {area} m² (no finite, non-degenerate triangle)"
+            ));
+        }
+        Ok(())
+    }
+
     fn power(&self) -> Vec3 {
         self.radiance * (PI * self.area())
     }

@@ -23,7 +23,7 @@ impl DirectionalLight {
     /// A light travelling along `direction` (normalised; zero means straight down).
     pub fn new(direction: Vec3, irradiance: Vec3) -> Self {
         DirectionalLight {
-            direction: direction.try_normalize().unwrap_or(Vec3::NEG_Y),
+            direction: super::normalize_or_down(direction),
             irradiance,
             center: Vec3::ZERO,
             radius: 0.0,
@@ -65,6 +65,11 @@ impl Light for DirectionalLight {
             distance: 4.0 * self.radius.max(1.0),
             radiance_over_pdf: self.irradiance,
         })
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        super::check_direction("direction", self.direction)?;
+        super::check_point("irradiance", self.irradiance)
     }
 
     fn attach(&mut self, scene_bounds: &Aabb) {

@@ -63,6 +63,42 @@ pub trait Light: Send + Sync + std::fmt::Debug {
     fn attach(&mut self, scene_bounds: &Aabb) {
         let _ = scene_bounds;
     }
+
+    /// Checks the light's own parameters (positions, directions, angles, areas); the reason
+    /// names the bad one. The scene builder calls it after [`Light::attach`] and refuses the
+    /// scene on an error; it checks [`Light::power`] (finite, not negative) itself. Default:
+    /// nothing to check.
+    fn validate(&self) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+/// `Ok` when `p` is a finite point; the reason names `what`.
+pub(crate) fn check_point(what: &str, p: Vec3) -> Result<(), String> {
+    if p.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("{what} {p} is not finite"))
+    }
+}
+
+/// `Ok` when `d` is a finite unit direction; the reason names `what`.
+pub(crate) fn check_direction(what: &str, d: Vec3) -> Result<(), String> {
+    if d.is_finite() && (d.length() - 1.0).abs() < 1e-3 {
+        Ok(())
+    } else {
+        Err(format!("{what} {d} is not a finite, non-zero direction"))
+    }
+}
+
+/// A direction normalised, or down for a zero one; a non-finite one stays NaN so that
+/// [`Light::validate`] refuses it rather than the light silently pointing down.
+pub(crate) fn normalize_or_down(d: Vec3) -> Vec3 {
+    match d.try_normalize() {
+        Some(d) => d,
+        None if d.is_finite() => Vec3::NEG_Y,
+        None => Vec3::NAN,
+    }
 }
 
 /// A photon leaving a point light at `origin` along `direction`, at the light's full weight.

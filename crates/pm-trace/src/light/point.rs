@@ -27,6 +27,10 @@ impl Light for PointLight {
         self.power
     }
 
+    fn validate(&self) -> Result<(), String> {
+        super::check_point("position", self.position)
+    }
+
     fn emit(&self, rng: &mut Rng) -> EmittedRay {
         let d = uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
         ray_from_point(self.position, d)

@@ -25,7 +25,7 @@ impl SpotLight {
     pub fn new(position: Vec3, direction: Vec3, cone_angle: f32, power: Vec3) -> Self {
         SpotLight {
             position,
-            direction: direction.try_normalize().unwrap_or(Vec3::NEG_Y),
+            direction: super::normalize_or_down(direction),
             cone_angle,
             power,
         }
@@ -39,6 +39,15 @@ impl SpotLight {
 impl Light for SpotLight {
     fn power(&self) -> Vec3 {
         self.power
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        super::check_point("position", self.position)?;
+        super::check_direction("direction", self.direction)?;
+        if !(self.cone_angle > 0.0 && self.cone_angle <= PI) {
+            return Err(format!("cone angle {} rad is not in (0, π]", self.cone_angle));
+        }
+        Ok(())
     }
 
     fn emit(&self, rng: &mut Rng) -> EmittedRay {

@@ -7,4 +7,6 @@ mod trace;
 
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
 pub use scatter::{fresnel_dielectric, reflect, refract};
-pub use trace::{TraceOptions, TraceStats, TracedPhotons, trace_photons};
+pub use trace::{
+    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, TraceOptions, TraceStats, TracedPhotons, trace_photons,
+};

@@ -13,6 +13,16 @@ use std::time::Instant;
 /// Paths per parallel work item.
 const CHUNK: u32 = 512;
 
+/// The most photon paths one call to [`trace_photons`] traces: 2²⁵ (33,554,432). More are
+/// refused with [`TraceError::TooManyPhotons`] before anything is allocated.
+pub const MAX_PHOTON_PATHS: u32 = 1 << 25;
+
+/// The most photons one call to [`trace_photons`] stores over all maps: 2²⁶ (67,108,864, 40
+/// bytes each while tracing, 2.5 GiB). Paths store one photon per diffuse bounce (up to
+/// `max_bounces`), so the count is checked as the waves are merged and the run stops with
+/// [`TraceError::TooManyPhotonsStored`] once past it.
+pub const MAX_STORED_PHOTONS: u64 = 1 << 26;
+
 /// What to trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraceOptions {
@@ -166,6 +176,11 @@ pub fn trace_photons(
     if options.photons == 0 {
         return Err(TraceError::ZeroPhotons);
     }
+    if options.photons > MAX_PHOTON_PATHS {
+        return Err(TraceError::TooManyPhotons {
+            photons: options.photons,
+        });
+    }
     if assignment.part_count() != scene.part_count() {
         return Err(TraceError::AssignmentMismatch {
             assigned: assignment.part_count(),
@@ -204,11 +219,12 @@ pub fn trace_photons(
     merged.reserve_for(&traced, options.photons as f64 / first_wave_paths as f64);
     let mut first = wave;
     while first < chunks {
-        rayon::join(|| merged.append(&traced), || trace_wave(first, &mut tracing));
+        let (appended, ()) = rayon::join(|| merged.append(&traced), || trace_wave(first, &mut tracing));
+        appended?;
         std::mem::swap(&mut traced, &mut tracing);
         first += wave;
     }
-    merged.append(&traced);
+    merged.append(&traced)?;
     let Merged { photons, stored } = merged;
     let stats = TraceStats {
         emitted: options.photons as u64,
@@ -225,23 +241,35 @@ struct Merged {
 }
 
 impl Merged {
-    /// Appends one wave's buffers (in path order).
-    fn append(&mut self, buffers: &[Vec<(u32, Photon)>]) {
+    /// Appends one wave's buffers (in path order); errors past [`MAX_STORED_PHOTONS`].
+    fn append(&mut self, buffers: &[Vec<(u32, Photon)>]) -> Result<(), TraceError> {
+        let held: u64 = self.photons.iter().map(|p| p.len() as u64).sum();
+        let adding: u64 = buffers.iter().map(|b| b.len() as u64).sum();
+        if held + adding > MAX_STORED_PHOTONS {
+            return Err(TraceError::TooManyPhotonsStored {
+                limit: MAX_STORED_PHOTONS,
+            });
+        }
         for &(m, p) in buffers.iter().flatten() {
             self.stored[m as usize][p.kind as usize] += 1;
             self.photons[m as usize].push(p);
         }
+        Ok(())
     }
 
     /// Reserves room for the whole run from the first wave's photons per map, scaled by
-    /// `scale` (paths in the run over paths in the wave) with 5 % slack.
+    /// `scale` (paths in the run over paths in the wave) with 5 % slack, never past
+    /// [`MAX_STORED_PHOTONS`] in all (the merge refuses more).
     fn reserve_for(&mut self, buffers: &[Vec<(u32, Photon)>], scale: f64) {
         let mut counts = vec![0usize; self.photons.len()];
         for &(m, _) in buffers.iter().flatten() {
             counts[m as usize] += 1;
         }
+        let total: usize = counts.iter().sum();
+        let total_wanted = total as f64 * scale * 1.05;
+        let shrink = (MAX_STORED_PHOTONS as f64 / total_wanted.max(1.0)).min(1.0);
         for (photons, count) in self.photons.iter_mut().zip(counts) {
-            photons.reserve((count as f64 * scale * 1.05).ceil() as usize);
+            photons.reserve((count as f64 * scale * 1.05 * shrink).ceil() as usize);
         }
     }
 }
