@@ -1,0 +1,159 @@
+//! Tests of the scene's ray queries: the BVH against the flat scan (brute force), rays along
+//! axes, shared edges, and distances against closed forms.
+
+use super::*;
+use crate::Rng;
+use crate::sampling::uniform_sphere;
+use glam::Vec2;
+
+/// The flat scan tests every triangle, so it is the brute-force reference for the BVH:
+/// both must find the same closest distance (bit for bit) and the same any-hit answer,
+/// also for rays starting within 1e-6…1e-4 of a surface (near corners these hit the
+/// adjacent wall almost at once; obvhs's node test used to cull such hits).
+#[test]
+fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
+    for name in [
+        "lit-unlit-rooms",
+        "touching-rooms",
+        "cornell-box",
+        "split-rooms-4",
+    ] {
+        let scene = crate::scenes::build(name).unwrap();
+        let search = scene.search();
+        let (triangles, parts): (Vec<[Vec3; 3]>, Vec<PartId>) =
+            search.triangles.iter().map(|r| (r.v, r.part)).unzip();
+        let shapes = search.shapes.clone();
+        let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), shapes.clone(), usize::MAX);
+        let bvh = SceneBvh::build_with(triangles.clone(), parts, shapes, 0);
+        assert!(
+            matches!(scan.triangle_search, Search::Scan(_)) && matches!(bvh.triangle_search, Search::Bvh(_))
+        );
+        assert!(name != "cornell-box" || matches!(bvh.shape_search, Search::Bvh(_)));
+        let triangles: Vec<([Vec3; 3], Vec3)> = triangles.iter().map(|v| (*v, triangle_normal(v))).collect();
+        let bounds = scene.bounds();
+        let mut rng = Rng::new(17, 3);
+        let mut near_hits = 0;
+        for k in 0..100_000 {
+            let mut u = || rng.next_f32();
+            let origin = if k % 2 == 0 {
+                bounds.min + (bounds.max - bounds.min) * Vec3::new(u(), u(), u())
+            } else {
+                let (v, normal) = triangles[(u() * triangles.len() as f32) as usize % triangles.len()];
+                let (a, b) = (u(), u());
+                let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+                let offset = 1e-6 * 100f32.powf(u()) * if u() < 0.5 { -1.0 } else { 1.0 };
+                v[0] + (v[1] - v[0]) * a + (v[2] - v[0]) * b + normal * offset
+            };
+            // Every fifth ray runs exactly along an axis, or nearly so (a component below
+            // obvhs's inverse-direction cut-off of f32::EPSILON).
+            let direction = match k % 5 {
+                0 => {
+                    let mut d = Vec3::ZERO;
+                    d[(u() * 3.0) as usize % 3] = if u() < 0.5 { -1.0 } else { 1.0 };
+                    if k % 10 == 0 {
+                        d[(u() * 3.0) as usize % 3] += 1e-8;
+                    }
+                    d.normalize()
+                }
+                _ => uniform_sphere(Vec2::new(u(), u())),
+            };
+            let ray = Ray { origin, direction };
+            let t_max = if k % 3 == 0 { 0.05 } else { f32::INFINITY };
+            let part_of = |b: &SceneBvh, (t, hit): (f32, HitPrimitive)| {
+                (t.to_bits(), b.part_and_normal(hit, ray.at(t)).0)
+            };
+            let expected = scan
+                .closest(&ray, 0.0, t_max, |_| true)
+                .map(|h| part_of(&scan, h));
+            let found = bvh.closest(&ray, 0.0, t_max, |_| true).map(|h| part_of(&bvh, h));
+            assert_eq!(
+                found, expected,
+                "{name}: closest, ray {k} from {origin} along {direction}"
+            );
+            assert_eq!(
+                bvh.any_hit(&ray, 0.0, t_max),
+                expected.is_some(),
+                "{name}: any hit, ray {k}"
+            );
+            near_hits += expected.is_some_and(|(t, _)| f32::from_bits(t) < 1e-4) as u32;
+        }
+        assert!(near_hits > 100, "{name}: only {near_hits} hits closer than 1e-4");
+    }
+}
+
+#[test]
+fn rays_along_an_axis_find_walls_far_away_just_inside_their_edge() {
+    // A wall at x = 10 spanning y, z ∈ [0, 1]; rays along +x at heights just below its top
+    // edge. obvhs inverts a zero direction component to 1/f32::EPSILON, not infinity, so
+    // its node test would see the slab in y end after t = (1 − y) / f32::EPSILON.
+    let wall = |x: f32| {
+        [
+            [
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x, 1.0, 0.0),
+                Vec3::new(x, 1.0, 1.0),
+            ],
+            [
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x, 1.0, 1.0),
+                Vec3::new(x, 0.0, 1.0),
+            ],
+        ]
+    };
+    let triangles: Vec<[Vec3; 3]> = (0..40).flat_map(|i| wall(10.0 + i as f32)).collect();
+    let parts = vec![PartId(0); triangles.len()];
+    let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), Vec::new(), usize::MAX);
+    let bvh = SceneBvh::build_with(triangles, parts, Vec::new(), 0);
+    for below in [1e-7f32, 1e-6, 1e-5, 1e-3] {
+        for direction in [Vec3::X, Vec3::new(1.0, 1e-9, 0.0)] {
+            let ray = Ray {
+                origin: Vec3::new(0.0, 1.0 - below, 0.5),
+                direction,
+            };
+            let expected = scan.closest(&ray, 0.0, f32::INFINITY, |_| true).map(|(t, _)| t);
+            assert_eq!(expected, Some(10.0), "{below}");
+            let found = bvh.closest(&ray, 0.0, f32::INFINITY, |_| true).map(|(t, _)| t);
+            assert_eq!(found, expected, "{below} below the edge along {direction}");
+            assert!(bvh.any_hit(&ray, 0.0, f32::INFINITY));
+        }
+    }
+}
+
+#[test]
+fn watertight_test_hits_the_shared_edge_of_two_triangles_exactly_once_or_twice_never_zero() {
+    // A quad split along its diagonal; rays aimed exactly at the diagonal must hit.
+    let q = [
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
+    let t1 = [q[0], q[1], q[2]];
+    let t2 = [q[0], q[2], q[3]];
+    for i in 0..=100 {
+        let s = i as f32 / 100.0;
+        let target = Vec3::new(s, s, 0.0);
+        let origin = Vec3::new(0.3, 0.7, 1.0);
+        let w = WatertightRay::new(origin, (target - origin).normalize());
+        let hits = [t1, t2]
+            .iter()
+            .filter(|t| w.intersect_triangle(t, 0.0, f32::INFINITY).is_finite())
+            .count();
+        assert!(hits >= 1, "ray to the diagonal at {s} slipped through");
+    }
+}
+
+#[test]
+fn triangle_distance_matches_the_plane_distance() {
+    let tri = [
+        Vec3::new(-1.0, -1.0, 2.0),
+        Vec3::new(1.0, -1.0, 2.0),
+        Vec3::new(0.0, 1.0, 2.0),
+    ];
+    let d = Vec3::new(0.1, 0.05, 1.0).normalize();
+    let w = WatertightRay::new(Vec3::ZERO, d);
+    let t = w.intersect_triangle(&tri, 0.0, f32::INFINITY);
+    assert!((t - 2.0 / d.z).abs() < 1e-5);
+    let w = WatertightRay::new(Vec3::ZERO, -d);
+    assert_eq!(w.intersect_triangle(&tri, 0.0, f32::INFINITY), f32::INFINITY);
+}

@@ -1,0 +1,315 @@
+//! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
+//! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
+
+mod builder;
+
+pub use builder::SceneBuilder;
+
+use crate::bvh::SceneBvh;
+use crate::shape::{RingSide, Shape};
+use crate::{Camera, Light, Material, Ray, Surface};
+use glam::Vec3;
+use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
+
+/// Identifies one part of the scene: a mesh face, a sphere, or one side of a ring. Photon
+/// maps are assigned per part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct PartId(pub u32);
+
+/// What a part is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PartSource {
+    /// Face `face` of mesh `mesh` (indices into [`Scene::meshes`]).
+    MeshFace {
+        /// Mesh index.
+        mesh: u32,
+        /// Face of that mesh.
+        face: FaceId,
+    },
+    /// A sphere (index into [`Scene::shapes`]).
+    Sphere {
+        /// Shape index.
+        shape: u32,
+    },
+    /// One side of a ring (index into [`Scene::shapes`]).
+    Ring {
+        /// Shape index.
+        shape: u32,
+        /// Which side.
+        side: RingSide,
+    },
+}
+
+/// Which rays a query is for: camera rays skip surfaces hidden from the camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayKind {
+    /// Primary or specular eye rays: surfaces with `camera_visible = false` are transparent.
+    Camera,
+    /// Photon, shadow and path rays: every surface counts.
+    Other,
+}
+
+/// A ray–surface intersection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Distance along the ray.
+    pub t: f32,
+    /// Hit point.
+    pub position: Vec3,
+    /// Unit geometric normal, flipped to face the incoming ray (`normal · direction ≤ 0`).
+    pub normal: Vec3,
+    /// True when the ray hit the side the surface's own normal points to (the emitting side
+    /// of area lights, the outside of glass).
+    pub front_face: bool,
+    /// The part hit.
+    pub part: PartId,
+}
+
+/// A mesh of the scene and the parts of its faces.
+#[derive(Clone, Debug)]
+pub struct SceneMesh {
+    mesh: HalfEdgeMesh,
+    first_part: u32,
+}
+
+impl SceneMesh {
+    /// The half-edge mesh (faces after welding and dropping zero-area faces).
+    pub fn half_edge_mesh(&self) -> &HalfEdgeMesh {
+        &self.mesh
+    }
+
+    /// The part of face `face`.
+    pub fn part_of_face(&self, face: FaceId) -> PartId {
+        PartId(self.first_part + face.0)
+    }
+}
+
+/// A scene ready for ray queries: parts with surfaces, lights, a camera and a BVH.
+#[derive(Debug)]
+pub struct Scene {
+    meshes: Vec<SceneMesh>,
+    shapes: Vec<Shape>,
+    /// Mesh faces are parts `0..mesh_part_count`, mesh by mesh (see `SceneMesh::first_part`).
+    mesh_part_count: u32,
+    /// What each later part is (the analytic shapes' parts).
+    shape_parts: Vec<PartSource>,
+    /// Index in `surfaces` of each part's surface.
+    part_surface_ids: Vec<u32>,
+    /// The distinct surfaces.
+    surfaces: Vec<Surface>,
+    lights: Vec<Box<dyn Light>>,
+    camera: Camera,
+    bounds: Aabb,
+    epsilon: f32,
+    mesh_options: MeshOptions,
+    bvh: SceneBvh,
+}
+
+/// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
+const SPHERE_PROXY_STACKS: u32 = 16;
+/// Segments of each ring side's proxy (64 quads).
+const RING_PROXY_SEGMENTS: u32 = 64;
+
+impl Scene {
+    /// A new, empty builder.
+    pub fn builder() -> SceneBuilder {
+        SceneBuilder::default()
+    }
+
+    /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
+    /// [`Scene::spawn_ray`]'s offset origin.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
+        let (t, index) = match kind {
+            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
+            RayKind::Camera => self
+                .bvh
+                .closest(ray, 0.0, t_max, |p| self.part_surface(p).camera_visible)?,
+        };
+        let position = ray.at(t);
+        let (part, n) = self.bvh.part_and_normal(index, position);
+        let front_face = n.dot(ray.direction) < 0.0;
+        Some(Hit {
+            t,
+            position,
+            normal: if front_face { n } else { -n },
+            front_face,
+            part,
+        })
+    }
+
+    /// True when a surface lies strictly between `from` and `to` (surfaces within
+    /// [`Scene::epsilon`] of either end do not count, so both may lie on surfaces).
+    #[inline]
+    pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
+        let d = to - from;
+        let dist = d.length();
+        if !dist.is_finite() || dist <= 2.0 * self.epsilon {
+            return false;
+        }
+        let ray = Ray {
+            origin: from,
+            direction: d / dist,
+        };
+        self.bvh.any_hit(&ray, self.epsilon, dist - self.epsilon)
+    }
+
+    /// A ray leaving `hit` along unit `direction`, its origin pushed off the surface to the
+    /// side `direction` goes to (avoids re-hitting the same surface).
+    #[inline]
+    pub fn spawn_ray(&self, hit: &Hit, direction: Vec3) -> Ray {
+        let side = if direction.dot(hit.normal) >= 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        Ray {
+            origin: hit.position + side * self.epsilon,
+            direction,
+        }
+    }
+
+    /// The ray-query structure (for tests that compare its two kinds of search).
+    #[cfg(test)]
+    pub(crate) fn search(&self) -> &SceneBvh {
+        &self.bvh
+    }
+
+    /// The distance used to push rays off surfaces (1e-5 × the scene's size, at least 1e-5 m).
+    pub fn epsilon(&self) -> f32 {
+        self.epsilon
+    }
+
+    /// The lights.
+    pub fn lights(&self) -> &[Box<dyn Light>] {
+        &self.lights
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Bounds of all geometry.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Surface of the part that was hit.
+    #[inline]
+    pub fn surface(&self, hit: &Hit) -> &Surface {
+        self.part_surface(hit.part)
+    }
+
+    /// Surface of a part.
+    #[inline]
+    pub fn part_surface(&self, part: PartId) -> &Surface {
+        &self.surfaces[self.part_surface_ids[part.0 as usize] as usize]
+    }
+
+    /// Material of the part that was hit.
+    #[inline]
+    pub fn material(&self, hit: &Hit) -> &Material {
+        &self.surface(hit).material
+    }
+
+    /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
+    #[inline]
+    pub fn emission(&self, hit: &Hit) -> Vec3 {
+        if hit.front_face {
+            self.surface(hit).emission
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// Bytes this scene holds on the heap: its meshes, the ray-query structure (triangles, BVH
+    /// nodes), the per-part tables and the surfaces. Lights are not counted.
+    pub fn heap_bytes(&self) -> usize {
+        self.meshes
+            .iter()
+            .map(|m| size_of::<SceneMesh>() + m.mesh.heap_bytes())
+            .sum::<usize>()
+            + self.bvh.heap_bytes()
+            + self.part_surface_ids.capacity() * size_of::<u32>()
+            + self.surfaces.capacity() * size_of::<Surface>()
+            + self.shape_parts.capacity() * size_of::<PartSource>()
+            + self.shapes.capacity() * size_of::<Shape>()
+    }
+
+    /// Number of parts.
+    pub fn part_count(&self) -> usize {
+        self.part_surface_ids.len()
+    }
+
+    /// What part `part` is.
+    pub fn part_source(&self, part: PartId) -> PartSource {
+        if part.0 < self.mesh_part_count {
+            // The last mesh whose first part is at or before `part`.
+            let mesh = self.meshes.partition_point(|m| m.first_part <= part.0) - 1;
+            PartSource::MeshFace {
+                mesh: mesh as u32,
+                face: FaceId(part.0 - self.meshes[mesh].first_part),
+            }
+        } else {
+            self.shape_parts[(part.0 - self.mesh_part_count) as usize]
+        }
+    }
+
+    /// The meshes, in the order they were added.
+    pub fn meshes(&self) -> &[SceneMesh] {
+        &self.meshes
+    }
+
+    /// The analytic shapes, in the order they were added.
+    pub fn shapes(&self) -> &[Shape] {
+        &self.shapes
+    }
+
+    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
+    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
+    /// along contact lines). Add every mesh again, including those of area-light quads.
+    pub fn into_builder_without_meshes(self) -> SceneBuilder {
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (i, source) in self.shape_parts.iter().enumerate() {
+            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
+            match *source {
+                PartSource::Sphere { shape }
+                | PartSource::Ring {
+                    shape,
+                    side: RingSide::Top,
+                } => shapes.push((self.shapes[shape as usize], surface)),
+                _ => {}
+            }
+        }
+        SceneBuilder {
+            shapes,
+            lights: self.lights,
+            camera: Some(self.camera),
+            mesh_options: self.mesh_options,
+            ..SceneBuilder::default()
+        }
+    }
+
+    /// Calls `f` with each polygon of `part`: a mesh face as it is, analytic parts as a fine
+    /// polygonal proxy (512 polygons per sphere, 64 per ring side). Polygons are wound
+    /// counter-clockwise seen from the side the part's normal points to.
+    pub fn for_each_part_polygon(&self, part: PartId, mut f: impl FnMut(&[Vec3])) {
+        match self.part_source(part) {
+            PartSource::MeshFace { mesh, face } => {
+                let polygon: Vec<Vec3> = self.meshes[mesh as usize].mesh.face_polygon(face).collect();
+                f(&polygon);
+            }
+            PartSource::Sphere { shape } => {
+                if let Shape::Sphere(s) = self.shapes[shape as usize] {
+                    s.for_each_proxy_polygon(SPHERE_PROXY_STACKS, f);
+                }
+            }
+            PartSource::Ring { shape, side } => {
+                if let Shape::Ring(r) = self.shapes[shape as usize] {
+                    r.for_each_proxy_polygon(side, RING_PROXY_SEGMENTS, f);
+                }
+            }
+        }
+    }
+}
