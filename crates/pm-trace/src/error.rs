@@ -66,6 +66,14 @@ pub enum SceneError {
         /// The valid names, comma separated.
         valid: String,
     },
+    /// The meshes hold more triangles than a scene may (checked before building).
+    #[error("the meshes hold {triangles} triangles; a scene holds at most {limit} (MAX_SCENE_TRIANGLES)")]
+    TooManyTriangles {
+        /// Triangles in the meshes given (faces fan-triangulated).
+        triangles: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// A scene generator got a parameter outside its range.
     #[error("{what}: {reason}")]
     InvalidParameter {

@@ -98,5 +98,5 @@ pub use photons::{
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
-pub use scene::{Hit, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};
+pub use scene::{Hit, MAX_SCENE_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};
 pub use shape::{Ring, RingSide, Shape, Sphere};

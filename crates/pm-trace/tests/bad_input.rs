@@ -192,3 +192,31 @@ fn map_assignments_with_impossible_counts_are_refused() {
         "no parts, one empty map"
     );
 }
+
+#[test]
+fn a_scene_past_its_triangle_limit_is_refused_before_building() {
+    // Two quads = 4 triangles (fan-triangulated), against limits of 3 and 4.
+    let positions = [quad(), quad().map(|p| p + Vec3::Y)].concat();
+    let faces = [[0u32, 1, 2, 3], [4, 5, 6, 7]];
+    let build = |limit| {
+        Scene::builder()
+            .mesh(&positions, &faces, grey())
+            .light(PointLight::new(Vec3::new(0.0, 3.0, 0.0), Vec3::ONE))
+            .max_triangles(limit)
+            .build()
+    };
+    match build(3) {
+        Err(
+            e @ SceneError::TooManyTriangles {
+                triangles: 4,
+                limit: 3,
+            },
+        ) => {
+            assert!(e.to_string().contains("4 triangles"), "{e}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(build(4).is_ok());
+    // Past the library's own limit, the limit asked for is capped.
+    assert!(build(usize::MAX).is_ok());
+}

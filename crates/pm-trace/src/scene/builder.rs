@@ -13,6 +13,12 @@ enum FaceSurfaces {
     PerFace(Vec<Surface>),
 }
 
+/// The most triangles (after fan triangulation of every face) a scene may hold: 2²⁷, about
+/// 134 million. A built scene holds 77–90 bytes per triangle and building it peaks near
+/// 400, so this limit is about 54 GB of building; smaller budgets are the caller's (the glTF
+/// loader has `GltfOptions::max_scene_bytes`).
+pub const MAX_SCENE_TRIANGLES: usize = 1 << 27;
+
 /// A mesh as given to the builder, its faces' indices stored flat.
 pub(super) struct MeshInput {
     positions: Vec<Vec3>,
@@ -81,6 +87,7 @@ pub struct SceneBuilder {
     pub(super) lights: Vec<Box<dyn Light>>,
     pub(super) camera: Option<Camera>,
     pub(super) mesh_options: MeshOptions,
+    pub(super) max_triangles: Option<usize>,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -181,6 +188,15 @@ impl SceneBuilder {
         self
     }
 
+    /// Refuses to build a scene of more than `limit` triangles (faces fan-triangulated) with
+    /// [`SceneError::TooManyTriangles`], before allocating for them; the default and the
+    /// largest limit is [`MAX_SCENE_TRIANGLES`]. At 77–90 bytes per built triangle and a peak
+    /// near 400 while building, this bounds a scene's memory.
+    pub fn max_triangles(mut self, limit: usize) -> Self {
+        self.max_triangles = Some(limit);
+        self
+    }
+
     /// Sets the mesh options (weld tolerance) used for meshes.
     pub fn mesh_options(mut self, options: MeshOptions) -> Self {
         self.mesh_options = options;
@@ -195,6 +211,17 @@ impl SceneBuilder {
         let mut surfaces = SurfaceTable::default();
         let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
         let triangle_count: usize = self.meshes.iter().map(MeshInput::triangle_count).sum();
+        // Checked before anything is allocated for them (the BVH's node indices are u32).
+        let limit = self
+            .max_triangles
+            .unwrap_or(MAX_SCENE_TRIANGLES)
+            .min(MAX_SCENE_TRIANGLES);
+        if triangle_count > limit {
+            return Err(SceneError::TooManyTriangles {
+                triangles: triangle_count,
+                limit,
+            });
+        }
         let mut triangles = Vec::with_capacity(triangle_count);
         let mut triangle_parts = Vec::with_capacity(triangle_count);
         let mut shape_prims = Vec::new();

@@ -3,7 +3,7 @@
 
 mod builder;
 
-pub use builder::SceneBuilder;
+pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
 
 use crate::bvh::SceneBvh;
 use crate::shape::{RingSide, Shape};
