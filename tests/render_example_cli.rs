@@ -40,14 +40,20 @@ fn bad_input_exits_non_zero_with_one_line_naming_the_problem() {
     let blocker = dir.join("a-file");
     std::fs::write(&blocker, b"not a folder").unwrap();
     let under_file = blocker.join("x.exr");
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 10] = [
         (&["--scene", "no-such-scene", "--out", out], "no-such-scene"),
         (&["--scene", "/no/such/file.gltf", "--out", out], "file.gltf"),
         (&["--k", "0", "--out", out], "k"),
         (&["--photons", "0", "--out", out], "photon"),
         (&["--size", "0x10", "--out", out], "0x10"),
-        (&["--maps", "diagonal", "--out", out], "diagonal"),
         (&["--out", under_file.to_str().unwrap()], "a-file"),
+        (&["--scene", dir.to_str().unwrap(), "--out", out], "folder"),
+        (&["--scene", "room.obj", "--out", out], ".obj files are not read"),
+        (&["--compare", "--maps", "contact", "--out", out], "drop --maps"),
+        (
+            &["--compare", "--mode", "path-trace", "--out", out],
+            "photon-map mode",
+        ),
     ];
     for (args, needle) in cases {
         let Some(output) = run(args) else { return };
@@ -95,5 +101,94 @@ fn one_and_two_threads_write_byte_identical_exr_files() {
     }
     assert!(files[0].len() > 1000, "an EXR was written");
     assert!(files[0] == files[1], "threads 1 and 2 wrote different EXR files");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn help_lists_the_values_of_maps_estimator_and_mode_and_typos_get_suggestions() {
+    let Some(help) = run(&["--help"]) else { return };
+    let help = String::from_utf8_lossy(&help.stdout);
+    for value in [
+        "single",
+        "crease",
+        "contact",
+        "disc",
+        "cube",
+        "ball",
+        "visualize",
+        "shadow-rays",
+        "path-trace",
+        "progressive",
+        "sppm",
+    ] {
+        assert!(help.contains(value), "--help does not list {value}: {help}");
+    }
+    let Some(typo) = run(&["--maps", "creese"]) else {
+        return;
+    };
+    assert!(!typo.status.success());
+    let stderr = String::from_utf8_lossy(&typo.stderr);
+    assert!(stderr.contains("crease"), "no suggestion for a typo: {stderr}");
+}
+
+/// Reads an 8-bit RGB(A) PNG: (width, height, RGB triples).
+fn read_png(path: &std::path::Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    let channels = info.color_type.samples();
+    let pixels = buf[..info.buffer_size()]
+        .chunks_exact(channels)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    (info.width, info.height, pixels)
+}
+
+#[test]
+fn compare_picks_an_exposure_that_clips_under_5_percent_and_labels_its_panels() {
+    let dir = scratch_dir("compare");
+    let out = dir.join("grid.exr");
+    let args = [
+        "--compare",
+        "--scene",
+        "lit-unlit-rooms",
+        "--size",
+        "96x96",
+        "--photons",
+        "20000",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let Some(output) = run(&args) else { return };
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(String::from_utf8_lossy(&output.stdout).contains("preview exposure"));
+    let (width, height, pixels) = read_png(&out.with_extension("png"));
+    assert_eq!((width, height), (192, 192));
+    let clipped = pixels.iter().filter(|p| p.contains(&255)).count();
+    let share = clipped as f64 / pixels.len() as f64;
+    assert!(share < 0.05, "{:.1} % of the pixels clip", 100.0 * share);
+    // Each panel's top left corner holds a label: white glyph pixels on a black box.
+    for (x0, y0) in [(0, 0), (96, 0), (0, 96), (96, 96)] {
+        let (mut white, mut black) = (0, 0);
+        for y in y0..y0 + 9 {
+            for x in x0..x0 + 25 {
+                match pixels[(y * width + x) as usize] {
+                    [255, 255, 255] => white += 1,
+                    [0, 0, 0] => black += 1,
+                    _ => {}
+                }
+            }
+        }
+        assert!(
+            white >= 15 && black >= 50,
+            "panel at ({x0}, {y0}): {white} white, {black} black"
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,7 +1,7 @@
 //! `--mode progressive|sppm` and `--merge`: progressive renders in shards of passes that merge
 //! exactly, and the SPPM baseline. Kept apart from the single-pass command line.
 
-use super::{Args, check_writable, json_number, json_string, load_scene, partitioner, say};
+use super::{Args, ModeChoice, check_writable, json_number, json_string, load_scene, say};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
@@ -33,7 +33,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         (None, None) => Some(16),
         (p, _) => p,
     };
-    let sppm = args.mode == "sppm";
+    let sppm = args.mode == ModeChoice::Sppm;
     if sppm && args.first_pass != 0 {
         return Err("--first-pass: SPPM runs are not shardable".into());
     }
@@ -67,7 +67,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         let identity = format!("sppm k={} photons={} seed={}", args.k, args.photons, args.seed);
         (out.image, out.stats.clone(), 0..out.stats.passes, identity)
     } else {
-        let partition = partitioner(&args.maps)?;
+        let partition = args.maps().partitioner();
         let scene = partition
             .prepare_scene(load_scene(&args.scene)?.0)
             .map_err(|e| e.to_string())?;
@@ -81,7 +81,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .render(&scene, &*partition, &bar)
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
-        let identity = format!("{} maps={} estimator={}", s.identity(), args.maps, estimator);
+        let identity = format!("{} maps={} estimator={}", s.identity(), args.maps(), estimator);
         let a = &out.accumulation;
         let shard = Shard::new(a.mean(), a.pass_range().start, a.passes(), &scene_id, &identity)
             .map_err(|e| e.to_string())?;
@@ -89,7 +89,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         (a.mean(), out.stats, a.pass_range(), identity)
     };
     image
-        .write_png(&png_path, args.exposure)
+        .write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let m = image.mean();
     say(&format!(
@@ -114,7 +114,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     ));
     if let Some(path) = &args.stats_json {
         let json = stats_json(
-            &args.mode,
+            &args.mode.to_string(),
             &scene_id,
             &identity,
             range,
@@ -146,7 +146,7 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
     merged.write_exr(&exr_path).map_err(|e| e.to_string())?;
     merged
         .mean()
-        .write_png(&png_path, args.exposure)
+        .write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let range = merged.pass_range();
     let m = merged.mean().mean();

@@ -41,6 +41,23 @@
 //! let disc = ball.polygon_area_inside(&quad, Vec3::Y, &mut scratch);
 //! assert!((disc - std::f32::consts::PI * 0.16).abs() < 1e-5);
 //! ```
+//!
+//! # References
+//!
+//! - H. W. Jensen, *Global Illumination using Photon Maps*, Rendering Techniques '96
+//!   (Eurographics Workshop on Rendering), 1996: photon maps and the disc estimate
+//!   `E = Σ Φ / (π r²)` over the k nearest photons.
+//! - R. D. Larsen and N. J. Christensen, *Optimizing Photon Mapping Using Multiple Photon Maps
+//!   for Irradiance Estimates*, WSCG 2003: one photon map per group of faces joined across
+//!   edges with a small crease angle, so that no estimate gathers through a wall.
+//! - H. Hey and W. Purgathofer, *Advanced Radiance Estimation for Photon Map Global
+//!   Illumination*, Computer Graphics Forum 21(3), 2002: gather in a cube and divide by the
+//!   surface area actually inside it, so that edges are not darkened.
+//! - Ball and Stejko's project report, which combines the three and whose scenes (the Cornell
+//!   box, the lit and unlit rooms, the coloured rooms, the accordion), four variants (basic,
+//!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the
+//!   report" in these docs is that report. The reproduction is in the repository's
+//!   `docs/results.md`.
 
 pub mod aabb;
 pub mod ball;

@@ -25,7 +25,7 @@
 //! # Example
 //!
 //! ```
-//! use glam::Vec3;
+//! use pm_kdtree::glam::Vec3;
 //! use pm_kdtree::{Chebyshev, Euclidean, KindMask, Neighbours, Photon, PhotonKind, PhotonTree};
 //!
 //! // 1000 photons of 1 mW each on the floor y = 0, in a 1 m × 1 m grid-like pattern.
@@ -57,6 +57,23 @@
 //! assert!(near.is_partial() && near.is_empty() && near.extent() == 0.1);
 //! # Ok::<(), pm_kdtree::BuildError>(())
 //! ```
+//!
+//! # References
+//!
+//! - H. W. Jensen, *Global Illumination using Photon Maps*, Rendering Techniques '96
+//!   (Eurographics Workshop on Rendering), 1996: photon maps and the disc estimate
+//!   `E = Σ Φ / (π r²)` over the k nearest photons.
+//! - R. D. Larsen and N. J. Christensen, *Optimizing Photon Mapping Using Multiple Photon Maps
+//!   for Irradiance Estimates*, WSCG 2003: one photon map per group of faces joined across
+//!   edges with a small crease angle, so that no estimate gathers through a wall.
+//! - H. Hey and W. Purgathofer, *Advanced Radiance Estimation for Photon Map Global
+//!   Illumination*, Computer Graphics Forum 21(3), 2002: gather in a cube and divide by the
+//!   surface area actually inside it, so that edges are not darkened.
+//! - Ball and Stejko's project report, which combines the three and whose scenes (the Cornell
+//!   box, the lit and unlit rooms, the coloured rooms, the accordion), four variants (basic,
+//!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the
+//!   report" in these docs is that report. The reproduction is in the repository's
+//!   `docs/results.md`.
 
 pub mod error;
 pub mod metric;
@@ -65,6 +82,8 @@ pub mod query;
 pub mod tree;
 
 pub use error::BuildError;
+/// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
+pub use glam;
 pub use metric::{Chebyshev, Euclidean, Metric};
 pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind, PowerScale};
 pub use query::{Neighbour, Neighbours};

@@ -121,6 +121,9 @@ pub enum RenderError {
     /// Photon tracing refused the scene or the options (no lights, zero power, …).
     #[error("photon tracing: {0}")]
     Trace(#[from] pm_trace::TraceError),
+    /// The partitioner refused the scene (a [`pm_trace::Contact`] scene not split first).
+    #[error(transparent)]
+    Partition(#[from] pm_trace::PartitionError),
     /// The photon maps could not be built from the traced photons.
     #[error("photon maps: {0}")]
     Maps(#[from] pm_trace::MapError),

@@ -26,7 +26,7 @@
 //! albedo ρ under irradiance E has radiance ρE/π.
 //!
 //! ```
-//! use glam::Vec3;
+//! use pm_render::glam::Vec3;
 //! use pm_render::{EstimatorKind, Mode, RenderSettings, Renderer};
 //! use pm_trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
 //! use std::f32::consts::PI;
@@ -44,6 +44,23 @@
 //! println!("{:.3} s in total", out.stats.total().as_secs_f64());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # References
+//!
+//! - H. W. Jensen, *Global Illumination using Photon Maps*, Rendering Techniques '96
+//!   (Eurographics Workshop on Rendering), 1996: photon maps and the disc estimate
+//!   `E = Σ Φ / (π r²)` over the k nearest photons.
+//! - R. D. Larsen and N. J. Christensen, *Optimizing Photon Mapping Using Multiple Photon Maps
+//!   for Irradiance Estimates*, WSCG 2003: one photon map per group of faces joined across
+//!   edges with a small crease angle, so that no estimate gathers through a wall.
+//! - H. Hey and W. Purgathofer, *Advanced Radiance Estimation for Photon Map Global
+//!   Illumination*, Computer Graphics Forum 21(3), 2002: gather in a cube and divide by the
+//!   surface area actually inside it, so that edges are not darkened.
+//! - Ball and Stejko's project report, which combines the three and whose scenes (the Cornell
+//!   box, the lit and unlit rooms, the coloured rooms, the accordion), four variants (basic,
+//!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the
+//!   report" in these docs is that report. The reproduction is in the repository's
+//!   `docs/results.md`.
 
 pub mod error;
 pub mod estimator;
@@ -58,8 +75,11 @@ pub mod stats;
 pub use error::RenderError;
 pub use estimator::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
-    GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, irradiance_in_volume,
+    GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, find_nearest, gather_found,
+    irradiance_in_volume,
 };
+/// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
+pub use glam;
 pub use image::Image;
 pub use mode::{Lighting, Mode};
 pub use progress::Progress;

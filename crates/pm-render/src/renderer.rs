@@ -62,7 +62,11 @@ impl<E: Estimator> Renderer<E> {
         self.settings.validate()?;
         let uses_photons = self.settings.mode.uses_photons();
         let start = Instant::now();
-        let assignment = uses_photons.then(|| partitioner.partition(scene));
+        let assignment = if uses_photons {
+            Some(partitioner.try_partition(scene)?)
+        } else {
+            None
+        };
         let partition_time = start.elapsed();
         self.in_pool(|| {
             let mut stats = RenderStats {

@@ -1,11 +1,11 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
-//! the paper's defaults.
+//! the report's defaults (Ball & Stejko).
 
 use crate::{EstimatorOptions, Mode, RenderError};
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 
-/// What to render and how; [`RenderSettings::default`] is the paper's setup (500×500, one
+/// What to render and how; [`RenderSettings::default`] is Ball & Stejko's setup (500×500, one
 /// sample per pixel, 100,000 photons, k = 100).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {

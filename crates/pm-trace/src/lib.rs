@@ -7,8 +7,8 @@
 //! ([`SingleMap`], [`CreaseAngle`]) assigns each part a photon map. [`trace_photons`] shoots
 //! photons from the lights and stores them per map; [`PhotonMaps::build`] turns them into
 //! kd-trees plus each map's polygons for the geometry-based estimators (coplanar, edge-connected
-//! faces merged into larger convex polygons, so a finely split wall costs one clip). The
-//! paper's scenes, and scale scenes for measuring how cost grows, are in [`scenes`].
+//! faces merged into larger convex polygons, so a finely split wall costs one clip). Ball & Stejko's
+//! scenes, and scale scenes for measuring how cost grows, are in [`scenes`].
 //!
 //! # Conventions
 //!
@@ -67,6 +67,23 @@
 //! assert_eq!(photon_maps.len(), 1);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # References
+//!
+//! - H. W. Jensen, *Global Illumination using Photon Maps*, Rendering Techniques '96
+//!   (Eurographics Workshop on Rendering), 1996: photon maps and the disc estimate
+//!   `E = Σ Φ / (π r²)` over the k nearest photons.
+//! - R. D. Larsen and N. J. Christensen, *Optimizing Photon Mapping Using Multiple Photon Maps
+//!   for Irradiance Estimates*, WSCG 2003: one photon map per group of faces joined across
+//!   edges with a small crease angle, so that no estimate gathers through a wall.
+//! - H. Hey and W. Purgathofer, *Advanced Radiance Estimation for Photon Map Global
+//!   Illumination*, Computer Graphics Forum 21(3), 2002: gather in a cube and divide by the
+//!   surface area actually inside it, so that edges are not darkened.
+//! - Ball and Stejko's project report, which combines the three and whose scenes (the Cornell
+//!   box, the lit and unlit rooms, the coloured rooms, the accordion), four variants (basic,
+//!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the
+//!   report" in these docs is that report. The reproduction is in the repository's
+//!   `docs/results.md`.
 
 mod bvh;
 pub mod camera;
@@ -88,9 +105,11 @@ pub mod gltf;
 pub use camera::Camera;
 pub use error::{MapError, SceneError, TraceError};
 pub use glam;
-pub use light::{AreaLight, DirectionalLight, EmittedRay, Light, LightSample, PointLight, SpotLight};
+pub use light::{
+    AreaLight, DirectionalLight, EmittedRay, Light, LightClone, LightSample, PointLight, SpotLight,
+};
 pub use material::{Material, Surface};
-pub use partition::{Contact, CreaseAngle, MapAssignment, Partitioner, SingleMap};
+pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats,
     TracedPhotons, trace_photons,

@@ -176,19 +176,19 @@ fn rays_with_non_finite_input_miss_instead_of_panicking() {
 }
 
 #[test]
-fn map_assignments_with_impossible_counts_are_refused() {
-    use pm_trace::MapAssignment;
-    assert!(MapAssignment::new(vec![0, 1, 1], 2).is_some());
-    assert!(
-        MapAssignment::new(vec![0, 2], 2).is_none(),
-        "an id past the count"
-    );
-    assert!(
-        MapAssignment::new(vec![0; 3], u32::MAX).is_none(),
-        "more maps than parts"
-    );
-    assert!(
-        MapAssignment::new(Vec::new(), 1).is_some(),
+fn map_assignments_accept_any_ids_and_renumber_them() {
+    use pm_trace::{MapAssignment, PartId};
+    let dense = MapAssignment::new(vec![0, 1, 1]);
+    assert_eq!(dense.map_count(), 2);
+    let sparse = MapAssignment::new(vec![7, u32::MAX, 7, 3]);
+    assert_eq!(sparse.map_count(), 3, "three distinct ids, three maps");
+    let maps: Vec<u32> = (0..4).map(|p| sparse.map_of(PartId(p))).collect();
+    assert_eq!(maps, [0, 1, 0, 2], "renumbered in order of first appearance");
+    assert!(sparse.parts_per_map().iter().all(|parts| !parts.is_empty()));
+    let empty = MapAssignment::new(Vec::new());
+    assert_eq!(
+        (empty.part_count(), empty.map_count()),
+        (0, 1),
         "no parts, one empty map"
     );
 }

@@ -227,3 +227,24 @@ fn splitting_keeps_the_traced_power() {
     let relative = ((a - b).abs() / a).max_element();
     assert!(relative < 1e-3, "stored power {a} before, {b} after the split");
 }
+
+#[test]
+fn contact_refuses_a_scene_it_has_not_split() {
+    let scene = scenes::build("touching-rooms").unwrap();
+    let contact = Contact::default();
+    assert!(!scene.is_split_at_contacts());
+    assert_eq!(
+        contact.try_partition(&scene),
+        Err(pm_trace::PartitionError::NotSplitAtContacts),
+        "unsplit, its maps would silently be the crease-angle ones"
+    );
+    assert!(CreaseAngle::default().try_partition(&scene).is_ok());
+
+    let split = contact.prepare_scene(scene).unwrap();
+    assert!(split.is_split_at_contacts());
+    let maps = contact.try_partition(&split).unwrap();
+    // Preparing twice changes nothing.
+    let again = contact.prepare_scene(split.clone()).unwrap();
+    assert_eq!(again.part_count(), split.part_count());
+    assert_eq!(contact.try_partition(&again).unwrap(), maps);
+}

@@ -8,7 +8,7 @@ use pm_trace::{
 };
 
 /// A laser: every photon leaves `origin` straight down.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 struct Laser {
     origin: Vec3,
     power: Vec3,
@@ -38,7 +38,7 @@ struct MapPerPart;
 impl Partitioner for MapPerPart {
     fn partition(&self, scene: &Scene) -> MapAssignment {
         let n = scene.part_count() as u32;
-        MapAssignment::new((0..n).collect(), n).unwrap()
+        MapAssignment::new((0..n).collect())
     }
 }
 

@@ -14,7 +14,7 @@ pub struct EstimatorOptions {
     /// When fewer than `k` photons lie within it, the estimate uses this extent.
     pub max_distance: f32,
     /// Drop photons whose travel direction `ω` satisfies `ω·n ≥ 0` (arriving from behind the
-    /// viewed side). Off by default, as in the paper's basic variant. The geometry estimators
+    /// viewed side). Off by default, as in Ball & Stejko's basic variant. The geometry estimators
     /// weight by `max(0, −n·ω)` and so ignore such photons either way.
     pub reject_behind: bool,
     /// Photon kinds gathered ([`KindMask::NOT_DIRECT`] when direct light comes from shadow rays).

@@ -19,10 +19,10 @@ use std::str::FromStr;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Mode {
     /// Follow specular bounces from the eye, then at the first diffuse hit return emission +
-    /// `albedo/π · E` from that surface's photon map (the paper's main results).
+    /// `albedo/π · E` from that surface's photon map (the main results of Ball & Stejko's report).
     Visualize,
     /// Direct light by shadow rays to every light, plus the photon map without direct photons
-    /// for the rest (the paper's Image 1).
+    /// for the rest (Image 1 of Ball & Stejko's report).
     ShadowRays,
     /// An unbiased path tracer with next-event estimation and Russian roulette (the reference).
     PathTrace,

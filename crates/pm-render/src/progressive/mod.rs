@@ -249,7 +249,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
     ) -> Result<ProgressiveRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
-        let assignment = partitioner.partition(scene);
+        let assignment = partitioner.try_partition(scene)?;
         in_pool(self.settings.render.threads, || {
             self.render_in_pool(scene, &assignment, progress, start)
         })?

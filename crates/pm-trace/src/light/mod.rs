@@ -45,8 +45,28 @@ pub struct LightSample {
     pub radiance_over_pdf: Vec3,
 }
 
-/// A light source. Units: watts for power, W/(m²·sr) for radiance.
-pub trait Light: Send + Sync + std::fmt::Debug {
+/// Copies a boxed light, so that scenes and their builders can be cloned. Implemented for every
+/// `Light + Clone`: a light only needs `#[derive(Clone)]`.
+pub trait LightClone {
+    /// A boxed copy of this light.
+    fn box_clone(&self) -> Box<dyn Light>;
+}
+
+impl<T: Light + Clone + 'static> LightClone for T {
+    fn box_clone(&self) -> Box<dyn Light> {
+        Box::new(self.clone())
+    }
+}
+
+impl Clone for Box<dyn Light> {
+    fn clone(&self) -> Self {
+        self.box_clone()
+    }
+}
+
+/// A light source. Units: watts for power, W/(m²·sr) for radiance. Lights are `Clone` (through
+/// [`LightClone`]) so that scenes can be.
+pub trait Light: LightClone + Send + Sync + std::fmt::Debug {
     /// Total emitted flux per RGB channel, in watts.
     fn power(&self) -> Vec3;
 

@@ -1,9 +1,9 @@
 //! Contact-aware partition: the crease-angle partition, made to see faces that touch without
 //! sharing an edge (a wall standing on a floor that runs under it), so that no photon map
-//! spans both sides of such a contact. The report's future work ("light bleeding would still
+//! spans both sides of such a contact. Ball & Stejko's future work ("light bleeding would still
 //! occur if the floor were one rectangle across both boxes").
 
-use super::{MapAssignment, Partitioner};
+use super::{MapAssignment, PartitionError, Partitioner};
 use crate::{PartId, PartSource, Scene, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::{FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_contacts};
@@ -11,13 +11,15 @@ use pm_geom::{FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_contacts};
 /// Crease-angle maps over all meshes of a scene welded together, after splitting faces along
 /// their contacts.
 ///
-/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) cuts every face that another face stands on
+/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) cuts
+/// every face that another face stands on
 /// (the floor under a wall) along the contact line into convex pieces, so that the contact
 /// becomes an edge shared by three or more faces (floor left, floor right, wall); then
 /// [`Partitioner::partition`] flood-fills across edges with a crease angle below `max_angle`
 /// over one half-edge mesh of *all* mesh faces, where such an edge is non-manifold and never
 /// joins two maps. Where the cut runs beyond the contact (a doorway, the floor around a box)
 /// the pieces share ordinary edges and stay in one map, because light really passes there.
+/// The renderers refuse a scene that has not been split ([`Partitioner::check_scene`]).
 ///
 /// Unlike [`crate::CreaseAngle`], faces of different meshes join when they share a flat edge.
 /// Analytic parts each get a map of their own, as with [`crate::CreaseAngle`].
@@ -71,7 +73,10 @@ impl Contact {
         let weld = MeshOptions {
             weld_tolerance: tolerance,
         };
-        let mut builder = scene.into_builder_without_meshes().mesh_options(weld);
+        let mut builder = scene
+            .into_builder_without_meshes()
+            .mesh_options(weld)
+            .split_at_contacts();
         for m in 0..mesh_count {
             if !faces[m].is_empty() {
                 builder = builder.mesh_per_face(&positions[m], &faces[m], &face_surfaces[m]);
@@ -82,8 +87,24 @@ impl Contact {
 }
 
 impl Partitioner for Contact {
+    /// Splits the scene along its contacts ([`Contact::split_scene`]); a scene split already is
+    /// returned as it is.
     fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
-        self.split_scene(scene)
+        if scene.is_split_at_contacts() {
+            Ok(scene)
+        } else {
+            self.split_scene(scene)
+        }
+    }
+
+    /// Refuses a scene not split along its contacts: its maps would silently be the
+    /// crease-angle ones.
+    fn check_scene(&self, scene: &Scene) -> Result<(), PartitionError> {
+        if scene.is_split_at_contacts() {
+            Ok(())
+        } else {
+            Err(PartitionError::NotSplitAtContacts)
+        }
     }
 
     fn partition(&self, scene: &Scene) -> MapAssignment {

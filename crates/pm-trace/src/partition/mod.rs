@@ -17,15 +17,22 @@ pub struct MapAssignment {
 }
 
 impl MapAssignment {
-    /// An assignment from the map of each part. `None` unless every id is `< map_count` and
-    /// `map_count` is at most the number of parts (at least 1): a map without parts could hold
-    /// no photons, and a huge count would only make tracing allocate per-map tables for it.
-    pub fn new(map_of_part: Vec<u32>, map_count: u32) -> Option<Self> {
-        let plausible = map_count as usize <= map_of_part.len().max(1);
-        (plausible && map_of_part.iter().all(|&m| m < map_count)).then_some(MapAssignment {
+    /// An assignment from the map id of each part. Ids may be any `u32`s: they are renumbered
+    /// densely in order of first appearance, so `[7, 3, 7]` gives maps `[0, 1, 0]` and no map
+    /// is ever empty. An empty list (a scene without parts) gives one empty map.
+    pub fn new(map_ids: Vec<u32>) -> Self {
+        let mut dense = std::collections::HashMap::new();
+        let map_of_part: Vec<u32> = map_ids
+            .iter()
+            .map(|&id| {
+                let next = dense.len() as u32;
+                *dense.entry(id).or_insert(next)
+            })
+            .collect();
+        MapAssignment {
             map_of_part,
-            map_count,
-        })
+            map_count: (dense.len() as u32).max(1),
+        }
     }
 
     /// The map of `part`.
@@ -65,9 +72,36 @@ pub trait Partitioner {
     fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
         Ok(scene)
     }
+
+    /// Refuses a scene this partition cannot serve as it is — [`Contact`] refuses one that
+    /// its [`Partitioner::prepare_scene`] has not split, where it would silently give the
+    /// crease-angle maps. Renderers call it before [`Partitioner::partition`]. The default
+    /// accepts every scene.
+    fn check_scene(&self, scene: &Scene) -> Result<(), PartitionError> {
+        let _ = scene;
+        Ok(())
+    }
+
+    /// [`Partitioner::check_scene`], then [`Partitioner::partition`].
+    fn try_partition(&self, scene: &Scene) -> Result<MapAssignment, PartitionError> {
+        self.check_scene(scene)?;
+        Ok(self.partition(scene))
+    }
 }
 
-/// Every part in map 0: one global photon map (the paper's basic variant).
+/// A scene a partitioner cannot serve as it is.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PartitionError {
+    /// [`Contact`] was given a scene its `prepare_scene` has not split along the contacts.
+    #[error(
+        "the contact partition needs a scene split along its contacts: pass the scene through \
+         `Contact::prepare_scene` (or `Contact::split_scene`) first"
+    )]
+    NotSplitAtContacts,
+}
+
+/// Every part in map 0: one global photon map (Ball & Stejko's basic variant).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SingleMap;
 

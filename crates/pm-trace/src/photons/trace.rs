@@ -41,7 +41,7 @@ pub struct TraceOptions {
 }
 
 impl Default for TraceOptions {
-    /// 100,000 photons (the paper's count), seed 0, pass 0, at most 64 bounces.
+    /// 100,000 photons (Ball & Stejko's count), seed 0, pass 0, at most 64 bounces.
     fn default() -> Self {
         TraceOptions {
             photons: 100_000,

@@ -7,7 +7,9 @@ use crate::shape::{Ring, RingSide, Shape, Sphere};
 use crate::{AreaLight, Camera, Light, Material, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
+use std::sync::Arc;
 
+#[derive(Clone)]
 enum FaceSurfaces {
     One(Surface),
     PerFace(Vec<Surface>),
@@ -20,6 +22,7 @@ enum FaceSurfaces {
 pub const MAX_SCENE_TRIANGLES: usize = 1 << 27;
 
 /// A mesh as given to the builder, its faces' indices stored flat.
+#[derive(Clone)]
 pub(super) struct MeshInput {
     positions: Vec<Vec3>,
     /// Every face's vertex indices, one face after another.
@@ -80,7 +83,7 @@ impl MeshInput {
 /// assert_eq!(scene.part_count(), 2);
 /// # Ok::<(), pm_trace::SceneError>(())
 /// ```
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct SceneBuilder {
     pub(super) meshes: Vec<MeshInput>,
     pub(super) shapes: Vec<(Shape, Surface)>,
@@ -88,6 +91,8 @@ pub struct SceneBuilder {
     pub(super) camera: Option<Camera>,
     pub(super) mesh_options: MeshOptions,
     pub(super) max_triangles: Option<usize>,
+    /// Set by [`crate::Contact::split_scene`] on the builder of the scene it splits.
+    pub(super) split_at_contacts: bool,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -102,6 +107,12 @@ impl std::fmt::Debug for SceneBuilder {
 }
 
 impl SceneBuilder {
+    /// Marks the scene to be built as split along its contacts (by [`crate::Contact`]).
+    pub(crate) fn split_at_contacts(mut self) -> Self {
+        self.split_at_contacts = true;
+        self
+    }
+
     /// Adds a mesh of convex planar polygons (vertex index lists, counter-clockwise seen from
     /// the side the normal points to), all with `surface`.
     pub fn mesh<F: AsRef<[u32]>>(mut self, positions: &[Vec3], faces: &[F], surface: Surface) -> Self {
@@ -322,7 +333,8 @@ impl SceneBuilder {
             bounds,
             epsilon,
             mesh_options: self.mesh_options,
-            bvh: SceneBvh::build(triangles, triangle_parts, shape_prims),
+            bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
+            split_at_contacts: self.split_at_contacts,
         })
     }
 }

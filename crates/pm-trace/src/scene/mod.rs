@@ -7,9 +7,10 @@ pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
 
 use crate::bvh::SceneBvh;
 use crate::shape::{RingSide, Shape};
-use crate::{Camera, Light, Material, Ray, Surface};
+use crate::{Camera, Light, Material, Ray, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
+use std::sync::Arc;
 
 /// Identifies one part of the scene: a mesh face, a sphere, or one side of a ring. Photon
 /// maps are assigned per part.
@@ -85,7 +86,10 @@ impl SceneMesh {
 }
 
 /// A scene ready for ray queries: parts with surfaces, lights, a camera and a BVH.
-#[derive(Debug)]
+///
+/// Cloning shares the BVH and copies the rest, so a second viewpoint
+/// ([`Scene::with_camera`]) or a second partition of the same scene needs no rebuild.
+#[derive(Clone, Debug)]
 pub struct Scene {
     meshes: Vec<SceneMesh>,
     shapes: Vec<Shape>,
@@ -102,7 +106,9 @@ pub struct Scene {
     bounds: Aabb,
     epsilon: f32,
     mesh_options: MeshOptions,
-    bvh: SceneBvh,
+    bvh: Arc<SceneBvh>,
+    /// True when [`crate::Contact`] has split the faces along their contacts.
+    split_at_contacts: bool,
 }
 
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
@@ -188,6 +194,22 @@ impl Scene {
     /// The camera.
     pub fn camera(&self) -> &Camera {
         &self.camera
+    }
+
+    /// The same scene seen through `camera` (checked as [`SceneBuilder::camera`]'s is); clone
+    /// the scene first to keep both viewpoints.
+    pub fn with_camera(mut self, camera: Camera) -> Result<Self, SceneError> {
+        camera
+            .validate()
+            .map_err(|reason| SceneError::InvalidCamera { reason })?;
+        self.camera = camera;
+        Ok(self)
+    }
+
+    /// True when [`crate::Contact`] has split this scene's faces along their contacts (its
+    /// [`crate::Partitioner::prepare_scene`]).
+    pub fn is_split_at_contacts(&self) -> bool {
+        self.split_at_contacts
     }
 
     /// Bounds of all geometry.

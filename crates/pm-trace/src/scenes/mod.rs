@@ -10,7 +10,7 @@ pub use accordion::ACCORDION_LIGHT_DIRECTION;
 use crate::{Scene, SceneError};
 use glam::Vec3;
 
-/// Names of the built-in scenes, in the report's order.
+/// Names of the built-in scenes, in the order of Ball & Stejko's report.
 pub const NAMES: [&str; 5] = [
     "cornell-box",
     "lit-unlit-rooms",

@@ -1,4 +1,4 @@
-//! Scenes for measuring how cost grows with the work: the report's rooms with every face split
+//! Scenes for measuring how cost grows with the work: Ball & Stejko's rooms with every face split
 //! into an `n × n` grid of quads, and a field of many separate cubes. Their light transport is
 //! the same at every `n` (the split faces are coplanar), so their images can be compared.
 

@@ -1,0 +1,101 @@
+//! The fixed sets of values of the render example's options, as clap value enums: `--help`
+//! lists them and a typo gets clap's suggestion.
+
+use clap::ValueEnum;
+use photon_maps::render::{EstimatorKind, Mode};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, SingleMap};
+use std::fmt;
+
+/// `--maps`: which photon-map partition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MapsChoice {
+    /// One global photon map (Jensen's basic method).
+    Single,
+    /// One map per group of faces joined across edges with a small crease angle.
+    Crease,
+    /// The crease-angle maps, aware of faces in contact (the scene is split first).
+    Contact,
+}
+
+impl MapsChoice {
+    /// The partitioner.
+    pub fn partitioner(self) -> Box<dyn Partitioner> {
+        match self {
+            MapsChoice::Single => Box::new(SingleMap),
+            MapsChoice::Crease => Box::new(CreaseAngle::default()),
+            MapsChoice::Contact => Box::new(Contact::default()),
+        }
+    }
+}
+
+/// `--estimator`: which radiance estimator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EstimatorChoice {
+    /// Jensen's disc `π r²`.
+    Disc,
+    /// Hey & Purgathofer's geometry-based area in a cube.
+    Cube,
+    /// The geometry-based area in a ball.
+    Ball,
+}
+
+impl From<EstimatorChoice> for EstimatorKind {
+    fn from(choice: EstimatorChoice) -> Self {
+        match choice {
+            EstimatorChoice::Disc => EstimatorKind::Disc,
+            EstimatorChoice::Cube => EstimatorKind::GeometryCube,
+            EstimatorChoice::Ball => EstimatorKind::GeometryBall,
+        }
+    }
+}
+
+/// `--mode`: how the image is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ModeChoice {
+    /// The photon maps seen directly at the first diffuse hit.
+    Visualize,
+    /// Direct light by shadow rays, the rest from the photon maps.
+    ShadowRays,
+    /// An unbiased path tracer (the reference; reads no photon maps).
+    PathTrace,
+    /// Progressive photon mapping: passes of fresh photon maps, averaged.
+    Progressive,
+    /// Stochastic progressive photon mapping (one global map, shrinking radii).
+    Sppm,
+}
+
+impl ModeChoice {
+    /// The renderer's mode; the progressive modes render their passes like `visualize`.
+    pub fn render_mode(self) -> Mode {
+        match self {
+            ModeChoice::Visualize | ModeChoice::Progressive | ModeChoice::Sppm => Mode::Visualize,
+            ModeChoice::ShadowRays => Mode::ShadowRays,
+            ModeChoice::PathTrace => Mode::PathTrace,
+        }
+    }
+
+    /// True for the modes of examples/render/progressive.rs.
+    pub fn is_progressive(self) -> bool {
+        matches!(self, ModeChoice::Progressive | ModeChoice::Sppm)
+    }
+}
+
+/// Writes a choice as its command-line name (`shadow-rays`), as in shard identities.
+fn write_name<T: ValueEnum>(value: &T, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    match value.to_possible_value() {
+        Some(v) => f.write_str(v.get_name()),
+        None => Ok(()),
+    }
+}
+
+impl fmt::Display for MapsChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_name(self, f)
+    }
+}
+
+impl fmt::Display for ModeChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_name(self, f)
+    }
+}
