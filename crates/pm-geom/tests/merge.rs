@@ -98,7 +98,19 @@ fn assert_same_area_everywhere(original: &[Vec<Vec3>], merged: &[Vec<Vec3>], rng
             bounds.min + t * bounds.size()
         };
         let size = diagonal * rng.range(0.01, 0.6);
-        let tolerance = |a: f64| 1e-5 * a + 1e-6 * f64::from(diagonal * diagonal);
+        // f32 coordinates of magnitude up to `max_coord` are rounded to within ε·max_coord, so
+        // the boundary of the region inside a volume (at most 8·size long for the cube, 2π·size
+        // for the ball, where a near-tangent plane also moves the disc's edge by as much) may
+        // move that far either way: an area error of a few ε·max_coord·8·size, however small
+        // the area. Relative 1e-5 covers the rest.
+        let max_coord = bounds
+            .min
+            .abs()
+            .max(bounds.max.abs())
+            .max(center.abs())
+            .max_element();
+        let boundary_rounding = 4.0 * f64::from(f32::EPSILON * max_coord * 8.0 * size);
+        let tolerance = |a: f64| 1e-5 * a + 1e-6 * f64::from(diagonal * diagonal) + boundary_rounding;
         let cube = Aabb::cube(center, size);
         let (a, b) = (
             area_inside(&cube, original, &mut scratch),
