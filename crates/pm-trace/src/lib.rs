@@ -81,6 +81,7 @@ pub mod sampling;
 pub mod scene;
 pub mod scenes;
 pub mod shape;
+pub mod texture;
 
 #[cfg(feature = "gltf")]
 pub mod gltf;
@@ -98,5 +99,6 @@ pub use photons::{
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
-pub use scene::{Hit, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};
+pub use scene::{Hit, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh, VertexAttributes};
 pub use shape::{Ring, RingSide, Shape, Sphere};
+pub use texture::{Sampler, Texture, Wrap};
