@@ -74,6 +74,7 @@ mod camera;
 mod content;
 mod error;
 mod graph;
+mod image;
 mod light;
 mod material;
 mod primitive;
@@ -120,6 +121,9 @@ pub struct GltfOptions {
     /// placement of 100,000 vertices and one triangle costs its 100,000 vertices each time.
     /// Past the budget loading stops with [`GltfError::SceneTooLarge`].
     pub max_scene_bytes: u64,
+    /// The most texels one image may have (2²⁶ = 8192 × 8192 by default, 3 bytes a texel
+    /// once decoded). Checked from the image's header before its pixels are allocated.
+    pub max_texture_pixels: u64,
 }
 
 /// Loads a `.gltf` or `.glb` file into a [`Scene`] with [`GltfOptions::default`].
@@ -151,6 +155,7 @@ impl GltfOptions {
         default_light: true,
         max_triangles: 20_000_000,
         max_scene_bytes: 4 << 30,
+        max_texture_pixels: 1 << 26,
     };
 
     /// Bytes counted per decoded vertex against [`Self::max_scene_bytes`]: its world position
