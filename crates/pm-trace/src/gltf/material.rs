@@ -15,7 +15,7 @@ use crate::Material;
 ///   the base colour as reflectance;
 /// - else [`Material::Lambertian`] with the base colour factor as albedo.
 ///
-/// Textures are ignored. `emission` is `emissiveFactor × emissiveStrength ×`
+/// Only the base-colour texture is read. `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfMaterial {

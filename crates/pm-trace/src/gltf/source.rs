@@ -117,14 +117,14 @@ pub(super) fn guard<T>(file: &Path, f: impl FnOnce() -> Result<T, GltfError>) ->
     }
 }
 
+/// The parsed root, the GLB binary chunk if any, and warnings.
+type Parsed = (json::Root, Option<Vec<u8>>, Vec<String>);
+
 /// Parses `.gltf` JSON or a `.glb` container (checked first), then validates it with the
 /// gltf crate after our own checks of what its validator would index blindly.
 /// Also returns warnings about what was patched (textures naming missing images that no
 /// material uses).
-pub(super) fn parse(
-    file: &Path,
-    bytes: &[u8],
-) -> Result<(json::Root, Option<Vec<u8>>, Vec<String>), GltfError> {
+pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<Parsed, GltfError> {
     check_glb(bytes).map_err(|reason| GltfError::Glb {
         file: file.to_path_buf(),
         reason,

@@ -104,7 +104,7 @@ pub(crate) fn barycentrics(a: Vec3, b: Vec3, c: Vec3, p: Vec3) -> Vec3 {
     let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
     let (d1p, d2p) = (e1.dot(d), e2.dot(d));
     let det = d11 * d22 - d12 * d12;
-    if !(det > 0.0) || !det.is_finite() {
+    if det.is_nan() || det <= 0.0 || !det.is_finite() {
         return Vec3::splat(1.0 / 3.0);
     }
     let v = ((d22 * d1p - d12 * d2p) / det).clamp(0.0, 1.0);
