@@ -24,6 +24,14 @@ pub enum SceneError {
         /// Number of faces given.
         faces: usize,
     },
+    /// A mesh's vertex attributes do not match its vertices.
+    #[error("mesh {mesh}: {reason}")]
+    InvalidAttributes {
+        /// Index of the mesh.
+        mesh: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// An analytic shape with invalid parameters.
     #[error("shape {shape}: {reason}")]
     InvalidShape {

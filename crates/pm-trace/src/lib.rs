@@ -98,6 +98,7 @@ pub mod sampling;
 pub mod scene;
 pub mod scenes;
 pub mod shape;
+pub mod texture;
 
 #[cfg(feature = "gltf")]
 pub mod gltf;
@@ -117,5 +118,8 @@ pub use photons::{
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
-pub use scene::{Hit, MAX_SCENE_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh};
+pub use scene::{
+    Hit, MAX_SCENE_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh, VertexAttributes,
+};
 pub use shape::{Ring, RingSide, Shape, Sphere};
+pub use texture::{Sampler, Texture, Wrap};

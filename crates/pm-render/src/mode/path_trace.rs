@@ -27,7 +27,8 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
             radiance += throughput * scene.emission(&hit);
         }
         match *scene.material(&hit) {
-            Material::Lambertian { albedo } => {
+            Material::Lambertian { .. } => {
+                let albedo = scene.albedo_at(&hit);
                 radiance += throughput * albedo * FRAC_1_PI * direct_irradiance(scene, &hit, rng);
                 // Cosine sampling: f · cos / pdf = (albedo / π) · cos / (cos / π) = albedo.
                 let direction = cosine_hemisphere(hit.normal, Vec2::new(rng.next_f32(), rng.next_f32()));

@@ -12,9 +12,9 @@ pub(crate) const MAX_SPECULAR_BOUNCES: u32 = 16;
 pub(crate) fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng) -> Option<(Ray, Vec3)> {
     match *scene.material(hit) {
         Material::Lambertian { .. } => None,
-        Material::Mirror { reflectance } => Some((
+        Material::Mirror { .. } => Some((
             scene.spawn_ray(hit, reflect(ray.direction, hit.normal)),
-            reflectance,
+            scene.albedo_at(hit),
         )),
         Material::Glass { ior } => {
             let eta = if hit.front_face { 1.0 / ior } else { ior };

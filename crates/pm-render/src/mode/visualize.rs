@@ -23,7 +23,8 @@ pub(super) fn radiance<E: Estimator>(
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
             break;
         };
-        if let Material::Lambertian { albedo } = *scene.material(&hit) {
+        if let Material::Lambertian { .. } = *scene.material(&hit) {
+            let albedo = scene.albedo_at(&hit);
             let mut e = lighting.photon_irradiance(&hit, scratch);
             if shadow_rays {
                 e += direct_irradiance(scene, &hit, rng);

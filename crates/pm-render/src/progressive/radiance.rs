@@ -60,7 +60,8 @@ impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
             let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
                 break;
             };
-            if let Material::Lambertian { albedo } = *scene.material(&hit) {
+            if let Material::Lambertian { .. } = *scene.material(&hit) {
+                let albedo = scene.albedo_at(&hit);
                 let mut e = self.irradiance(&hit, scratch);
                 if self.shadow_rays {
                     e += direct_irradiance(scene, &hit, rng);

@@ -209,7 +209,8 @@ impl Pass<'_> {
             let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
                 return;
             };
-            if let Material::Lambertian { albedo } = *scene.material(&hit) {
+            if let Material::Lambertian { .. } = *scene.material(&hit) {
+                let albedo = scene.albedo_at(&hit);
                 let direct =
                     scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng);
                 let direct = throughput * direct;

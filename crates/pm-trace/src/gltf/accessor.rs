@@ -62,6 +62,34 @@ impl<'a> AccessorReader<'a> {
         })
     }
 
+    /// Reads a `VEC2`, `VEC3` or `VEC4` accessor (as `allowed` says) of floats or normalized
+    /// integers as `Vec4`s, missing components zero (texture coordinates, colours).
+    pub(super) fn read_vec(&self, index: usize, allowed: &[Type]) -> Result<Vec<glam::Vec4>, GltfError> {
+        let accessor = self.get(index)?;
+        let (ty, component) = self.types(index, accessor)?;
+        let n = match ty {
+            Type::Vec2 => 2,
+            Type::Vec3 => 3,
+            Type::Vec4 => 4,
+            _ => 0,
+        };
+        if n == 0 || !allowed.contains(&ty) {
+            return Err(self.error(index, format!("type {ty:?}, expected one of {allowed:?}")));
+        }
+        if component == ComponentType::U32 {
+            return Err(self.error(index, "component type UNSIGNED_INT is not allowed here"));
+        }
+        let normalized = accessor.normalized;
+        let size = component.size();
+        self.read(index, accessor, size * n, glam::Vec4::ZERO, |b| {
+            let mut v = [0.0f32; 4];
+            for (i, c) in v.iter_mut().enumerate().take(n) {
+                *c = scalar_to_f32(component, normalized, &b[i * size..(i + 1) * size]);
+            }
+            glam::Vec4::from(v)
+        })
+    }
+
     /// Reads a `SCALAR` accessor of unsigned bytes, shorts or ints as vertex indices.
     pub(super) fn read_indices(&self, index: usize) -> Result<Vec<u32>, GltfError> {
         let accessor = self.get(index)?;

@@ -149,7 +149,7 @@ fn unreadable(uri: &str) -> impl Fn(std::io::Error) -> BufferError + '_ {
     }
 }
 
-fn has_prefix_ignore_case(s: &str, prefix: &str) -> bool {
+pub(super) fn has_prefix_ignore_case(s: &str, prefix: &str) -> bool {
     s.len() >= prefix.len() && s.as_bytes()[..prefix.len()].eq_ignore_ascii_case(prefix.as_bytes())
 }
 
@@ -167,7 +167,7 @@ fn has_scheme(s: &str) -> bool {
 
 /// The canonical path of a relative, percent-encoded URI that must stay inside `folder` after
 /// decoding and canonicalisation (symbolic links included).
-fn confined_target(folder: &Path, uri: &str) -> Result<PathBuf, BufferError> {
+pub(super) fn confined_target(folder: &Path, uri: &str) -> Result<PathBuf, BufferError> {
     let owned = || uri.to_owned();
     if has_scheme(uri) {
         return Err(BufferError::Scheme { uri: owned() });
@@ -197,7 +197,7 @@ fn confined_target(folder: &Path, uri: &str) -> Result<PathBuf, BufferError> {
 
 /// Reads `target`, which must be a regular file (checked before opening: a FIFO would block)
 /// holding no more than `declared` bytes. At most `declared + 1` bytes are read.
-fn read_regular(target: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, BufferError> {
+pub(super) fn read_regular(target: &Path, uri: &str, declared: u64) -> Result<Vec<u8>, BufferError> {
     let owned = || uri.to_owned();
     let unreadable = unreadable(uri);
     let meta = std::fs::metadata(target).map_err(&unreadable)?;
@@ -238,7 +238,7 @@ fn escapes_lexically(relative: &Path) -> bool {
 }
 
 /// Decodes `data:[<media type>][;base64],<data>`.
-fn decode_data_uri(uri: &str) -> Result<Vec<u8>, BufferError> {
+pub(super) fn decode_data_uri(uri: &str) -> Result<Vec<u8>, BufferError> {
     let bad = |reason: &str| BufferError::BadDataUri {
         reason: reason.to_owned(),
     };

@@ -12,7 +12,7 @@ use super::camera::frame_bounds;
 use super::content::GltfContent;
 use super::error::GltfError;
 use super::light::GltfLight;
-use crate::{AreaLight, Camera, DirectionalLight, PointLight, Scene, SpotLight, Surface};
+use crate::{AreaLight, Camera, DirectionalLight, PointLight, Scene, SpotLight, Surface, VertexAttributes};
 
 /// Builds a scene from content read by [`read_content`](super::read_content). `file` only
 /// names the source in errors.
@@ -33,7 +33,16 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
             emission: material.emission,
             camera_visible: true,
         };
-        builder = builder.mesh(&mesh.positions, &mesh.triangles, surface);
+        builder = if mesh.uvs.is_some() || mesh.colors.is_some() {
+            let attributes = VertexAttributes {
+                uvs: mesh.uvs.clone(),
+                colors: mesh.colors.clone(),
+                base_color_texture: mesh.base_color_texture.clone(),
+            };
+            builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)
+        } else {
+            builder.mesh(&mesh.positions, &mesh.triangles, surface)
+        };
         if material.emission.max_element() > 0.0 {
             let triangles: Vec<[Vec3; 3]> = mesh
                 .triangles

@@ -3,7 +3,10 @@
 
 use std::path::Path;
 
-use glam::Vec3;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
 use gltf::json;
 
 use super::GltfOptions;
@@ -12,10 +15,12 @@ use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
 use super::error::GltfError;
 use super::graph::{root_nodes, walk};
+use super::image::load_texture;
 use super::light::{GltfLight, place_light};
 use super::material::{GltfMaterial, map_material};
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use super::source::{guard, parse, read_bounded};
+use crate::texture::{Sampler, Texture};
 
 /// One mesh primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,6 +40,13 @@ pub struct GltfMesh {
     pub triangles: Vec<[u32; 3]>,
     /// The material as this loader reads it.
     pub material: GltfMaterial,
+    /// Texture coordinates per vertex, from the `TEXCOORD_n` set the material's base-colour
+    /// texture names (read only when it has one).
+    pub uvs: Option<Vec<Vec2>>,
+    /// Linear vertex colours (`COLOR_0`, alpha dropped), multiplying the base colour.
+    pub colors: Option<Vec<Vec3>>,
+    /// The decoded base-colour texture and its sampler, shared by every mesh that uses it.
+    pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
 }
 
 /// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
@@ -50,6 +62,9 @@ pub struct GltfContent {
     pub skipped_non_triangle: usize,
     /// Primitives skipped because they have no `POSITION` attribute.
     pub skipped_without_positions: usize,
+    /// Things ignored that a user may want to know about (for example a texture that names
+    /// a missing image but that no material uses).
+    pub warnings: Vec<String>,
 }
 
 impl GltfContent {
@@ -70,10 +85,12 @@ impl GltfContent {
 /// Every call into the gltf crate runs behind a panic guard (see [`GltfError::Panic`]).
 pub fn read_content(path: &Path, options: &GltfOptions) -> Result<GltfContent, GltfError> {
     let bytes = read_bounded(path, options.max_file_bytes)?;
-    let (root, blob) = parse(path, &bytes)?;
+    let (root, blob, warnings) = parse(path, &bytes)?;
     drop(bytes);
     let buffers = resolve_buffers(path, &root, blob, options.max_file_bytes)?;
-    guard(path, || flatten(path, &root, &buffers, options))
+    let mut content = guard(path, || flatten(path, &root, &buffers, options))?;
+    content.warnings.splice(0..0, warnings);
+    Ok(content)
 }
 
 /// Bytes held by the distinct buffers (entries sharing one file or chunk counted once).
@@ -112,6 +129,10 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
         .saturating_add(triangles.saturating_mul(GltfOptions::BYTES_PER_TRIANGLE))
 }
 
+use json::accessor::Type;
+use json::mesh::Semantic;
+use json::validation::Checked;
+
 fn flatten(
     file: &Path,
     root: &json::Root,
@@ -126,6 +147,7 @@ fn flatten(
     let placed = walk(file, root, &roots)?;
     let mut content = GltfContent::default();
     let mut triangle_count = 0u64;
+    let mut textures: HashMap<usize, (Arc<Texture>, Sampler)> = HashMap::new();
     for p in &placed {
         let node = &root.nodes[p.index];
         let missing = |what: &str, index: usize, len: usize| GltfError::Node {
@@ -177,6 +199,59 @@ fn flatten(
                                 ),
                             });
                         }
+                        let material = map_material(material, options);
+                        let attribute = |semantic: Semantic| {
+                            prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value())
+                        };
+                        let n = positions.len();
+                        let mut base_color_texture = None;
+                        let mut uvs: Option<Vec<Vec2>> = None;
+                        if let Some((texture, set)) = material.base_color_texture {
+                            let loaded = match textures.get(&texture) {
+                                Some(t) => t.clone(),
+                                None => {
+                                    let t = load_texture(file, root, buffers, texture, options)?;
+                                    scene_bytes = scene_bytes.saturating_add(t.0.heap_bytes() as u64);
+                                    textures.insert(texture, t.clone());
+                                    t
+                                }
+                            };
+                            if let Some(a) = attribute(Semantic::TexCoords(set)) {
+                                let read = reader.read_vec(a, &[Type::Vec2])?;
+                                uvs = Some(read.iter().map(|v| v.truncate().truncate()).collect());
+                                base_color_texture = Some(loaded);
+                            } else {
+                                content.warnings.push(format!(
+                                    "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{set}, base-colour texture ignored"
+                                ));
+                            }
+                        }
+                        let colors = match attribute(Semantic::Colors(0)) {
+                            Some(a) => Some(
+                                reader
+                                    .read_vec(a, &[Type::Vec3, Type::Vec4])?
+                                    .iter()
+                                    .map(|v| v.truncate().max(Vec3::ZERO))
+                                    .collect::<Vec<Vec3>>(),
+                            ),
+                            None => None,
+                        };
+                        let wrong = |what: &str, len: usize| GltfError::Primitive {
+                            file: file.to_path_buf(),
+                            mesh: mesh_index,
+                            primitive,
+                            reason: format!("{len} {what} for {n} positions"),
+                        };
+                        if let Some(u) = &uvs
+                            && u.len() != n
+                        {
+                            return Err(wrong("texture coordinates", u.len()));
+                        }
+                        if let Some(c) = &colors
+                            && c.len() != n
+                        {
+                            return Err(wrong("colours", c.len()));
+                        }
                         content.meshes.push(GltfMesh {
                             node: p.index,
                             mesh: mesh_index,
@@ -184,7 +259,10 @@ fn flatten(
                             material_index,
                             positions,
                             triangles,
-                            material: map_material(material, options),
+                            material,
+                            uvs,
+                            colors,
+                            base_color_texture,
                         })
                     }
                     PrimitiveGeometry::NotTriangles => content.skipped_non_triangle += 1,

@@ -117,6 +117,17 @@ pub enum GltfError {
         /// The builder's reason.
         source: crate::SceneError,
     },
+    /// An image a material uses could not be read or decoded: outside the folder, missing,
+    /// truncated, not PNG or JPEG, or larger than [`GltfOptions::max_texture_pixels`](super::GltfOptions).
+    #[error("{file}: image {image}: {reason}")]
+    Image {
+        /// The scene file.
+        file: PathBuf,
+        /// Index of the image (or of the texture when it names no image).
+        image: usize,
+        /// What was wrong.
+        reason: String,
+    },
     /// The file names a scene that does not exist, holds no triangles, or has no light
     /// while [`GltfOptions::default_light`](super::GltfOptions) is off.
     #[error("{file}: {reason}")]
@@ -145,6 +156,7 @@ impl GltfError {
             Self::Build { .. } => "build",
             Self::SceneTooLarge { .. } => "scene-too-large",
             Self::Scene { .. } => "scene",
+            Self::Image { .. } => "image",
         }
     }
 }

@@ -15,7 +15,7 @@ use crate::Material;
 ///   the base colour as reflectance;
 /// - else [`Material::Lambertian`] with the base colour factor as albedo.
 ///
-/// Textures are ignored. `emission` is `emissiveFactor × emissiveStrength ×`
+/// Only the base-colour texture is read. `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfMaterial {
@@ -23,6 +23,9 @@ pub struct GltfMaterial {
     pub kind: Material,
     /// Emitted radiance in W/(m²·sr); zero for a surface that does not glow.
     pub emission: Vec3,
+    /// The base-colour texture as `(texture index, TEXCOORD set)`, if the material has one;
+    /// its texels multiply the base colour factor.
+    pub base_color_texture: Option<(usize, u32)>,
     /// The glTF `doubleSided` flag (an emissive surface emits from both sides when set).
     pub double_sided: bool,
 }
@@ -51,6 +54,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
         return GltfMaterial {
             kind: Material::Lambertian { albedo: Vec3::ONE },
             emission: Vec3::ZERO,
+            base_color_texture: None,
             double_sided: false,
         };
     };
@@ -90,6 +94,10 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     GltfMaterial {
         kind,
         emission,
+        base_color_texture: pbr
+            .base_color_texture
+            .as_ref()
+            .map(|t| (t.index.value(), t.tex_coord)),
         double_sided: m.double_sided,
     }
 }

@@ -10,7 +10,10 @@
 //! `file:` and every other scheme, escapes such as `..%2F`, invalid escapes such as `%FF`,
 //! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
 //! buffer. A GLB container's length fields are checked against the file before parsing.
-//! Images are never read (textures are not used). Memory is bounded: no accessor may describe
+//! Images are read only for base-colour textures that a placed mesh's material uses, through
+//! the same resolver (buffer views, `data:` URIs, files in the folder), and decoded only as
+//! PNG, refused from the header when larger than [`GltfOptions::max_texture_pixels`]; each
+//! is decoded once however many materials share it (JPEG is refused for now). Memory is bounded: no accessor may describe
 //! more bytes than the file's buffers hold, each buffer file is read once and all buffers
 //! together hold at most [`GltfOptions::max_file_bytes`], and the instanced scene may hold at
 //! most [`GltfOptions::max_triangles`] triangles and take at most
@@ -34,7 +37,11 @@
 //! - **Materials** ([`GltfMaterial`]): `KHR_materials_transmission` ≥ 0.5 → glass
 //!   (`KHR_materials_ior`, default 1.5); metallic ≥ 0.9 and roughness ≤ 0.1 → mirror with
 //!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
-//!   albedo. Textures are ignored.
+//!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
+//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear) and `COLOR_0` multiply that
+//!   colour at each hit ([`Scene::albedo_at`]); other textures and `KHR_texture_transform`
+//!   are ignored. A texture naming a missing image that no material uses is a warning in
+//!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
 //!   nit-like units taken 1:1). Every emissive primitive also becomes an
@@ -74,6 +81,7 @@ mod camera;
 mod content;
 mod error;
 mod graph;
+mod image;
 mod light;
 mod material;
 mod primitive;
@@ -120,6 +128,9 @@ pub struct GltfOptions {
     /// placement of 100,000 vertices and one triangle costs its 100,000 vertices each time.
     /// Past the budget loading stops with [`GltfError::SceneTooLarge`].
     pub max_scene_bytes: u64,
+    /// The most texels one image may have (2²⁶ = 8192 × 8192 by default, 3 bytes a texel
+    /// once decoded). Checked from the image's header before its pixels are allocated.
+    pub max_texture_pixels: u64,
 }
 
 /// Loads a `.gltf` or `.glb` file into a [`Scene`] with [`GltfOptions::default`].
@@ -151,6 +162,7 @@ impl GltfOptions {
         default_light: true,
         max_triangles: 20_000_000,
         max_scene_bytes: 4 << 30,
+        max_texture_pixels: 1 << 26,
     };
 
     /// Bytes counted per decoded vertex against [`Self::max_scene_bytes`]: its world position

@@ -117,9 +117,14 @@ pub(super) fn guard<T>(file: &Path, f: impl FnOnce() -> Result<T, GltfError>) ->
     }
 }
 
+/// The parsed root, the GLB binary chunk if any, and warnings.
+type Parsed = (json::Root, Option<Vec<u8>>, Vec<String>);
+
 /// Parses `.gltf` JSON or a `.glb` container (checked first), then validates it with the
 /// gltf crate after our own checks of what its validator would index blindly.
-pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<(json::Root, Option<Vec<u8>>), GltfError> {
+/// Also returns warnings about what was patched (textures naming missing images that no
+/// material uses).
+pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<Parsed, GltfError> {
     check_glb(bytes).map_err(|reason| GltfError::Glb {
         file: file.to_path_buf(),
         reason,
@@ -132,10 +137,11 @@ pub(super) fn parse(file: &Path, bytes: &[u8]) -> Result<(json::Root, Option<Vec
     guard(file, || {
         let gltf::Gltf { document, blob } =
             gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
-        let root = document.into_json();
+        let mut root = document.into_json();
         check_position_accessors(file, &root)?;
+        let warnings = patch_unused_broken_textures(&mut root);
         let document = gltf::Document::from_json(root).map_err(invalid)?;
-        Ok((document.into_json(), blob))
+        Ok((document.into_json(), blob, warnings))
     })
 }
 
@@ -144,6 +150,52 @@ fn strip_prefix_ignore_case<'a>(text: &'a str, prefix: &str) -> &'a str {
         Some(head) if head.eq_ignore_ascii_case(prefix) => &text[prefix.len()..],
         _ => text,
     }
+}
+
+/// A texture naming an image that does not exist fails the gltf crate's validation, even
+/// when no material uses it (the nvpro Cornell box). Such unused textures are pointed at a
+/// placeholder image that is never decoded, with a warning; a used one is left to fail.
+fn patch_unused_broken_textures(root: &mut json::Root) -> Vec<String> {
+    let used: std::collections::HashSet<usize> = root
+        .materials
+        .iter()
+        .flat_map(|m| {
+            let pbr = &m.pbr_metallic_roughness;
+            [
+                pbr.base_color_texture.as_ref().map(|t| t.index.value()),
+                pbr.metallic_roughness_texture.as_ref().map(|t| t.index.value()),
+                m.normal_texture.as_ref().map(|t| t.index.value()),
+                m.occlusion_texture.as_ref().map(|t| t.index.value()),
+                m.emissive_texture.as_ref().map(|t| t.index.value()),
+            ]
+        })
+        .flatten()
+        .collect();
+    let images = root.images.len();
+    let mut warnings = Vec::new();
+    let mut placeholder = None;
+    for (i, t) in root.textures.iter_mut().enumerate() {
+        let source = t.source.value();
+        if source < images || used.contains(&i) {
+            continue;
+        }
+        warnings.push(format!(
+            "texture {i} names image {source}, which does not exist (the file has {images}); no material uses it, so it is ignored"
+        ));
+        let index = *placeholder.get_or_insert(images);
+        t.source = json::Index::new(index as u32);
+    }
+    if placeholder.is_some() {
+        root.images.push(json::Image {
+            buffer_view: None,
+            mime_type: None,
+            name: None,
+            uri: Some("data:,".into()),
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    warnings
 }
 
 /// The gltf crate's validator indexes `accessors` with each `POSITION` attribute unchecked

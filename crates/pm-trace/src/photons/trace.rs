@@ -299,7 +299,8 @@ fn trace_path(
             break;
         };
         let direction = match *scene.material(&hit) {
-            Material::Lambertian { albedo } => {
+            Material::Lambertian { .. } => {
+                let albedo = scene.albedo_at(&hit);
                 let kind = match (diffuse_bounces, specular) {
                     (0, false) => PhotonKind::Direct,
                     (0, true) => PhotonKind::Caustic,
@@ -323,8 +324,8 @@ fn trace_path(
                 diffuse_bounces += 1;
                 cosine_hemisphere(hit.normal, Vec2::new(rng.next_f32(), rng.next_f32()))
             }
-            Material::Mirror { reflectance } => {
-                power *= reflectance;
+            Material::Mirror { .. } => {
+                power *= scene.albedo_at(&hit);
                 if power.max_element() <= 0.0 {
                     break;
                 }

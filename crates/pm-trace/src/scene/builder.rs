@@ -1,7 +1,7 @@
 //! Building a [`Scene`]: meshes, analytic shapes, lights and a camera checked and turned into
 //! parts with surfaces and the ray-query structure.
 
-use super::{PartId, PartSource, Scene, SceneMesh};
+use super::{MeshShading, PartId, PartSource, Scene, SceneMesh, VertexAttributes};
 use crate::bvh::{SceneBvh, ShapePrimitive};
 use crate::shape::{Ring, RingSide, Shape, Sphere};
 use crate::{AreaLight, Camera, Light, Material, SceneError, Surface};
@@ -30,6 +30,7 @@ pub(super) struct MeshInput {
     /// Face `f` is `indices[starts[f]..starts[f + 1]]`.
     starts: Vec<usize>,
     surfaces: FaceSurfaces,
+    shading: Option<Box<MeshShading>>,
 }
 
 impl MeshInput {
@@ -46,6 +47,7 @@ impl MeshInput {
             indices,
             starts,
             surfaces,
+            shading: None,
         }
     }
 
@@ -133,6 +135,24 @@ impl SceneBuilder {
             faces,
             FaceSurfaces::PerFace(surfaces.to_vec()),
         ));
+        self
+    }
+
+    /// Adds a triangle mesh whose vertices carry attributes (texture coordinates, colours, a
+    /// base-colour texture), all with `surface`; [`Scene::albedo_at`] multiplies the surface's
+    /// colour by them. Each attribute present must have one entry per vertex
+    /// ([`SceneError::InvalidAttributes`] otherwise). Meshes without attributes cost nothing
+    /// extra; these keep a copy of their positions, triangles and attributes.
+    pub fn attributed_mesh(
+        mut self,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        surface: Surface,
+        attributes: VertexAttributes,
+    ) -> Self {
+        let mut input = MeshInput::new(positions, triangles, FaceSurfaces::One(surface));
+        input.shading = Some(Box::new(MeshShading::new(positions, triangles, attributes)));
+        self.meshes.push(input);
         self
     }
 
@@ -237,6 +257,7 @@ impl SceneBuilder {
         let mut triangle_parts = Vec::with_capacity(triangle_count);
         let mut shape_prims = Vec::new();
         let mut meshes = Vec::with_capacity(self.meshes.len());
+        let mut has_shading = false;
         // Each input mesh is dropped once built, so the input and the scene are not held twice.
         for (mi, input) in self.meshes.into_iter().enumerate() {
             if let FaceSurfaces::PerFace(s) = &input.surfaces
@@ -247,6 +268,12 @@ impl SceneBuilder {
                     surfaces: s.len(),
                     faces: input.face_count(),
                 });
+            }
+            if let Some(shading) = &input.shading {
+                shading
+                    .validate()
+                    .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
+                has_shading = true;
             }
             let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), &self.mesh_options)
                 .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
@@ -268,7 +295,11 @@ impl SceneBuilder {
                     triangle_parts.push(part);
                 }
             }
-            meshes.push(SceneMesh { mesh, first_part });
+            meshes.push(SceneMesh {
+                mesh,
+                first_part,
+                shading: input.shading,
+            });
         }
         let mesh_part_count = part_count;
         let mut shape_parts = Vec::new();
@@ -335,6 +366,7 @@ impl SceneBuilder {
             mesh_options: self.mesh_options,
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
             split_at_contacts: self.split_at_contacts,
+            has_shading,
         })
     }
 }

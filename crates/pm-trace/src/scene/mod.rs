@@ -2,8 +2,11 @@
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
 mod builder;
+mod shading;
 
 pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
+use shading::MeshShading;
+pub use shading::VertexAttributes;
 
 use crate::bvh::SceneBvh;
 use crate::shape::{RingSide, Shape};
@@ -71,6 +74,8 @@ pub struct Hit {
 pub struct SceneMesh {
     mesh: HalfEdgeMesh,
     first_part: u32,
+    /// Per-vertex attributes, only for meshes given some (untextured meshes pay nothing).
+    shading: Option<Box<MeshShading>>,
 }
 
 impl SceneMesh {
@@ -109,6 +114,8 @@ pub struct Scene {
     bvh: Arc<SceneBvh>,
     /// True when [`crate::Contact`] has split the faces along their contacts.
     split_at_contacts: bool,
+    /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
+    has_shading: bool,
 }
 
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
@@ -235,6 +242,30 @@ impl Scene {
         &self.surface(hit).material
     }
 
+    /// The reflectance at a hit: a Lambertian surface's albedo or a mirror's reflectance (one
+    /// for glass), times the mesh's base-colour texture at the hit's texture coordinates and
+    /// its interpolated vertex colours where the mesh has them. Use this, not the material's
+    /// factor, wherever a hit's colour matters.
+    #[inline]
+    pub fn albedo_at(&self, hit: &Hit) -> Vec3 {
+        let base = match self.surface(hit).material {
+            Material::Lambertian { albedo } => albedo,
+            Material::Mirror { reflectance } => reflectance,
+            Material::Glass { .. } => Vec3::ONE,
+        };
+        if !self.has_shading || hit.part.0 >= self.mesh_part_count {
+            return base;
+        }
+        let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
+        match &mesh.shading {
+            Some(shading) => {
+                let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
+                base * shading.colour_at(face, hit.position)
+            }
+            None => base,
+        }
+    }
+
     /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
     #[inline]
     pub fn emission(&self, hit: &Hit) -> Vec3 {
@@ -257,6 +288,12 @@ impl Scene {
             + self.surfaces.capacity() * size_of::<Surface>()
             + self.shape_parts.capacity() * size_of::<PartSource>()
             + self.shapes.capacity() * size_of::<Shape>()
+            + self
+                .meshes
+                .iter()
+                .filter_map(|m| m.shading.as_ref())
+                .map(|s| s.heap_bytes())
+                .sum::<usize>()
     }
 
     /// Number of parts.

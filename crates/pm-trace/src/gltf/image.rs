@@ -1,0 +1,221 @@
+//! glTF images to [`Texture`]s: bytes from a buffer view, a `data:` URI or a file confined to
+//! the scene's folder (the buffers' resolver), PNG decoded with sizes bounded before any
+//! pixel buffer is allocated.
+
+use std::io::Cursor;
+use std::path::Path;
+use std::sync::Arc;
+
+use gltf::json;
+
+use super::GltfOptions;
+use super::buffers::{Buffer, confined_target, decode_data_uri, has_prefix_ignore_case, read_regular};
+use super::error::GltfError;
+use crate::texture::{Sampler, Texture, Wrap};
+
+/// Reads and decodes texture `texture` of `root`: its image and its sampler.
+pub(super) fn load_texture(
+    file: &Path,
+    root: &json::Root,
+    buffers: &[Buffer],
+    texture: usize,
+    options: &GltfOptions,
+) -> Result<(Arc<Texture>, Sampler), GltfError> {
+    let fail = |image: usize, reason: String| GltfError::Image {
+        file: file.to_path_buf(),
+        image,
+        reason,
+    };
+    let t = root
+        .textures
+        .get(texture)
+        .ok_or_else(|| fail(texture, format!("texture {texture} does not exist")))?;
+    let image = t.source.value();
+    let i = root.images.get(image).ok_or_else(|| {
+        fail(
+            image,
+            format!("does not exist (the file has {})", root.images.len()),
+        )
+    })?;
+    let bytes = image_bytes(file, root, buffers, i, options).map_err(|r| fail(image, r))?;
+    let decoded = decode_image(&bytes, options.max_texture_pixels).map_err(|r| fail(image, r))?;
+    let sampler = t
+        .sampler
+        .and_then(|s| root.samplers.get(s.value()))
+        .map_or_else(Sampler::default, map_sampler);
+    Ok((Arc::new(decoded), sampler))
+}
+
+fn map_sampler(s: &json::texture::Sampler) -> Sampler {
+    use json::texture::{MagFilter, WrappingMode};
+    use json::validation::Checked;
+    let wrap = |w: &Checked<WrappingMode>| match w {
+        Checked::Valid(WrappingMode::ClampToEdge) => Wrap::ClampToEdge,
+        Checked::Valid(WrappingMode::MirroredRepeat) => Wrap::MirroredRepeat,
+        _ => Wrap::Repeat,
+    };
+    Sampler {
+        wrap_u: wrap(&s.wrap_s),
+        wrap_v: wrap(&s.wrap_t),
+        nearest: matches!(s.mag_filter, Some(Checked::Valid(MagFilter::Nearest))),
+    }
+}
+
+/// The encoded bytes of an image, at most [`GltfOptions::max_file_bytes`].
+fn image_bytes(
+    file: &Path,
+    root: &json::Root,
+    buffers: &[Buffer],
+    image: &json::Image,
+    options: &GltfOptions,
+) -> Result<Vec<u8>, String> {
+    if let Some(view) = image.buffer_view {
+        let v = root
+            .buffer_views
+            .get(view.value())
+            .ok_or_else(|| format!("buffer view {} does not exist", view.value()))?;
+        let buffer = buffers
+            .get(v.buffer.value())
+            .ok_or_else(|| format!("buffer {} does not exist", v.buffer.value()))?
+            .as_slice();
+        let start = v.byte_offset.map_or(0, |o| o.0);
+        let end = start
+            .checked_add(v.byte_length.0)
+            .filter(|&e| e <= buffer.len() as u64)
+            .ok_or_else(|| format!("buffer view {} overruns its buffer", view.value()))?;
+        return Ok(buffer[start as usize..end as usize].to_vec());
+    }
+    let uri = image.uri.as_deref().ok_or("neither a URI nor a buffer view")?;
+    if has_prefix_ignore_case(uri, "data:") {
+        if uri.len() as u64 > options.max_file_bytes {
+            return Err("data: URI longer than the file limit".into());
+        }
+        return decode_data_uri(uri).map_err(|e| e.to_string());
+    }
+    let folder = file
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let target = confined_target(folder, uri).map_err(|e| e.to_string())?;
+    read_regular(&target, uri, options.max_file_bytes).map_err(|e| e.to_string())
+}
+
+const PNG_MAGIC: &[u8] = b"\x89PNG\r\n\x1a\n";
+const JPEG_MAGIC: &[u8] = &[0xFF, 0xD8, 0xFF];
+
+/// Decodes PNG bytes into a texture, refusing images of more than `max_pixels` texels from
+/// their header, before the pixel buffer is allocated.
+pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
+    if bytes.starts_with(JPEG_MAGIC) {
+        return Err("JPEG images are not decoded yet".into());
+    }
+    if !bytes.starts_with(PNG_MAGIC) {
+        return Err("not a PNG image".into());
+    }
+    let mut decoder = png::Decoder::new(Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
+    // The decoder's own allocation limit, on top of our check of the header.
+    decoder.set_limits(png::Limits {
+        bytes: max_pixels.saturating_mul(8).min(usize::MAX as u64) as usize,
+    });
+    let mut reader = decoder.read_info().map_err(|e| format!("PNG: {e}"))?;
+    let (width, height) = (reader.info().width, reader.info().height);
+    let pixels = width as u64 * height as u64;
+    if pixels > max_pixels {
+        return Err(format!(
+            "{width}×{height} texels, more than the limit of {max_pixels} (GltfOptions::max_texture_pixels)"
+        ));
+    }
+    let size = reader
+        .output_buffer_size()
+        .filter(|&s| s as u64 <= pixels.saturating_mul(8))
+        .ok_or("PNG: output size out of range")?;
+    let mut buf = vec![0u8; size];
+    let frame = reader.next_frame(&mut buf).map_err(|e| format!("PNG: {e}"))?;
+    let channels = frame.color_type.samples();
+    if frame.bit_depth != png::BitDepth::Eight || !(1..=4).contains(&channels) {
+        return Err(format!(
+            "PNG: unsupported layout {:?} {:?}",
+            frame.color_type, frame.bit_depth
+        ));
+    }
+    let rows = &buf[..frame.line_size * height as usize];
+    let mut texels = Vec::with_capacity(pixels as usize);
+    for row in rows.chunks_exact(frame.line_size) {
+        for px in row[..width as usize * channels].chunks_exact(channels) {
+            texels.push(match channels {
+                1 | 2 => [px[0]; 3],
+                _ => [px[0], px[1], px[2]],
+            });
+        }
+    }
+    Texture::from_srgb8(width, height, texels).ok_or_else(|| "PNG: empty image".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png_bytes(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut e = png::Encoder::new(&mut out, width, height);
+        e.set_color(png::ColorType::Rgb);
+        e.set_depth(png::BitDepth::Eight);
+        let mut w = e.write_header().unwrap();
+        w.write_image_data(rgb).unwrap();
+        w.finish().unwrap();
+        out
+    }
+
+    /// Rewrites the IHDR width and height (and its CRC) of a PNG.
+    fn lie_about_size(mut png: Vec<u8>, width: u32, height: u32) -> Vec<u8> {
+        png[16..20].copy_from_slice(&width.to_be_bytes());
+        png[20..24].copy_from_slice(&height.to_be_bytes());
+        let crc = crc32(&png[12..29]);
+        png[29..33].copy_from_slice(&crc.to_be_bytes());
+        png
+    }
+
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= b as u32;
+            for _ in 0..8 {
+                crc = if crc & 1 != 0 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+
+    #[test]
+    fn png_round_trips_to_linear_texels() {
+        let t = decode_image(&png_bytes(2, 1, &[255, 0, 0, 0, 0, 188]), 100).unwrap();
+        assert_eq!((t.width(), t.height()), (2, 1));
+        assert_eq!(t.texel(0, 0), glam::Vec3::X);
+        assert!((t.texel(1, 0).z - 0.5029).abs() < 1e-3);
+    }
+
+    #[test]
+    fn one_texel_png_claiming_65535_squared_is_refused_before_allocation() {
+        let png = lie_about_size(png_bytes(1, 1, &[1, 2, 3]), 65535, 65535);
+        let err = decode_image(&png, GltfOptions::DEFAULT.max_texture_pixels).unwrap_err();
+        assert!(err.contains("65535×65535"), "{err}");
+    }
+
+    #[test]
+    fn lying_or_truncated_pngs_are_errors() {
+        // Claims 4×4 within the limit but holds one texel's data.
+        let png = lie_about_size(png_bytes(1, 1, &[1, 2, 3]), 4, 4);
+        assert!(decode_image(&png, 100).is_err());
+        let whole = png_bytes(4, 4, &[7; 48]);
+        for cut in [8, 20, 33, whole.len() / 2, whole.len() - 13] {
+            assert!(decode_image(&whole[..cut], 100).is_err(), "cut at {cut}");
+        }
+        assert!(decode_image(b"GIF89a", 100).is_err());
+        assert!(decode_image(&[0xFF, 0xD8, 0xFF, 0xE0], 100).is_err());
+    }
+}

@@ -1,0 +1,131 @@
+//! Per-vertex attributes of a mesh (texture coordinates, colours, a base-colour texture) and
+//! their interpolation at a hit, from barycentrics computed after the hit.
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+
+use crate::texture::{Sampler, Texture};
+
+/// What a mesh's vertices carry besides positions: see [`SceneBuilder::attributed_mesh`].
+///
+/// [`SceneBuilder::attributed_mesh`]: super::SceneBuilder::attributed_mesh
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VertexAttributes {
+    /// Texture coordinates per vertex (glTF convention: v grows down the image).
+    pub uvs: Option<Vec<Vec2>>,
+    /// Linear RGB colour per vertex, multiplying the base colour (glTF `COLOR_0`).
+    pub colors: Option<Vec<Vec3>>,
+    /// The base-colour texture and how to sample it, read at `uvs` (shared between meshes:
+    /// one copy of the image however many meshes use it).
+    pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
+}
+
+/// A mesh's attributes and the triangles (by source face) to interpolate them over. The
+/// corners are kept here because the half-edge mesh welds and reorders vertices.
+#[derive(Clone, Debug)]
+pub(crate) struct MeshShading {
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    attributes: VertexAttributes,
+}
+
+impl MeshShading {
+    pub(crate) fn new(positions: &[Vec3], triangles: &[[u32; 3]], attributes: VertexAttributes) -> Self {
+        Self {
+            positions: positions.to_vec(),
+            triangles: triangles.to_vec(),
+            attributes,
+        }
+    }
+
+    /// Checks every attribute has one entry per vertex and every corner is a vertex.
+    pub(crate) fn validate(&self) -> Result<(), String> {
+        let n = self.positions.len();
+        let check = |name: &str, len: Option<usize>| match len {
+            Some(len) if len != n => Err(format!("{len} {name} for {n} vertices")),
+            _ => Ok(()),
+        };
+        check("texture coordinates", self.attributes.uvs.as_ref().map(Vec::len))?;
+        check("colours", self.attributes.colors.as_ref().map(Vec::len))?;
+        if let Some(bad) = self.triangles.iter().flatten().find(|&&i| i as usize >= n) {
+            return Err(format!("corner {bad} out of range for {n} vertices"));
+        }
+        if self.attributes.base_color_texture.is_some() && self.attributes.uvs.is_none() {
+            return Err("a base-colour texture without texture coordinates".into());
+        }
+        Ok(())
+    }
+
+    pub(crate) fn heap_bytes(&self) -> usize {
+        size_of::<Self>()
+            + self.positions.capacity() * size_of::<Vec3>()
+            + self.triangles.capacity() * size_of::<[u32; 3]>()
+            + self
+                .attributes
+                .uvs
+                .as_ref()
+                .map_or(0, |v| v.capacity() * size_of::<Vec2>())
+            + self
+                .attributes
+                .colors
+                .as_ref()
+                .map_or(0, |v| v.capacity() * size_of::<Vec3>())
+    }
+
+    /// The colour factor at point `p` of source triangle `face`: texture × vertex colour.
+    #[inline]
+    pub(crate) fn colour_at(&self, face: usize, p: Vec3) -> Vec3 {
+        let Some(&corners) = self.triangles.get(face) else {
+            return Vec3::ONE;
+        };
+        let [a, b, c] = corners.map(|i| self.positions[i as usize]);
+        let w = barycentrics(a, b, c, p);
+        let mut colour = Vec3::ONE;
+        if let Some(colors) = &self.attributes.colors {
+            let [ca, cb, cc] = corners.map(|i| colors[i as usize]);
+            colour *= ca * w.x + cb * w.y + cc * w.z;
+        }
+        if let (Some(uvs), Some((texture, sampler))) =
+            (&self.attributes.uvs, &self.attributes.base_color_texture)
+        {
+            let [ta, tb, tc] = corners.map(|i| uvs[i as usize]);
+            colour *= sampler.sample(texture, ta * w.x + tb * w.y + tc * w.z);
+        }
+        colour
+    }
+}
+
+/// Barycentric weights of `p` (projected onto the triangle's plane) in triangle `a b c`,
+/// clamped to the triangle; the centroid for a degenerate triangle.
+#[inline]
+pub(crate) fn barycentrics(a: Vec3, b: Vec3, c: Vec3, p: Vec3) -> Vec3 {
+    let (e1, e2, d) = (b - a, c - a, p - a);
+    let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (d1p, d2p) = (e1.dot(d), e2.dot(d));
+    let det = d11 * d22 - d12 * d12;
+    if det.is_nan() || det <= 0.0 || !det.is_finite() {
+        return Vec3::splat(1.0 / 3.0);
+    }
+    let v = ((d22 * d1p - d12 * d2p) / det).clamp(0.0, 1.0);
+    let w = ((d11 * d2p - d12 * d1p) / det).clamp(0.0, 1.0 - v);
+    Vec3::new(1.0 - v - w, v, w)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn barycentrics_recover_the_weights_of_a_combination() {
+        let (a, b, c) = (
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 3.0, 0.5),
+        );
+        let w = Vec3::new(0.2, 0.3, 0.5);
+        let p = a * w.x + b * w.y + c * w.z;
+        assert!((barycentrics(a, b, c, p) - w).abs().max_element() < 1e-5);
+        assert_eq!(barycentrics(a, a, a, a), Vec3::splat(1.0 / 3.0));
+    }
+}
