@@ -30,7 +30,7 @@
 //! - Memory: a built scene holds 77–90 bytes per triangle ([`Scene::heap_bytes`]: the
 //!   half-edge mesh, each triangle's corners and part once, the BVH nodes); building it peaks
 //!   near 400 bytes per triangle. Ray cost grows with the log of the triangle count plus
-//!   cache misses: 24 → 240k triangles costs about 4–5× per path-traced sample (see
+//!   cache misses: 24 → 240k triangles costs about 3–4× per path-traced sample (see
 //!   `examples/scale.rs`).
 //!
 //! # Features
