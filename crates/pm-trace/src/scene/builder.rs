@@ -1,6 +1,7 @@
 //! Building a [`Scene`]: meshes, analytic shapes, lights and a camera checked and turned into
 //! parts with surfaces and the ray-query structure.
 
+use super::checks::{SurfaceTable, check_lights, check_shape, check_surface, default_camera};
 use super::{MeshShading, PartId, PartSource, Scene, SceneMesh, VertexAttributes};
 use crate::bvh::{SceneBvh, ShapePrimitive};
 use crate::shape::{Ring, RingSide, Shape, Sphere};
@@ -368,124 +369,5 @@ impl SceneBuilder {
             split_at_contacts: self.split_at_contacts,
             has_shading,
         })
-    }
-}
-
-/// Every light valid ([`Light::validate`]) with finite, non-negative power, and the total power
-/// finite (photon tracing divides it among the photons).
-fn check_lights(lights: &[Box<dyn Light>]) -> Result<(), SceneError> {
-    let mut total = 0.0f64;
-    for (i, light) in lights.iter().enumerate() {
-        let fail = |reason: String| SceneError::InvalidLight { light: i, reason };
-        light.validate().map_err(fail)?;
-        let power = light.power();
-        if !power.is_finite() || power.min_element() < 0.0 {
-            return Err(fail(format!("power {power} W must be finite and not negative")));
-        }
-        total += power.as_dvec3().element_sum();
-        if total > f32::MAX as f64 {
-            return Err(fail(format!(
-                "the lights' total power passes {:e} W, the largest f32",
-                f32::MAX
-            )));
-        }
-    }
-    Ok(())
-}
-
-/// The distinct surfaces of a scene, each stored once however many parts use it.
-#[derive(Default)]
-struct SurfaceTable {
-    surfaces: Vec<Surface>,
-    ids: std::collections::HashMap<[u32; 8], u32>,
-}
-
-impl SurfaceTable {
-    /// The id of `surface`, added if new. Surfaces are compared by their bits.
-    fn id_of(&mut self, surface: Surface) -> u32 {
-        let (kind, colour) = match surface.material {
-            Material::Lambertian { albedo } => (0, albedo),
-            Material::Mirror { reflectance } => (1, reflectance),
-            Material::Glass { ior } => (2, Vec3::splat(ior)),
-        };
-        let e = surface.emission;
-        let key = [
-            kind,
-            colour.x.to_bits(),
-            colour.y.to_bits(),
-            colour.z.to_bits(),
-            e.x.to_bits(),
-            e.y.to_bits(),
-            e.z.to_bits(),
-            surface.camera_visible as u32,
-        ];
-        *self.ids.entry(key).or_insert_with(|| {
-            self.surfaces.push(surface);
-            (self.surfaces.len() - 1) as u32
-        })
-    }
-}
-
-/// On the −z side of the bounds looking along +z at their centre (the built-in scenes' view).
-fn default_camera(bounds: &Aabb) -> Camera {
-    let c = bounds.center();
-    let fov = 40f32.to_radians();
-    Camera::new(
-        c - Vec3::Z * Camera::framing_distance(bounds.size(), fov),
-        c,
-        Vec3::Y,
-        fov,
-    )
-}
-
-fn check_shape(shape: &Shape) -> Result<(), String> {
-    match shape {
-        Shape::Sphere(s) => {
-            if !(s.center.is_finite() && s.radius.is_finite() && s.radius > 0.0) {
-                return Err(format!(
-                    "sphere needs a finite centre and a positive radius, got {:?}, {}",
-                    s.center, s.radius
-                ));
-            }
-        }
-        Shape::Ring(r) => {
-            let ok = r.center.is_finite()
-                && r.axis.is_normalized()
-                && r.inner_radius.is_finite()
-                && r.outer_radius.is_finite()
-                && r.height.is_finite()
-                && r.inner_radius >= 0.0
-                && r.outer_radius > r.inner_radius
-                && r.height > 0.0;
-            if !ok {
-                return Err(format!(
-                    "ring needs a finite centre, a non-zero axis, 0 <= inner < outer radius and a positive height, got {r:?}"
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-fn check_surface(s: &Surface, what: impl Fn() -> String) -> Result<(), SceneError> {
-    let colour_ok = |c: Vec3| c.is_finite() && c.min_element() >= 0.0;
-    let reason = match s.material {
-        Material::Lambertian { albedo } if !colour_ok(albedo) || albedo.max_element() > 1.0 => {
-            Some(format!("albedo {albedo} must be finite and in [0, 1]"))
-        }
-        Material::Mirror { reflectance } if !colour_ok(reflectance) || reflectance.max_element() > 1.0 => {
-            Some(format!("reflectance {reflectance} must be finite and in [0, 1]"))
-        }
-        Material::Glass { ior } if !(ior.is_finite() && ior > 0.0) => {
-            Some(format!("index of refraction {ior} must be finite and positive"))
-        }
-        _ if !colour_ok(s.emission) => {
-            Some(format!("emission {} must be finite and non-negative", s.emission))
-        }
-        _ => None,
-    };
-    match reason {
-        Some(reason) => Err(SceneError::InvalidSurface { what: what(), reason }),
-        None => Ok(()),
     }
 }

@@ -2,6 +2,7 @@
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
 mod builder;
+mod checks;
 mod shading;
 
 pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
