@@ -8,62 +8,12 @@
 
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, Scene, scenes};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
-/// The system allocator, keeping the bytes live and their peak.
-struct Tracking;
+use tracking_allocator::{peak, reset_peak};
 
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grow(bytes: usize) {
-    let live = LIVE.fetch_add(bytes, Relaxed) + bytes;
-    PEAK.fetch_max(live, Relaxed);
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; the counters are atomics
-// and never allocate.
-unsafe impl GlobalAlloc for Tracking {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        grow(layout.size());
-        // SAFETY: the caller's contract is passed on as is.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        grow(layout.size());
-        // SAFETY: as above.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if new_size >= layout.size() {
-            grow(new_size - layout.size());
-        } else {
-            LIVE.fetch_sub(layout.size() - new_size, Relaxed);
-        }
-        // SAFETY: as above.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        // SAFETY: as above.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Tracking = Tracking;
-
-/// Starts a peak measurement; returns the bytes live now.
-fn reset_peak() -> usize {
-    let live = LIVE.load(Relaxed);
-    PEAK.store(live, Relaxed);
-    live
-}
+#[path = "../tests/support/tracking_allocator.rs"]
+mod tracking_allocator;
 
 fn mib(bytes: usize) -> f64 {
     bytes as f64 / (1024.0 * 1024.0)
@@ -75,7 +25,7 @@ fn triangle_row(name: &str) -> Result<String, String> {
     let start = Instant::now();
     let scene = scenes::build(name).map_err(|e| e.to_string())?;
     let build_scene = start.elapsed().as_secs_f64();
-    let scene_peak = PEAK.load(Relaxed) - base;
+    let scene_peak = peak() - base;
     let triangles = triangle_count(&scene);
     let scene_bytes = scene.heap_bytes();
     let settings = RenderSettings {
@@ -88,7 +38,7 @@ fn triangle_row(name: &str) -> Result<String, String> {
     let cube = Renderer::new(EstimatorKind::GeometryCube, settings)
         .render(&scene, &CreaseAngle::default(), &())
         .map_err(|e| e.to_string())?;
-    let render_peak = PEAK.load(Relaxed) - base;
+    let render_peak = peak() - base;
     let disc = Renderer::new(EstimatorKind::Disc, settings)
         .render(&scene, &CreaseAngle::default(), &())
         .map_err(|e| e.to_string())?;
@@ -130,7 +80,7 @@ fn photon_row(photons: u32) -> Result<String, String> {
     let out = Renderer::new(EstimatorKind::GeometryCube, settings)
         .render(&scene, &CreaseAngle::default(), &())
         .map_err(|e| e.to_string())?;
-    let peak = PEAK.load(Relaxed) - base;
+    let peak = peak() - base;
     let s = &out.stats;
     let mean = out.image.mean();
     Ok(format!(

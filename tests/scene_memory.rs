@@ -6,55 +6,9 @@
 use photon_maps::trace::glam::Vec3;
 use photon_maps::trace::scenes::scale::split_rooms;
 use photon_maps::trace::{PointLight, Scene, Surface};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
-/// The system allocator, keeping the bytes live and their peak (all threads: the BVH is built
-/// on rayon's workers).
-struct Tracking;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grow(bytes: usize) {
-    let live = LIVE.fetch_add(bytes, Relaxed) + bytes;
-    PEAK.fetch_max(live, Relaxed);
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; the counters are atomics
-// and never allocate.
-unsafe impl GlobalAlloc for Tracking {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        grow(layout.size());
-        // SAFETY: the caller's contract is passed on as is.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        grow(layout.size());
-        // SAFETY: as above.
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if new_size >= layout.size() {
-            grow(new_size - layout.size());
-        } else {
-            LIVE.fetch_sub(layout.size() - new_size, Relaxed);
-        }
-        // SAFETY: as above.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size(), Relaxed);
-        // SAFETY: as above.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Tracking = Tracking;
+#[path = "support/tracking_allocator.rs"]
+mod tracking_allocator;
 
 /// A UV sphere of `stacks × 2·stacks` cells, each two triangles: no two faces coplanar.
 fn sphere_mesh(stacks: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
@@ -87,11 +41,10 @@ fn sphere_mesh(stacks: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
 /// (live bytes per triangle after building, peak bytes per triangle while building, and
 /// the scene's own report per triangle), for a scene made by `make`.
 fn measure(make: impl FnOnce() -> Scene) -> (f64, f64, f64, usize) {
-    let base = LIVE.load(Relaxed);
-    PEAK.store(base, Relaxed);
+    let base = tracking_allocator::reset_peak();
     let scene = make();
-    let live = LIVE.load(Relaxed) - base;
-    let peak = PEAK.load(Relaxed) - base;
+    let live = tracking_allocator::live() - base;
+    let peak = tracking_allocator::peak() - base;
     let triangles: usize = scene
         .meshes()
         .iter()
