@@ -12,8 +12,9 @@
 //! buffer. A GLB container's length fields are checked against the file before parsing.
 //! Images are read only for base-colour textures that a placed mesh's material uses, through
 //! the same resolver (buffer views, `data:` URIs, files in the folder), and decoded only as
-//! PNG, refused from the header when larger than [`GltfOptions::max_texture_pixels`]; each
-//! is decoded once however many materials share it (JPEG is refused for now). Memory is bounded: no accessor may describe
+//! PNG or JPEG (`zune-jpeg`), refused from the header when larger than
+//! [`GltfOptions::max_texture_pixels`]; each is decoded once however many materials share
+//! it. Memory is bounded: no accessor may describe
 //! more bytes than the file's buffers hold, each buffer file is read once and all buffers
 //! together hold at most [`GltfOptions::max_file_bytes`], and the instanced scene may hold at
 //! most [`GltfOptions::max_triangles`] triangles and take at most
