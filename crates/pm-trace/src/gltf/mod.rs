@@ -40,8 +40,9 @@
 //!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
 //!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
 //!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear) and `COLOR_0` multiply that
-//!   colour at each hit ([`Scene::albedo_at`]); other textures and `KHR_texture_transform`
-//!   are ignored. A texture naming a missing image that no material uses is a warning in
+//!   colour at each hit ([`Scene::albedo_at`]); other textures (emissive, normal maps) and
+//!   `KHR_texture_transform` are ignored. `NORMAL` gives smooth shading normals
+//!   ([`Scene::shading_normal_at`]). A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
