@@ -107,7 +107,6 @@ fn smooth_uv_sphere_matches_the_analytic_sphere_and_beats_the_faceted_one() {
     )));
     let (smooth_error, n) = mean_relative_difference(&smooth, &analytic);
     let (faceted_error, _) = mean_relative_difference(&faceted, &analytic);
-    eprintln!("compared {n} pixels: smooth {smooth_error}, faceted {faceted_error}");
     assert!(n > 300, "only {n} pixels compared");
     assert!(
         smooth_error < 0.03,

@@ -278,7 +278,7 @@ mod tests {
         out.extend([0xFF, 0xDA, 0, 12, 3, 1, 0x00, 2, 0x00, 3, 0x00, 0, 63, 0]);
         // Entropy-coded data: per block and component, the DC difference then EOB.
         let mut bits: Vec<bool> = Vec::new();
-        let mut push = |value: u32, n: u32, bits: &mut Vec<bool>| {
+        let push = |value: u32, n: u32, bits: &mut Vec<bool>| {
             for i in (0..n).rev() {
                 bits.push(value >> i & 1 == 1);
             }
@@ -297,7 +297,7 @@ mod tests {
                 bits.push(false);
             }
         }
-        while bits.len() % 8 != 0 {
+        while !bits.len().is_multiple_of(8) {
             bits.push(true);
         }
         for byte in bits.chunks(8) {
