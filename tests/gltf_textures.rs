@@ -133,6 +133,7 @@ fn checkerboard_scene(tiles: f32) -> Scene {
             VertexAttributes {
                 uvs: Some(uvs),
                 colors: None,
+                normals: None,
                 base_color_texture: Some((texture, Sampler::default())),
             },
         )

@@ -4,14 +4,19 @@ use glam::Vec3;
 use pm_trace::{Hit, Rng, Scene};
 
 /// Irradiance (W/m²) at `hit` straight from the scene's lights, one shadow ray per light.
+///
+/// The cosine is taken with the shading normal ([`Scene::shading_normal_at`]); a light
+/// below the geometric surface counts nothing even where the shading normal faces it, so no
+/// light leaks through a coarse mesh's shadow terminator.
 pub fn direct_irradiance(scene: &Scene, hit: &Hit, rng: &mut Rng) -> Vec3 {
     let mut e = Vec3::ZERO;
+    let shading = scene.shading_normal_at(hit);
     for light in scene.lights() {
         let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
             continue;
         };
-        let cos = hit.normal.dot(sample.direction);
-        if cos <= 0.0 || !sample.radiance_over_pdf.is_finite() {
+        let cos = shading.dot(sample.direction);
+        if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
             continue;
         }
         if !scene.occluded(hit.position, hit.position + sample.direction * sample.distance) {

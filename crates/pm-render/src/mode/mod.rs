@@ -94,7 +94,7 @@ impl<E: Estimator> Lighting<'_, E> {
         };
         let at = SurfacePoint {
             position: hit.position,
-            normal: hit.normal,
+            normal: self.scene.shading_normal_at(hit),
             front_face: hit.front_face,
         };
         self.estimator.irradiance(at, view, self.options, scratch)

@@ -30,8 +30,15 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
             Material::Lambertian { .. } => {
                 let albedo = scene.albedo_at(&hit);
                 radiance += throughput * albedo * FRAC_1_PI * direct_irradiance(scene, &hit, rng);
-                // Cosine sampling: f · cos / pdf = (albedo / π) · cos / (cos / π) = albedo.
-                let direction = cosine_hemisphere(hit.normal, Vec2::new(rng.next_f32(), rng.next_f32()));
+                // Cosine sampling about the shading normal: f · cos / pdf = (albedo / π) · cos /
+                // (cos / π) = albedo. A direction below the geometric surface (possible where
+                // the shading normal leans away from it, near the terminator) ends the path
+                // rather than leaking through the surface.
+                let shading = scene.shading_normal_at(&hit);
+                let direction = cosine_hemisphere(shading, Vec2::new(rng.next_f32(), rng.next_f32()));
+                if direction.dot(hit.normal) <= 0.0 {
+                    break;
+                }
                 throughput *= albedo;
                 ray = scene.spawn_ray(&hit, direction);
                 count_emission = false;

@@ -32,7 +32,7 @@ impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
         };
         let at = SurfacePoint {
             position: hit.position,
-            normal: hit.normal,
+            normal: self.scene.shading_normal_at(hit),
             front_face: hit.front_face,
         };
         let pilot_view = MapView {

@@ -221,7 +221,13 @@ impl Pass<'_> {
                 if pixel.radius == 0.0 {
                     pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
                 }
-                let (phi, m) = gather(tree, hit.position, hit.normal, pixel.radius, self.options);
+                let (phi, m) = gather(
+                    tree,
+                    hit.position,
+                    scene.shading_normal_at(&hit),
+                    pixel.radius,
+                    self.options,
+                );
                 if m > 0 {
                     let m = m as f32;
                     let n_new = pixel.n + self.alpha * m;

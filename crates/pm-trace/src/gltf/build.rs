@@ -33,10 +33,11 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
             emission: material.emission,
             camera_visible: true,
         };
-        builder = if mesh.uvs.is_some() || mesh.colors.is_some() {
+        builder = if mesh.uvs.is_some() || mesh.colors.is_some() || mesh.normals.is_some() {
             let attributes = VertexAttributes {
                 uvs: mesh.uvs.clone(),
                 colors: mesh.colors.clone(),
+                normals: mesh.normals.clone(),
                 base_color_texture: mesh.base_color_texture.clone(),
             };
             builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)

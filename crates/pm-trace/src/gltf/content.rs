@@ -6,7 +6,7 @@ use std::path::Path;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 use gltf::json;
 
 use super::GltfOptions;
@@ -45,6 +45,10 @@ pub struct GltfMesh {
     pub uvs: Option<Vec<Vec2>>,
     /// Linear vertex colours (`COLOR_0`, alpha dropped), multiplying the base colour.
     pub colors: Option<Vec<Vec3>>,
+    /// World-space unit vertex normals (`NORMAL`, by the inverse transpose of the node's
+    /// transform) for smooth shading; a non-finite or zero normal is stored as zero (the
+    /// geometric normal is used there).
+    pub normals: Option<Vec<Vec3>>,
     /// The decoded base-colour texture and its sampler, shared by every mesh that uses it.
     pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
 }
@@ -236,6 +240,21 @@ fn flatten(
                             ),
                             None => None,
                         };
+                        let normals = match attribute(Semantic::Normals) {
+                            Some(a) => {
+                                let to_world = Mat3::from_mat4(p.world).inverse().transpose();
+                                Some(
+                                    reader
+                                        .read_vec(a, &[Type::Vec3])?
+                                        .iter()
+                                        .map(|v| {
+                                            (to_world * v.truncate()).try_normalize().unwrap_or(Vec3::ZERO)
+                                        })
+                                        .collect::<Vec<Vec3>>(),
+                                )
+                            }
+                            None => None,
+                        };
                         let wrong = |what: &str, len: usize| GltfError::Primitive {
                             file: file.to_path_buf(),
                             mesh: mesh_index,
@@ -252,6 +271,11 @@ fn flatten(
                         {
                             return Err(wrong("colours", c.len()));
                         }
+                        if let Some(v) = &normals
+                            && v.len() != n
+                        {
+                            return Err(wrong("normals", v.len()));
+                        }
                         content.meshes.push(GltfMesh {
                             node: p.index,
                             mesh: mesh_index,
@@ -262,6 +286,7 @@ fn flatten(
                             material,
                             uvs,
                             colors,
+                            normals,
                             base_color_texture,
                         })
                     }

@@ -1,6 +1,6 @@
 //! glTF images to [`Texture`]s: bytes from a buffer view, a `data:` URI or a file confined to
-//! the scene's folder (the buffers' resolver), PNG decoded with sizes bounded before any
-//! pixel buffer is allocated.
+//! the scene's folder (the buffers' resolver), PNG and JPEG decoded with sizes bounded from
+//! the header before any pixel buffer is allocated.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -103,11 +103,11 @@ fn image_bytes(
 const PNG_MAGIC: &[u8] = b"\x89PNG\r\n\x1a\n";
 const JPEG_MAGIC: &[u8] = &[0xFF, 0xD8, 0xFF];
 
-/// Decodes PNG bytes into a texture, refusing images of more than `max_pixels` texels from
-/// their header, before the pixel buffer is allocated.
+/// Decodes PNG or JPEG bytes into a texture, refusing images of more than `max_pixels` texels
+/// from their header, before the pixel buffer is allocated.
 pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
     if bytes.starts_with(JPEG_MAGIC) {
-        return Err("JPEG images are not decoded yet".into());
+        return decode_jpeg(bytes, max_pixels);
     }
     if !bytes.starts_with(PNG_MAGIC) {
         return Err("not a PNG image".into());
@@ -122,9 +122,7 @@ pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, Str
     let (width, height) = (reader.info().width, reader.info().height);
     let pixels = width as u64 * height as u64;
     if pixels > max_pixels {
-        return Err(format!(
-            "{width}×{height} texels, more than the limit of {max_pixels} (GltfOptions::max_texture_pixels)"
-        ));
+        return Err(too_large(width, height, max_pixels));
     }
     let size = reader
         .output_buffer_size()
@@ -150,6 +148,45 @@ pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, Str
         }
     }
     Texture::from_srgb8(width, height, texels).ok_or_else(|| "PNG: empty image".into())
+}
+
+fn too_large(width: u32, height: u32, max_pixels: u64) -> String {
+    format!("{width}×{height} texels, more than the limit of {max_pixels} (GltfOptions::max_texture_pixels)")
+}
+
+/// Decodes a JPEG (baseline or progressive) to RGB: the header is read first and a declared
+/// size past `max_pixels` is refused before the pixel buffer is allocated; the decoder's own
+/// width and height limits are set too.
+fn decode_jpeg(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
+    use zune_jpeg::JpegDecoder;
+    use zune_jpeg::zune_core::bytestream::ZCursor;
+    use zune_jpeg::zune_core::colorspace::ColorSpace;
+    use zune_jpeg::zune_core::options::DecoderOptions;
+
+    let side = max_pixels.clamp(1, u16::MAX as u64) as usize;
+    let options = DecoderOptions::new_safe()
+        .set_max_width(side)
+        .set_max_height(side)
+        .set_strict_mode(true)
+        .jpeg_set_out_colorspace(ColorSpace::RGB);
+    let mut decoder = JpegDecoder::new_with_options(ZCursor::new(bytes), options);
+    decoder.decode_headers().map_err(|e| format!("JPEG: {e:?}"))?;
+    let info = decoder.info().ok_or("JPEG: no frame header")?;
+    let (width, height) = (u32::from(info.width), u32::from(info.height));
+    let pixels = width as u64 * height as u64;
+    if pixels > max_pixels {
+        return Err(too_large(width, height, max_pixels));
+    }
+    let size = decoder
+        .output_buffer_size()
+        .filter(|&s| s as u64 == pixels * 3)
+        .ok_or("JPEG: output size out of range")?;
+    let mut buf = vec![0u8; size];
+    decoder
+        .decode_into(&mut buf)
+        .map_err(|e| format!("JPEG: {e:?}"))?;
+    let texels = buf.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+    Texture::from_srgb8(width, height, texels).ok_or_else(|| "JPEG: empty image".into())
 }
 
 #[cfg(test)]
@@ -217,5 +254,100 @@ mod tests {
         }
         assert!(decode_image(b"GIF89a", 100).is_err());
         assert!(decode_image(&[0xFF, 0xD8, 0xFF, 0xE0], 100).is_err());
+    }
+
+    /// A baseline JPEG of `blocks_x`×1 flat 8×8 blocks of one YCbCr colour, written by hand:
+    /// quantisation 1, a DC table with 4-bit codes for categories 0-11 and an AC table holding
+    /// only end-of-block (all AC coefficients zero).
+    fn flat_jpeg(blocks_x: u16, ycbcr: [u8; 3]) -> Vec<u8> {
+        let mut out = vec![0xFF, 0xD8];
+        out.extend([0xFF, 0xDB, 0, 67, 0x00]);
+        out.extend([1u8; 64]);
+        let width = blocks_x * 8;
+        out.extend([0xFF, 0xC0, 0, 17, 8, 0, 8]);
+        out.extend(width.to_be_bytes());
+        out.extend([3, 1, 0x11, 0, 2, 0x11, 0, 3, 0x11, 0]);
+        // DC table 0: twelve 4-bit codes, symbol k has code k.
+        out.extend([0xFF, 0xC4, 0, 2 + 1 + 16 + 12, 0x00, 0, 0, 0, 12]);
+        out.extend([0u8; 12]);
+        out.extend(0u8..12);
+        // AC table 0: end-of-block only, code `0`.
+        out.extend([0xFF, 0xC4, 0, 2 + 1 + 16 + 1, 0x10, 1]);
+        out.extend([0u8; 15]);
+        out.push(0x00);
+        out.extend([0xFF, 0xDA, 0, 12, 3, 1, 0x00, 2, 0x00, 3, 0x00, 0, 63, 0]);
+        // Entropy-coded data: per block and component, the DC difference then EOB.
+        let mut bits: Vec<bool> = Vec::new();
+        let push = |value: u32, n: u32, bits: &mut Vec<bool>| {
+            for i in (0..n).rev() {
+                bits.push(value >> i & 1 == 1);
+            }
+        };
+        let mut previous = [0i32; 3];
+        for _ in 0..blocks_x {
+            for c in 0..3 {
+                // A flat block of level-shifted value v has DC coefficient 8v.
+                let dc = 8 * (i32::from(ycbcr[c]) - 128);
+                let diff = dc - previous[c];
+                previous[c] = dc;
+                let category = 32 - diff.unsigned_abs().leading_zeros();
+                push(category, 4, &mut bits);
+                let magnitude = if diff < 0 { diff - 1 } else { diff } as u32;
+                push(magnitude & ((1 << category) - 1), category, &mut bits);
+                bits.push(false);
+            }
+        }
+        while !bits.len().is_multiple_of(8) {
+            bits.push(true);
+        }
+        for byte in bits.chunks(8) {
+            let b = byte.iter().fold(0u8, |acc, &x| acc << 1 | u8::from(x));
+            out.push(b);
+            if b == 0xFF {
+                out.push(0);
+            }
+        }
+        out.extend([0xFF, 0xD9]);
+        out
+    }
+
+    #[test]
+    fn flat_jpeg_decodes_to_its_colour_in_linear_texels() {
+        // Y 150, Cb 100, Cr 170 is sRGB (208.9, 129.6, 100.4) by the JFIF conversion.
+        let t = decode_image(&flat_jpeg(2, [150, 100, 170]), 1000).unwrap();
+        assert_eq!((t.width(), t.height()), (16, 8));
+        let expected = Texture::from_srgb8(1, 1, vec![[209, 130, 100]])
+            .unwrap()
+            .texel(0, 0);
+        for (x, y) in [(0, 0), (7, 3), (15, 7)] {
+            let got = t.texel(x, y);
+            assert!((got - expected).abs().max_element() < 0.01, "{got} vs {expected}");
+        }
+    }
+
+    #[test]
+    fn jpeg_claiming_65535_squared_is_refused_from_its_header() {
+        let mut jpeg = flat_jpeg(1, [128, 128, 128]);
+        // SOF0 sits after SOI (2) and DQT (69): marker 2 bytes, length 2, precision 1.
+        assert_eq!(jpeg[71..73], [0xFF, 0xC0]);
+        jpeg[76..80].copy_from_slice(&[0xFF, 0xFF, 0xFF, 0xFF]);
+        let err = decode_image(&jpeg, GltfOptions::DEFAULT.max_texture_pixels).unwrap_err();
+        assert!(err.contains("65535×65535"), "{err}");
+        // Within the pixel limit but past what the data holds: an error, not a panic.
+        jpeg[76..80].copy_from_slice(&[0, 64, 0, 64]);
+        let _ = decode_image(&jpeg, 1 << 20);
+    }
+
+    #[test]
+    fn truncated_or_corrupt_jpegs_are_errors() {
+        let whole = flat_jpeg(4, [90, 200, 40]);
+        assert!(decode_image(&whole, 1000).is_ok());
+        for cut in [3, 10, 40, 72, 80, 100, 150, whole.len() - 12] {
+            assert!(decode_image(&whole[..cut], 1000).is_err(), "cut at {cut}");
+        }
+        // Zero width in the frame header.
+        let mut zero = whole.clone();
+        zero[78..80].copy_from_slice(&[0, 0]);
+        assert!(decode_image(&zero, 1000).is_err());
     }
 }

@@ -12,8 +12,9 @@
 //! buffer. A GLB container's length fields are checked against the file before parsing.
 //! Images are read only for base-colour textures that a placed mesh's material uses, through
 //! the same resolver (buffer views, `data:` URIs, files in the folder), and decoded only as
-//! PNG, refused from the header when larger than [`GltfOptions::max_texture_pixels`]; each
-//! is decoded once however many materials share it (JPEG is refused for now). Memory is bounded: no accessor may describe
+//! PNG or JPEG (`zune-jpeg`), refused from the header when larger than
+//! [`GltfOptions::max_texture_pixels`]; each is decoded once however many materials share
+//! it. Memory is bounded: no accessor may describe
 //! more bytes than the file's buffers hold, each buffer file is read once and all buffers
 //! together hold at most [`GltfOptions::max_file_bytes`], and the instanced scene may hold at
 //! most [`GltfOptions::max_triangles`] triangles and take at most
@@ -39,8 +40,9 @@
 //!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
 //!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
 //!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear) and `COLOR_0` multiply that
-//!   colour at each hit ([`Scene::albedo_at`]); other textures and `KHR_texture_transform`
-//!   are ignored. A texture naming a missing image that no material uses is a warning in
+//!   colour at each hit ([`Scene::albedo_at`]); other textures (emissive, normal maps) and
+//!   `KHR_texture_transform` are ignored. `NORMAL` gives smooth shading normals
+//!   ([`Scene::shading_normal_at`]). A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's

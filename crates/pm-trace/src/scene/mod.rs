@@ -267,6 +267,32 @@ impl Scene {
         }
     }
 
+    /// The unit normal to shade `hit` with: the mesh's interpolated vertex normals (glTF
+    /// `NORMAL`) where it has them, else the geometric [`Hit::normal`].
+    ///
+    /// The result is always on the geometric normal's side (the side the ray came from): an
+    /// interpolated normal pointing into the surface is flipped (negated). Geometric normals
+    /// stay the reference for ray offsets and for deciding sides; the render modes count a
+    /// light direction or a bounce only when it is above *both* the shading and the geometric
+    /// surface, so near the shadow terminator of a coarse mesh, where the two disagree, light
+    /// does not leak through the surface (it is lost, a slight darkening, instead).
+    #[inline]
+    pub fn shading_normal_at(&self, hit: &Hit) -> Vec3 {
+        if !self.has_shading || hit.part.0 >= self.mesh_part_count {
+            return hit.normal;
+        }
+        let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
+        let Some(shading) = mesh.shading.as_ref().filter(|s| s.has_normals()) else {
+            return hit.normal;
+        };
+        let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
+        let n = shading
+            .normal_at(face, hit.position)
+            .and_then(|n| n.try_normalize())
+            .unwrap_or(hit.normal);
+        if n.dot(hit.normal) < 0.0 { -n } else { n }
+    }
+
     /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
     #[inline]
     pub fn emission(&self, hit: &Hit) -> Vec3 {

@@ -1,5 +1,5 @@
-//! Per-vertex attributes of a mesh (texture coordinates, colours, a base-colour texture) and
-//! their interpolation at a hit, from barycentrics computed after the hit.
+//! Per-vertex attributes of a mesh (texture coordinates, colours, normals, a base-colour
+//! texture) and their interpolation at a hit, from barycentrics computed after the hit.
 
 use std::sync::Arc;
 
@@ -16,6 +16,10 @@ pub struct VertexAttributes {
     pub uvs: Option<Vec<Vec2>>,
     /// Linear RGB colour per vertex, multiplying the base colour (glTF `COLOR_0`).
     pub colors: Option<Vec<Vec3>>,
+    /// Shading normal per vertex (glTF `NORMAL`), interpolated at hits for the cosine terms
+    /// of shading; need not be unit length (zero-length ones fall back to the geometric
+    /// normal).
+    pub normals: Option<Vec<Vec3>>,
     /// The base-colour texture and how to sample it, read at `uvs` (shared between meshes:
     /// one copy of the image however many meshes use it).
     pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
@@ -48,6 +52,7 @@ impl MeshShading {
         };
         check("texture coordinates", self.attributes.uvs.as_ref().map(Vec::len))?;
         check("colours", self.attributes.colors.as_ref().map(Vec::len))?;
+        check("normals", self.attributes.normals.as_ref().map(Vec::len))?;
         if let Some(bad) = self.triangles.iter().flatten().find(|&&i| i as usize >= n) {
             return Err(format!("corner {bad} out of range for {n} vertices"));
         }
@@ -71,6 +76,29 @@ impl MeshShading {
                 .colors
                 .as_ref()
                 .map_or(0, |v| v.capacity() * size_of::<Vec3>())
+            + self
+                .attributes
+                .normals
+                .as_ref()
+                .map_or(0, |v| v.capacity() * size_of::<Vec3>())
+    }
+
+    /// True when the mesh has per-vertex normals.
+    #[inline]
+    pub(crate) fn has_normals(&self) -> bool {
+        self.attributes.normals.is_some()
+    }
+
+    /// The interpolated vertex normal at point `p` of source triangle `face` (not normalised,
+    /// not oriented), or `None` when the mesh has no normals.
+    #[inline]
+    pub(crate) fn normal_at(&self, face: usize, p: Vec3) -> Option<Vec3> {
+        let normals = self.attributes.normals.as_ref()?;
+        let &corners = self.triangles.get(face)?;
+        let [a, b, c] = corners.map(|i| self.positions[i as usize]);
+        let w = barycentrics(a, b, c, p);
+        let [na, nb, nc] = corners.map(|i| normals[i as usize]);
+        Some(na * w.x + nb * w.y + nc * w.z)
     }
 
     /// The colour factor at point `p` of source triangle `face`: texture × vertex colour.
