@@ -168,15 +168,20 @@ impl<E: Estimator> Renderer<E> {
     }
 
     fn in_pool<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
-        if self.settings.threads == 0 {
-            return Ok(f());
-        }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(self.settings.threads)
-            .build()
-            .map_err(|e| RenderError::Threads(e.to_string()))?;
-        Ok(pool.install(f))
+        in_pool(self.settings.threads, f)
     }
+}
+
+/// Runs `f` on a pool of `threads` workers (0: the current pool).
+pub(crate) fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
+    if threads == 0 {
+        return Ok(f());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| RenderError::Threads(e.to_string()))?;
+    Ok(pool.install(f))
 }
 
 /// A rectangle of pixels rendered by one worker.

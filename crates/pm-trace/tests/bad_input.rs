@@ -2,8 +2,8 @@
 
 use pm_trace::glam::Vec3;
 use pm_trace::{
-    CreaseAngle, Hit, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Scene, SceneError, SingleMap,
-    Surface, TraceError, TraceOptions, scenes, trace_photons,
+    CreaseAngle, Hit, MAX_SCENE_TRIANGLES, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Scene,
+    SceneError, SingleMap, Surface, TraceError, TraceOptions, scenes, trace_photons,
 };
 
 fn quad() -> [Vec3; 4] {
@@ -219,4 +219,34 @@ fn a_scene_past_its_triangle_limit_is_refused_before_building() {
     assert!(build(4).is_ok());
     // Past the library's own limit, the limit asked for is capped.
     assert!(build(usize::MAX).is_ok());
+}
+
+#[test]
+fn a_mesh_declaring_a_billion_empty_faces_is_refused_without_allocating_for_them() {
+    // Zero-sized faces cost the caller nothing; the builder must not reserve per face.
+    let faces = vec![[0u32; 0]; 1_000_000_000];
+    let quad = quad();
+    match Scene::builder()
+        .mesh(&quad, &faces, grey())
+        .light(PointLight::new(Vec3::new(0.0, 3.0, 0.0), Vec3::ONE))
+        .build()
+    {
+        Err(SceneError::Mesh {
+            mesh: 0,
+            source: pm_geom::MeshError::TooFewVertices { face: 0, count: 0 },
+        }) => {}
+        other => panic!("{other:?}"),
+    }
+    // A face past the triangle limit is refused before the faces are copied.
+    let big = vec![0u32; MAX_SCENE_TRIANGLES + 3];
+    match Scene::builder()
+        .mesh(&quad, &[big.as_slice()], grey())
+        .light(PointLight::new(Vec3::new(0.0, 3.0, 0.0), Vec3::ONE))
+        .build()
+    {
+        Err(SceneError::TooManyTriangles { triangles, limit }) => {
+            assert_eq!((triangles, limit), (MAX_SCENE_TRIANGLES + 1, MAX_SCENE_TRIANGLES));
+        }
+        other => panic!("{other:?}"),
+    }
 }

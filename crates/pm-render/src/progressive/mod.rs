@@ -47,7 +47,7 @@ pub use schedule::radius_scale;
 pub use shard::{Shard, ShardError};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings};
 
-use crate::renderer::{PIXEL_SEED_SALT, tiles};
+use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
 use crate::{EstimatorScratch, FixedVolumeEstimator, Image, Mode, Progress, RenderError, RenderSettings};
 use glam::{DVec3, Vec3};
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
@@ -329,18 +329,6 @@ pub(crate) fn trace_and_build(
     let traced = trace_photons(scene, assignment, &options)?;
     let stored = traced.stats().total_stored();
     Ok((PhotonMaps::build(scene, assignment, traced)?, stored))
-}
-
-/// Runs `f` on a pool of `threads` workers (0: the current pool).
-pub(crate) fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
-    if threads == 0 {
-        return Ok(f());
-    }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| RenderError::Threads(e.to_string()))?;
-    Ok(pool.install(f))
 }
 
 /// Renders one pass in tiles and adds it to `sum`; every (pass, pixel, sample) draws from its

@@ -18,10 +18,11 @@
 //! and the progressive renderer's pilot have, so that the comparison does not hinge on a
 //! hand-tuned constant.
 
-use super::{ProgressiveStats, in_pool, trace_and_build};
+use super::{ProgressiveStats, trace_and_build};
 use crate::mode::direct_irradiance;
 use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
 use crate::renderer::PIXEL_SEED_SALT;
+use crate::renderer::in_pool;
 use crate::{EstimatorOptions, Image, Mode, Progress, RenderError, RenderSettings};
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};

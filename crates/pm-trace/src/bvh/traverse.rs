@@ -37,6 +37,12 @@ fn traversal_ray(ray: &Ray, t_min: f32, t_max: f32) -> obvhs::ray::Ray {
     }
 }
 
+/// The rounding bound of a slab distance `q·scale + offset`: each of its terms went through at
+/// most five roundings of relative size ε = 2⁻²⁴ (the origin's difference, the reciprocal, the
+/// products, the sum, the folded padding), so it errs by at most `5ε·(q·|scale| + |offset|)`;
+/// 8 ε = 16 units of 2⁻²⁴ leaves a margin.
+const SLAB_ROUNDING: f32 = 8.0 * f32::EPSILON;
+
 /// Four of a node's quantized child bounds along one axis, from `first`.
 #[inline(always)]
 fn quantized(bounds: &[u8; 8], first: usize) -> Vec4 {
@@ -50,18 +56,23 @@ fn quantized(bounds: &[u8; 8], first: usize) -> Vec4 {
 
 /// The children of `node` the ray meets within `[ray.tmin, ray.tmax]`, as obvhs's traversal
 /// mask (inner children in the top byte, leaf primitives in the low 24 bits). The arithmetic
-/// is obvhs's `intersect_ray_simd` (multiply, then add; no fused multiply-add), so the boxes
-/// are as conservative as obvhs makes them.
+/// is obvhs's `intersect_ray_simd`, with each slab widened by its rounding bound so that no box
+/// the ray touches is lost to rounding.
 #[inline(always)]
 fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32 {
     let scale = node.compute_extent() * ray.inv_direction;
     let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
-    let (sx, sy, sz) = (Vec4::splat(scale.x), Vec4::splat(scale.y), Vec4::splat(scale.z));
-    let (ox, oy, oz) = (
-        Vec4::splat(offset.x),
-        Vec4::splat(offset.y),
-        Vec4::splat(offset.z),
-    );
+    // Each slab distance is widened by its own rounding bound: where tight boxes meet (the
+    // vertex a fan's triangles share), a ray through the meeting point takes a box's entry and
+    // exit from different axes, and a rounding error either way would lose the hit. Relative
+    // padding (pbrt's 2γ₃) is not enough here: `q·scale` and `offset` nearly cancel when the
+    // direction has a small component, so the error scales with them, not with the distance.
+    // The widening is folded into the per-node factors (`q·s + o ∓ (q·|s| + |o|)·k` is
+    // `q·(s ∓ |s|k) + (o ∓ |o|k)` for q ≥ 0), so the per-child work is obvhs's.
+    let (pad_scale, pad_offset) = (scale.abs() * SLAB_ROUNDING, offset.abs() * SLAB_ROUNDING);
+    let split = |v: Vec3A| [v.x, v.y, v.z].map(Vec4::splat);
+    let (near_scale, near_offset) = (split(scale - pad_scale), split(offset - pad_offset));
+    let (far_scale, far_offset) = (split(scale + pad_scale), split(offset + pad_offset));
     let negative = ray.direction.cmplt(Vec3A::ZERO);
     let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let (t_min, t_max) = (Vec4::splat(ray.tmin), Vec4::splat(ray.tmax));
@@ -74,8 +85,10 @@ fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32
         let (x0, x1) = near_far(&node.child_min_x, &node.child_max_x, negative.test(0));
         let (y0, y1) = near_far(&node.child_min_y, &node.child_max_y, negative.test(1));
         let (z0, z1) = near_far(&node.child_min_z, &node.child_max_z, negative.test(2));
-        let entry = (x0 * sx + ox).max((y0 * sy + oy).max(z0 * sz + oz)).max(t_min);
-        let exit = (x1 * sx + ox).min((y1 * sy + oy).min(z1 * sz + oz)).min(t_max);
+        let near = |q: Vec4, a: usize| q * near_scale[a] + near_offset[a];
+        let far = |q: Vec4, a: usize| q * far_scale[a] + far_offset[a];
+        let entry = near(x0, 0).max(near(y0, 1).max(near(z0, 2))).max(t_min);
+        let exit = far(x1, 0).min(far(y1, 1).min(far(z1, 2))).min(t_max);
         let mask = entry.cmple(exit).bitmask();
         for j in 0..4 {
             if mask & (1 << j) != 0 {

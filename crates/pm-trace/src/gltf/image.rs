@@ -137,10 +137,17 @@ pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, Str
             frame.color_type, frame.bit_depth
         ));
     }
-    let rows = &buf[..frame.line_size * height as usize];
+    // The frame's layout is checked against the buffer, not trusted: no slice can panic.
+    let row_bytes = width as usize * channels;
+    let rows = frame
+        .line_size
+        .checked_mul(height as usize)
+        .filter(|&n| frame.line_size >= row_bytes && n <= buf.len())
+        .map(|n| &buf[..n])
+        .ok_or("PNG: frame layout out of range")?;
     let mut texels = Vec::with_capacity(pixels as usize);
     for row in rows.chunks_exact(frame.line_size) {
-        for px in row[..width as usize * channels].chunks_exact(channels) {
+        for px in row[..row_bytes].chunks_exact(channels) {
             texels.push(match channels {
                 1 | 2 => [px[0]; 3],
                 _ => [px[0], px[1], px[2]],

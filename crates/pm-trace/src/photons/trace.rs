@@ -192,6 +192,7 @@ pub fn trace_photons(
     let mut merged = Merged {
         photons: vec![Vec::new(); maps],
         stored: vec![[0u64; 3]; maps],
+        total: 0,
     };
     // Waves of chunks traced in parallel into buffers that are reused (cache-warm, no fresh
     // pages); each wave is merged in path order while the next one traces.
@@ -225,7 +226,7 @@ pub fn trace_photons(
         first += wave;
     }
     merged.append(&traced)?;
-    let Merged { photons, stored } = merged;
+    let Merged { photons, stored, .. } = merged;
     let stats = TraceStats {
         emitted: options.photons as u64,
         stored,
@@ -238,14 +239,15 @@ pub fn trace_photons(
 struct Merged {
     photons: Vec<Vec<Photon>>,
     stored: Vec<[u64; 3]>,
+    /// Photons held over all maps (kept, not recounted per wave: maps may be many).
+    total: u64,
 }
 
 impl Merged {
     /// Appends one wave's buffers (in path order); errors past [`MAX_STORED_PHOTONS`].
     fn append(&mut self, buffers: &[Vec<(u32, Photon)>]) -> Result<(), TraceError> {
-        let held: u64 = self.photons.iter().map(|p| p.len() as u64).sum();
         let adding: u64 = buffers.iter().map(|b| b.len() as u64).sum();
-        if held + adding > MAX_STORED_PHOTONS {
+        if self.total + adding > MAX_STORED_PHOTONS {
             return Err(TraceError::TooManyPhotonsStored {
                 limit: MAX_STORED_PHOTONS,
             });
@@ -254,6 +256,7 @@ impl Merged {
             self.stored[m as usize][p.kind as usize] += 1;
             self.photons[m as usize].push(p);
         }
+        self.total += adding;
         Ok(())
     }
 

@@ -23,23 +23,46 @@ enum FaceSurfaces {
 pub const MAX_SCENE_TRIANGLES: usize = 1 << 27;
 
 /// A mesh as given to the builder, its faces' indices stored flat.
+///
+/// Nothing is copied that [`SceneBuilder::build`] would refuse anyway, so the builder never
+/// allocates by a count the caller merely declared: a mesh of more than
+/// [`MAX_SCENE_TRIANGLES`] triangles keeps no faces (only their counts), and faces are kept
+/// only up to the first one with fewer than 3 vertices (the mesh builder reports it, after
+/// the same checks of the faces before it). Faces may be zero-sized values, so their number
+/// alone bounds nothing.
 #[derive(Clone)]
 pub(super) struct MeshInput {
     positions: Vec<Vec3>,
-    /// Every face's vertex indices, one face after another.
+    /// The kept faces' vertex indices, one face after another.
     indices: Vec<u32>,
-    /// Face `f` is `indices[starts[f]..starts[f + 1]]`.
+    /// Kept face `f` is `indices[starts[f]..starts[f + 1]]`.
     starts: Vec<usize>,
+    /// Faces given.
+    face_count: usize,
+    /// Triangles of a fan triangulation of every face given (saturating).
+    triangle_count: usize,
     surfaces: FaceSurfaces,
     shading: Option<Box<MeshShading>>,
 }
 
 impl MeshInput {
     fn new<F: AsRef<[u32]>>(positions: &[Vec3], faces: &[F], surfaces: FaceSurfaces) -> Self {
-        let mut starts = Vec::with_capacity(faces.len() + 1);
+        let triangle_count = faces.iter().fold(0usize, |n, f| {
+            n.saturating_add(f.as_ref().len().saturating_sub(2))
+        });
+        let kept = if triangle_count > MAX_SCENE_TRIANGLES {
+            0
+        } else {
+            faces
+                .iter()
+                .position(|f| f.as_ref().len() < 3)
+                .map_or(faces.len(), |short| short + 1)
+        };
+        let faces_kept = &faces[..kept];
+        let mut starts = Vec::with_capacity(kept + 1);
         starts.push(0);
-        let mut indices = Vec::with_capacity(faces.iter().map(|f| f.as_ref().len()).sum());
-        for f in faces {
+        let mut indices = Vec::with_capacity(faces_kept.iter().map(|f| f.as_ref().len()).sum());
+        for f in faces_kept {
             indices.extend_from_slice(f.as_ref());
             starts.push(indices.len());
         }
@@ -47,16 +70,18 @@ impl MeshInput {
             positions: positions.to_vec(),
             indices,
             starts,
+            face_count: faces.len(),
+            triangle_count,
             surfaces,
             shading: None,
         }
     }
 
     fn face_count(&self) -> usize {
-        self.starts.len() - 1
+        self.face_count
     }
 
-    /// The faces as index slices.
+    /// The kept faces as index slices.
     fn faces(&self) -> Vec<&[u32]> {
         self.starts
             .windows(2)
@@ -64,12 +89,9 @@ impl MeshInput {
             .collect()
     }
 
-    /// Triangles of a fan triangulation of every face.
+    /// Triangles of a fan triangulation of every face given.
     fn triangle_count(&self) -> usize {
-        self.starts
-            .windows(2)
-            .map(|w| (w[1] - w[0]).saturating_sub(2))
-            .sum()
+        self.triangle_count
     }
 }
 
@@ -238,11 +260,10 @@ impl SceneBuilder {
     /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
     /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
     pub fn build(self) -> Result<Scene, SceneError> {
-        let face_count: usize = self.meshes.iter().map(MeshInput::face_count).sum();
-        let mut part_count = 0u32;
-        let mut surfaces = SurfaceTable::default();
-        let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
-        let triangle_count: usize = self.meshes.iter().map(MeshInput::triangle_count).sum();
+        let triangle_count = self
+            .meshes
+            .iter()
+            .fold(0usize, |n, m| n.saturating_add(m.triangle_count()));
         // Checked before anything is allocated for them (the BVH's node indices are u32).
         let limit = self
             .max_triangles
@@ -254,6 +275,11 @@ impl SceneBuilder {
                 limit,
             });
         }
+        // Kept faces have at least one triangle each, so this is within the limit too.
+        let face_count: usize = self.meshes.iter().map(|m| m.starts.len() - 1).sum();
+        let mut part_count = 0u32;
+        let mut surfaces = SurfaceTable::default();
+        let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
         let mut triangles = Vec::with_capacity(triangle_count);
         let mut triangle_parts = Vec::with_capacity(triangle_count);
         let mut shape_prims = Vec::new();
