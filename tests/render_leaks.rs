@@ -5,32 +5,16 @@
 //! and over the dividing wall, so crease maps still leak and only contact maps keep it black.
 
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene, SingleMap, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, SingleMap, scenes};
+
+#[path = "support/dark_room.rs"]
+mod dark_room;
 
 const W: u32 = 64;
 const H: u32 = 32;
-/// The dark room's interior starts here (room 1 m, wall 0.02 m); a margin keeps away from it.
-const DARK_ROOM_X: f32 = 1.02 + 0.01;
-
-/// Pixels whose four corner rays all hit the dark room: every sample inside shows it.
+/// Pixels of the image (`W × H`) that show only the dark room.
 fn dark_room_pixels(scene: &Scene) -> Vec<usize> {
-    let camera = scene.camera();
-    let aspect = W as f32 / H as f32;
-    let in_dark = |u: f32, v: f32| {
-        let ray = camera.ray(u, v, aspect);
-        scene
-            .intersect(&ray, f32::INFINITY, RayKind::Camera)
-            .is_some_and(|h| h.position.x > DARK_ROOM_X)
-    };
-    (0..W * H)
-        .filter(|&i| {
-            let (x, y) = ((i % W) as f32, (i / W) as f32);
-            [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
-                .iter()
-                .all(|&(dx, dy)| in_dark((x + dx) / W as f32, (y + dy) / H as f32))
-        })
-        .map(|i| i as usize)
-        .collect()
+    dark_room::dark_room_pixels(scene, W, H)
 }
 
 fn settings() -> RenderSettings {

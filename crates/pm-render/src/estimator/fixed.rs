@@ -124,51 +124,37 @@ impl FixedVolumeEstimator for Disc {
     }
 }
 
-impl FixedVolumeEstimator for GeometryCube {
-    fn nearest_extent(
-        &self,
-        at: SurfacePoint,
-        map: MapView<'_>,
-        options: &EstimatorOptions,
-        scratch: &mut EstimatorScratch,
-    ) -> Option<f32> {
-        nearest_or_max::<Chebyshev>(at, map, options, scratch)
-    }
+/// The two geometry-based estimators differ only in their metric (the cube's Chebyshev, the
+/// ball's Euclidean), which also picks the gather volume whose polygon area divides.
+macro_rules! geometry_fixed_volume {
+    ($estimator:ty, $metric:ty) => {
+        impl FixedVolumeEstimator for $estimator {
+            fn nearest_extent(
+                &self,
+                at: SurfacePoint,
+                map: MapView<'_>,
+                options: &EstimatorOptions,
+                scratch: &mut EstimatorScratch,
+            ) -> Option<f32> {
+                nearest_or_max::<$metric>(at, map, options, scratch)
+            }
 
-    fn irradiance_within(
-        &self,
-        at: SurfacePoint,
-        map: MapView<'_>,
-        extent: f32,
-        options: &EstimatorOptions,
-        scratch: &mut EstimatorScratch,
-    ) -> Vec3 {
-        geometry_within::<Chebyshev>(at, map, extent, options, scratch)
-    }
+            fn irradiance_within(
+                &self,
+                at: SurfacePoint,
+                map: MapView<'_>,
+                extent: f32,
+                options: &EstimatorOptions,
+                scratch: &mut EstimatorScratch,
+            ) -> Vec3 {
+                geometry_within::<$metric>(at, map, extent, options, scratch)
+            }
+        }
+    };
 }
 
-impl FixedVolumeEstimator for GeometryBall {
-    fn nearest_extent(
-        &self,
-        at: SurfacePoint,
-        map: MapView<'_>,
-        options: &EstimatorOptions,
-        scratch: &mut EstimatorScratch,
-    ) -> Option<f32> {
-        nearest_or_max::<Euclidean>(at, map, options, scratch)
-    }
-
-    fn irradiance_within(
-        &self,
-        at: SurfacePoint,
-        map: MapView<'_>,
-        extent: f32,
-        options: &EstimatorOptions,
-        scratch: &mut EstimatorScratch,
-    ) -> Vec3 {
-        geometry_within::<Euclidean>(at, map, extent, options, scratch)
-    }
-}
+geometry_fixed_volume!(GeometryCube, Chebyshev);
+geometry_fixed_volume!(GeometryBall, Euclidean);
 
 impl FixedVolumeEstimator for EstimatorKind {
     #[inline]
