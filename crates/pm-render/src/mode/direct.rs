@@ -9,8 +9,13 @@ use pm_trace::{Hit, Rng, Scene};
 /// below the geometric surface counts nothing even where the shading normal faces it, so no
 /// light leaks through a coarse mesh's shadow terminator.
 pub fn direct_irradiance(scene: &Scene, hit: &Hit, rng: &mut Rng) -> Vec3 {
+    direct_irradiance_shaded(scene, hit, scene.shading_normal_at(hit), rng)
+}
+
+/// [`direct_irradiance`] with the shading normal already known (callers that need it for
+/// more than this do not interpolate it twice).
+pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, rng: &mut Rng) -> Vec3 {
     let mut e = Vec3::ZERO;
-    let shading = scene.shading_normal_at(hit);
     for light in scene.lights() {
         let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
             continue;

@@ -2,7 +2,7 @@
 //! camera rays and after specular bounces (diffuse bounces get it from the shadow rays), so
 //! nothing is counted twice; Russian roulette ends long paths without bias.
 
-use super::direct_irradiance;
+use super::direct::direct_irradiance_shaded;
 use super::scatter::specular_bounce;
 use glam::{Vec2, Vec3};
 use pm_trace::sampling::cosine_hemisphere;
@@ -29,12 +29,13 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
         match *scene.material(&hit) {
             Material::Lambertian { .. } => {
                 let albedo = scene.albedo_at(&hit);
-                radiance += throughput * albedo * FRAC_1_PI * direct_irradiance(scene, &hit, rng);
+                let shading = scene.shading_normal_at(&hit);
+                radiance +=
+                    throughput * albedo * FRAC_1_PI * direct_irradiance_shaded(scene, &hit, shading, rng);
                 // Cosine sampling about the shading normal: f · cos / pdf = (albedo / π) · cos /
                 // (cos / π) = albedo. A direction below the geometric surface (possible where
                 // the shading normal leans away from it, near the terminator) ends the path
                 // rather than leaking through the surface.
-                let shading = scene.shading_normal_at(&hit);
                 let direction = cosine_hemisphere(shading, Vec2::new(rng.next_f32(), rng.next_f32()));
                 if direction.dot(hit.normal) <= 0.0 {
                     break;
