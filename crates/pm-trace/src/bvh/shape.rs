@@ -1,7 +1,7 @@
 //! Analytic shape parts (spheres, ring sides) as ray-query primitives, searched apart from
 //! the triangles.
 
-use crate::PartId;
+use super::PartSurface;
 use crate::shape::{Ring, RingSide, Sphere};
 use glam::Vec3;
 
@@ -10,17 +10,17 @@ use glam::Vec3;
 pub(crate) enum ShapePrimitive {
     Sphere {
         sphere: Sphere,
-        part: PartId,
+        part: PartSurface,
     },
     RingSide {
         ring: Ring,
         side: RingSide,
-        part: PartId,
+        part: PartSurface,
     },
 }
 
 impl ShapePrimitive {
-    pub(super) fn part(&self) -> PartId {
+    pub(super) fn part(&self) -> PartSurface {
         match *self {
             ShapePrimitive::Sphere { part, .. } | ShapePrimitive::RingSide { part, .. } => part,
         }

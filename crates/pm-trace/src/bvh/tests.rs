@@ -20,8 +20,19 @@ fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
     ] {
         let scene = crate::scenes::build(name).unwrap();
         let search = scene.search();
-        let (triangles, parts): (Vec<[Vec3; 3]>, Vec<PartId>) =
-            search.triangles.iter().map(|r| (r.v, r.part)).unzip();
+        let (triangles, parts): (Vec<[Vec3; 3]>, Vec<PartSurface>) = search
+            .triangles
+            .iter()
+            .map(|r| {
+                (
+                    r.v,
+                    PartSurface {
+                        part: r.part,
+                        surface: r.surface,
+                    },
+                )
+            })
+            .unzip();
         let shapes = search.shapes.clone();
         let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), shapes.clone(), usize::MAX);
         let bvh = SceneBvh::build_with(triangles.clone(), parts, shapes, 0);
@@ -101,7 +112,13 @@ fn rays_along_an_axis_find_walls_far_away_just_inside_their_edge() {
         ]
     };
     let triangles: Vec<[Vec3; 3]> = (0..40).flat_map(|i| wall(10.0 + i as f32)).collect();
-    let parts = vec![PartId(0); triangles.len()];
+    let parts = vec![
+        PartSurface {
+            part: PartId(0),
+            surface: 0
+        };
+        triangles.len()
+    ];
     let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), Vec::new(), usize::MAX);
     let bvh = SceneBvh::build_with(triangles, parts, Vec::new(), 0);
     for below in [1e-7f32, 1e-6, 1e-5, 1e-3] {
@@ -164,7 +181,20 @@ fn triangle_distance_matches_the_plane_distance() {
 #[test]
 fn the_bvh_matches_the_flat_scan_on_many_triangles_and_on_a_fan() {
     let rooms = crate::scenes::scale::split_rooms(30).unwrap();
-    let rooms: (Vec<[Vec3; 3]>, Vec<PartId>) = rooms.search().triangles.iter().map(|r| (r.v, r.part)).unzip();
+    let rooms: (Vec<[Vec3; 3]>, Vec<PartSurface>) = rooms
+        .search()
+        .triangles
+        .iter()
+        .map(|r| {
+            (
+                r.v,
+                PartSurface {
+                    part: r.part,
+                    surface: r.surface,
+                },
+            )
+        })
+        .unzip();
     let n = 5_000u32;
     let fan: Vec<[Vec3; 3]> = (0..n)
         .map(|i| {
@@ -173,7 +203,12 @@ fn the_bvh_matches_the_flat_scan_on_many_triangles_and_on_a_fan() {
             [Vec3::ZERO, rim(angle(i + 1)), rim(angle(i))]
         })
         .collect();
-    let fan_parts = (0..n).map(PartId).collect();
+    let fan_parts = (0..n)
+        .map(|i| PartSurface {
+            part: PartId(i),
+            surface: 0,
+        })
+        .collect();
     for (name, (triangles, parts)) in [("rooms", rooms), ("fan", (fan, fan_parts))] {
         assert!(triangles.len() >= 5_000);
         let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), Vec::new(), usize::MAX);

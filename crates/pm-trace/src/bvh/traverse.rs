@@ -1,17 +1,19 @@
-//! Ray traversal of an obvhs `CwBvh` with our own node test, which culls child boxes by the
-//! ray's own `t_min` instead of obvhs's absolute 1e-4.
+//! Ray traversal of an obvhs `CwBvh` with our own node test and stack.
 //!
-//! obvhs's node test raises every child box's entry distance to at least `1e-4` (an absolute
-//! `EPSILON` in `cwbvh::node`, not the ray's `tmin`), so a box the ray leaves before `t = 1e-4`
-//! was culled: a wall within 0.1 mm of the origin (in metres) was never hit, and rays starting
-//! near a corner passed through the adjacent wall. An earlier fix traversed from an origin
-//! moved back along the ray; that made every ray leaving a surface visit the leaves of the
-//! surface it leaves (10.6 node visits and 3.7 triangle tests per such ray at 240k triangles,
-//! against 8.4 and 2.1 now). The test here is obvhs's, four children at a time, with the
-//! ray's `t_min` as the lower bound.
+//! The node test is obvhs's, four children at a time, but culls child boxes by the ray's own
+//! `t_min` instead of obvhs's absolute 1e-4: that `EPSILON` culled a box the ray leaves before
+//! `t = 1e-4`, so a wall within 0.1 mm of the origin was never hit. (An earlier fix traversed
+//! from an origin moved back along the ray; that made every ray leaving a surface visit the
+//! leaves of the surface it leaves.)
+//!
+//! The stack is ours too: obvhs's traversal (built for GPUs) keeps groups of sibling nodes
+//! without their distances, so once a hit is found it still reads and tests every sibling
+//! queued before it. Here each queued child carries the distance at which the ray enters its
+//! box; closest-hit searches take the nearest first and drop, unread, every box that starts
+//! beyond the hit found so far.
 
 use crate::Ray;
-use glam::{UVec2, Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
 
@@ -54,12 +56,12 @@ fn quantized(bounds: &[u8; 8], first: usize) -> Vec4 {
     )
 }
 
-/// The children of `node` the ray meets within `[ray.tmin, ray.tmax]`, as obvhs's traversal
-/// mask (inner children in the top byte, leaf primitives in the low 24 bits). The arithmetic
-/// is obvhs's `intersect_ray_simd`, with each slab widened by its rounding bound so that no box
-/// the ray touches is lost to rounding.
+/// The children of `node` the ray meets within `[ray.tmin, ray.tmax]`, as a mask by slot
+/// (bit `i` for child slot `i`, empty slots included: the caller skips them), and each child
+/// box's entry distance by slot. The arithmetic is obvhs's `intersect_ray_simd`, with each
+/// slab widened by its rounding bound so that no box the ray touches is lost to rounding.
 #[inline(always)]
-fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32 {
+fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray) -> (u32, [Vec4; 2]) {
     let scale = node.compute_extent() * ray.inv_direction;
     let offset = (Vec3A::from(node.p) - ray.origin) * ray.inv_direction;
     // Each slab distance is widened by its own rounding bound: where tight boxes meet (the
@@ -74,10 +76,10 @@ fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32
     let (near_scale, near_offset) = (split(scale - pad_scale), split(offset - pad_offset));
     let (far_scale, far_offset) = (split(scale + pad_scale), split(offset + pad_offset));
     let negative = ray.direction.cmplt(Vec3A::ZERO);
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
     let (t_min, t_max) = (Vec4::splat(ray.tmin), Vec4::splat(ray.tmax));
-    let mut hits = 0u32;
-    for first in [0, 4] {
+    let mut mask = 0u32;
+    let mut entries = [Vec4::ZERO; 2];
+    for (group, first) in [0, 4].into_iter().enumerate() {
         let near_far = |lo: &[u8; 8], hi: &[u8; 8], negative: bool| {
             let (lo, hi) = (quantized(lo, first), quantized(hi, first));
             if negative { (hi, lo) } else { (lo, hi) }
@@ -89,44 +91,151 @@ fn intersect_node(node: &CwBvhNode, ray: &obvhs::ray::Ray, oct_inv4: u32) -> u32
         let far = |q: Vec4, a: usize| q * far_scale[a] + far_offset[a];
         let entry = near(x0, 0).max(near(y0, 1).max(near(z0, 2))).max(t_min);
         let exit = far(x1, 0).min(far(y1, 1).min(far(z1, 2))).min(t_max);
-        let mask = entry.cmple(exit).bitmask();
-        for j in 0..4 {
-            if mask & (1 << j) != 0 {
-                let child = 8 * (first + j);
-                let child_bits = ((child_bits8 >> child) & 0xff) as u32;
-                let bit_index = ((bit_index8 >> child) & 0xff) as u32;
-                hits |= child_bits << bit_index;
-            }
-        }
+        mask |= entry.cmple(exit).bitmask() << first;
+        entries[group] = entry;
     }
-    hits
+    (mask, entries)
 }
 
-/// Visits the primitives (leaf indices) of every leaf the ray `(t_min, t_max)` meets, near
-/// boxes first. `visit(i, t_max)` may shrink `t_max` (for a closest-hit search; boxes beyond
-/// it are then culled) and returns false to stop.
+/// A child box waiting on the traversal stack: the distance at which the ray enters it, and
+/// what it holds (a node index, or with [`LEAF`] set a leaf's first primitive and count).
+#[derive(Clone, Copy, Debug, Default)]
+struct Pending {
+    t: f32,
+    item: u32,
+}
+
+/// Marks a [`Pending`] leaf; its primitive count (1–3) sits in the two bits below.
+const LEAF: u32 = 1 << 31;
+const COUNT_SHIFT: u32 = 29;
+const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
+
+/// Primitives a BVH may hold for [`Pending`]'s packing (the scene allows 2²⁷ triangles).
+pub(super) const MAX_PRIMITIVES: usize = FIRST_MASK as usize;
+
+/// Entries held without touching the heap; deeper stacks (degenerate trees only: each level
+/// adds at most seven) spill into a vector.
+const INLINE_STACK: usize = 32;
+
+/// The traversal stack: a fixed array, spilling into a vector past [`INLINE_STACK`].
+struct Stack {
+    inline: [Pending; INLINE_STACK],
+    len: usize,
+    spill: Vec<Pending>,
+}
+
+impl Stack {
+    #[inline(always)]
+    fn new() -> Self {
+        Stack {
+            inline: [Pending::default(); INLINE_STACK],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, p: Pending) {
+        if self.len < INLINE_STACK {
+            self.inline[self.len] = p;
+        } else {
+            self.spill.push(p);
+        }
+        self.len += 1;
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Pending> {
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        if self.len < INLINE_STACK {
+            Some(self.inline[self.len])
+        } else {
+            self.spill.pop()
+        }
+    }
+}
+
+/// Visits the primitives (leaf indices) of every leaf the ray `(t_min, t_max)` meets.
+/// `visit(i, t_max)` may shrink `t_max` (for a closest-hit search) and returns false to stop.
+///
+/// With `NEAREST_FIRST` (closest-hit searches) the children a node's test finds are taken
+/// nearest entry first, and a child whose box the ray enters beyond the current `t_max` is
+/// dropped when it is popped, before its node is read: once a hit is found, the boxes behind
+/// it cost nothing. Without it (any-hit searches, which stop at the first hit) they are taken
+/// in slot order.
 #[inline(always)]
-pub(super) fn for_each_leaf_primitive(
+pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
     bvh: &CwBvh,
     ray: &Ray,
     t_min: f32,
     t_max: f32,
     mut visit: impl FnMut(usize, &mut f32) -> bool,
 ) {
+    if bvh.nodes.is_empty() {
+        return;
+    }
     let mut traversal = traversal_ray(ray, t_min, t_max);
-    let mut state = bvh.new_traversal(traversal.direction);
-    let mut node;
-    'done: {
-        obvhs::traverse!(
-            bvh,
-            node,
-            state,
-            intersect_node(node, &traversal, state.oct_inv4),
-            {
-                if !visit(state.primitive_id as usize, &mut traversal.tmax) {
-                    break 'done;
+    let mut stack = Stack::new();
+    stack.push(Pending { t: t_min, item: 0 });
+    while let Some(pending) = stack.pop() {
+        if pending.t > traversal.tmax {
+            continue;
+        }
+        if pending.item & LEAF != 0 {
+            let first = (pending.item & FIRST_MASK) as usize;
+            let count = ((pending.item & !LEAF) >> COUNT_SHIFT) as usize;
+            for i in first..first + count {
+                if !visit(i, &mut traversal.tmax) {
+                    return;
                 }
             }
-        );
+            continue;
+        }
+        let node = &bvh.nodes[pending.item as usize];
+        let (mut mask, entries) = intersect_node(node, &traversal);
+        let entries: [f32; 8] = lanes8(entries);
+        let mut children = [Pending::default(); 8];
+        let mut n = 0;
+        while mask != 0 {
+            let slot = mask.trailing_zeros();
+            mask &= mask - 1;
+            let meta = node.child_meta[slot as usize] as u32;
+            let item = if node.imask & (1 << slot) != 0 {
+                node.child_base_idx + (node.imask as u32 & ((1 << slot) - 1)).count_ones()
+            } else if meta != 0 {
+                let count = (meta & 0b1110_0000).count_ones();
+                LEAF | (count << COUNT_SHIFT) | (node.primitive_base_idx + (meta & 0b1_1111))
+            } else {
+                continue;
+            };
+            children[n] = Pending {
+                t: entries[slot as usize],
+                item,
+            };
+            n += 1;
+        }
+        if NEAREST_FIRST {
+            // Farthest pushed first, so the nearest is popped first (insertion sort: n ≤ 8).
+            for i in 1..n {
+                let mut j = i;
+                while j > 0 && children[j - 1].t < children[j].t {
+                    children.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+        }
+        for &child in &children[..n] {
+            stack.push(child);
+        }
     }
+}
+
+/// The eight lanes of two `Vec4`s, in order.
+#[inline(always)]
+fn lanes8(v: [Vec4; 2]) -> [f32; 8] {
+    let (a, b) = (v[0].to_array(), v[1].to_array());
+    [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]
 }

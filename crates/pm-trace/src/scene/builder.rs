@@ -3,7 +3,7 @@
 
 use super::checks::{SurfaceTable, check_lights, check_shape, check_surface, default_camera};
 use super::{MeshShading, PartId, PartSource, Scene, SceneMesh, VertexAttributes};
-use crate::bvh::{SceneBvh, ShapePrimitive};
+use crate::bvh::{PartSurface, SceneBvh, ShapePrimitive};
 use crate::shape::{Ring, RingSide, Shape, Sphere};
 use crate::{AreaLight, Camera, Light, Material, SceneError, Surface};
 use glam::Vec3;
@@ -17,7 +17,7 @@ enum FaceSurfaces {
 }
 
 /// The most triangles (after fan triangulation of every face) a scene may hold: 2²⁷, about
-/// 134 million. A built scene holds 77–90 bytes per triangle and building it peaks near
+/// 134 million. A built scene holds 81–94 bytes per triangle and building it peaks near
 /// 400, so this limit is about 54 GB of building; smaller budgets are the caller's (the glTF
 /// loader has `GltfOptions::max_scene_bytes`).
 pub const MAX_SCENE_TRIANGLES: usize = 1 << 27;
@@ -312,9 +312,13 @@ impl SceneBuilder {
                     FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
                 };
                 check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
-                let part = PartId(part_count);
+                let surface = surfaces.id_of(surface);
+                let part = PartSurface {
+                    part: PartId(part_count),
+                    surface,
+                };
                 part_count += 1;
-                part_surface_ids.push(surfaces.id_of(surface));
+                part_surface_ids.push(surface);
                 polygon.clear();
                 polygon.extend(mesh.face_polygon(face));
                 for i in 1..polygon.len().saturating_sub(1) {
@@ -336,21 +340,27 @@ impl SceneBuilder {
             check_surface(surface, || format!("shape {si}"))?;
             match *shape {
                 Shape::Sphere(sphere) => {
-                    let part = PartId(part_count);
+                    let part = PartSurface {
+                        part: PartId(part_count),
+                        surface: surfaces.id_of(*surface),
+                    };
                     part_count += 1;
                     shape_parts.push(PartSource::Sphere { shape: si as u32 });
-                    part_surface_ids.push(surfaces.id_of(*surface));
+                    part_surface_ids.push(part.surface);
                     shape_prims.push(ShapePrimitive::Sphere { sphere, part });
                 }
                 Shape::Ring(ring) => {
                     for side in RingSide::ALL {
-                        let part = PartId(part_count);
+                        let part = PartSurface {
+                            part: PartId(part_count),
+                            surface: surfaces.id_of(*surface),
+                        };
                         part_count += 1;
                         shape_parts.push(PartSource::Ring {
                             shape: si as u32,
                             side,
                         });
-                        part_surface_ids.push(surfaces.id_of(*surface));
+                        part_surface_ids.push(part.surface);
                         shape_prims.push(ShapePrimitive::RingSide { ring, side, part });
                     }
                 }

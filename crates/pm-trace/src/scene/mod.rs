@@ -9,7 +9,7 @@ pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
-use crate::bvh::SceneBvh;
+use crate::bvh::{PartSurface, SceneBvh};
 use crate::shape::{RingSide, Shape};
 use crate::{Camera, Light, Material, Ray, SceneError, Surface};
 use glam::Vec3;
@@ -68,6 +68,9 @@ pub struct Hit {
     pub front_face: bool,
     /// The part hit.
     pub part: PartId,
+    /// Index of the part's surface in the scene's surface table (read with the triangle, so
+    /// [`Scene::surface`] needs no per-part lookup).
+    surface: u32,
 }
 
 /// A mesh of the scene and the parts of its faces.
@@ -138,10 +141,10 @@ impl Scene {
             RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
             RayKind::Camera => self
                 .bvh
-                .closest(ray, 0.0, t_max, |p| self.part_surface(p).camera_visible)?,
+                .closest(ray, 0.0, t_max, |s| self.surfaces[s as usize].camera_visible)?,
         };
         let position = ray.at(t);
-        let (part, n) = self.bvh.part_and_normal(index, position);
+        let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
         let front_face = n.dot(ray.direction) < 0.0;
         Some(Hit {
             t,
@@ -149,6 +152,7 @@ impl Scene {
             normal: if front_face { n } else { -n },
             front_face,
             part,
+            surface,
         })
     }
 
@@ -228,7 +232,7 @@ impl Scene {
     /// Surface of the part that was hit.
     #[inline]
     pub fn surface(&self, hit: &Hit) -> &Surface {
-        self.part_surface(hit.part)
+        &self.surfaces[hit.surface as usize]
     }
 
     /// Surface of a part.
