@@ -275,3 +275,59 @@ fn the_bvh_matches_the_flat_scan_on_many_triangles_and_on_a_fan() {
         assert!(hits > 1_000, "{name}: only {hits} hits");
     }
 }
+
+/// A stack of 40,000 overlapping triangles that every test ray crosses, searched with a filter
+/// that accepts one surface in seven: each node test finds all its children, so the traversal
+/// stack grows past its inline part and spills, and the nearest-first order and the culling
+/// behind the current hit both decide which of thousands of candidates is returned. The BVH
+/// must agree with the flat scan on every ray, from below, from above, and from inside.
+#[test]
+fn the_bvh_matches_the_flat_scan_through_a_deep_stack_of_layers() {
+    let layers = 40_000u32;
+    let mut rng = Rng::new(29, 0);
+    let triangles: Vec<[Vec3; 3]> = (0..layers)
+        .map(|i| {
+            let z = i as f32 * 1e-3;
+            let (dx, dy) = (rng.next_f32() - 0.5, rng.next_f32() - 0.5);
+            [
+                Vec3::new(-2.0 + dx, -2.0 + dy, z),
+                Vec3::new(2.0 + dx, -2.0, z),
+                Vec3::new(dx, 2.0 + dy, z),
+            ]
+        })
+        .collect();
+    let parts: Vec<PartSurface> = (0..layers)
+        .map(|i| PartSurface {
+            part: PartId(i),
+            surface: i % 7,
+        })
+        .collect();
+    let scan = SceneBvh::build_with(triangles.clone(), parts.clone(), Vec::new(), usize::MAX);
+    let bvh = SceneBvh::build_with(triangles, parts, Vec::new(), 0);
+    let top = layers as f32 * 1e-3;
+    for k in 0..300 {
+        let mut u = || rng.next_f32();
+        let origin = Vec3::new(
+            0.4 * u() - 0.2,
+            0.4 * u() - 0.2,
+            [-1.0, top + 1.0, top * u()][k % 3],
+        );
+        let toward = if k % 3 == 1 { -1.0 } else { 1.0 };
+        let direction = Vec3::new(0.1 * u() - 0.05, 0.1 * u() - 0.05, toward).normalize();
+        let ray = Ray { origin, direction };
+        let surface = k as u32 % 7;
+        let accept = |s: u32| s == surface;
+        let part = |b: &SceneBvh, hit: Option<(f32, HitPrimitive)>| {
+            hit.map(|(t, h)| (t, b.part_and_normal(h, ray.at(t)).0))
+        };
+        let expected = part(&scan, scan.closest(&ray, 0.0, f32::INFINITY, accept));
+        let found = part(&bvh, bvh.closest(&ray, 0.0, f32::INFINITY, accept));
+        assert!(expected.is_some(), "ray {k} should cross accepted layers");
+        assert_eq!(found, expected, "ray {k}");
+        assert_eq!(
+            bvh.any_hit(&ray, 0.0, f32::INFINITY),
+            scan.any_hit(&ray, 0.0, f32::INFINITY),
+            "ray {k}"
+        );
+    }
+}
