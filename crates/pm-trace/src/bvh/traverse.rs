@@ -179,8 +179,9 @@ pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
     }
     let mut traversal = traversal_ray(ray, t_min, t_max);
     let mut stack = Stack::new();
-    stack.push(Pending { t: t_min, item: 0 });
-    while let Some(pending) = stack.pop() {
+    // The child to take next without a round trip through the stack (the nearest one found).
+    let mut next = Some(Pending { t: t_min, item: 0 });
+    while let Some(pending) = next.take().or_else(|| stack.pop()) {
         if pending.t > traversal.tmax {
             continue;
         }
@@ -227,8 +228,11 @@ pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
                 }
             }
         }
-        for &child in &children[..n] {
-            stack.push(child);
+        if let Some((&nearest, rest)) = children[..n].split_last() {
+            for &child in rest {
+                stack.push(child);
+            }
+            next = Some(nearest);
         }
     }
 }
