@@ -3,6 +3,7 @@
 //! the same run: obvhs's own `CwBvh` (its PLOC builder, `medium_build`) and its Möller–Trumbore
 //! triangle test on the same triangles and rays. Also scene build times, including a
 //! 60k-triangle fan (thin triangles sharing one vertex: a degenerate input for BVH builders).
+//! `ours_in_pairs` casts the same rays two at a time through `Scene::intersect_pair`.
 //!
 //! Run: `cargo bench --bench raycast -- --warm-up-time 1 --measurement-time 2`
 
@@ -65,6 +66,16 @@ fn bench_raycast(c: &mut Criterion) {
                 rays.iter()
                     .filter(|r| scene.intersect(r, f32::INFINITY, RayKind::Other).is_some())
                     .count()
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("ours_in_pairs", &label), &n, |b, _| {
+            b.iter(|| {
+                rays.chunks_exact(2)
+                    .map(|r| {
+                        let [a, b] = scene.intersect_pair([&r[0], &r[1]], f32::INFINITY);
+                        a.is_some() as usize + b.is_some() as usize
+                    })
+                    .sum::<usize>()
             })
         });
         let bvh = build_cwbvh_from_tris(

@@ -119,7 +119,8 @@ pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{
-    Hit, MAX_SCENE_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh, VertexAttributes,
+    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder,
+    SceneMesh, VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use texture::{Sampler, Texture, Wrap};

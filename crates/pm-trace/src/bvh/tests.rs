@@ -44,6 +44,10 @@ fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
         let bounds = scene.bounds();
         let mut rng = Rng::new(17, 3);
         let mut near_hits = 0;
+        let mut previous = Ray {
+            origin: bounds.min,
+            direction: Vec3::X,
+        };
         for k in 0..100_000 {
             let mut u = || rng.next_f32();
             let origin = if k % 2 == 0 {
@@ -86,6 +90,17 @@ fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
                 expected.is_some(),
                 "{name}: any hit, ray {k}"
             );
+            // The same ray cast beside the previous one through the interleaved pair search.
+            let [_, paired] = bvh.closest_pair([&previous, &ray], t_max);
+            let [paired_first, _] = bvh.closest_pair([&previous, &ray], t_max);
+            assert_eq!(
+                paired.map(|h| part_of(&bvh, h)),
+                expected,
+                "{name}: closest of a pair, ray {k}"
+            );
+            let previous_alone = bvh.closest(&previous, 0.0, t_max, |_| true);
+            assert_eq!(paired_first, previous_alone, "{name}: first of a pair, ray {k}");
+            previous = ray;
             near_hits += expected.is_some_and(|(t, _)| f32::from_bits(t) < 1e-4) as u32;
         }
         assert!(near_hits > 100, "{name}: only {near_hits} hits closer than 1e-4");

@@ -145,6 +145,12 @@ impl Stack {
     }
 
     #[inline(always)]
+    fn clear(&mut self) {
+        self.len = 0;
+        self.spill.clear();
+    }
+
+    #[inline(always)]
     fn pop(&mut self) -> Option<Pending> {
         if self.len == 0 {
             return None;
@@ -160,12 +166,7 @@ impl Stack {
 
 /// Visits the primitives (leaf indices) of every leaf the ray `(t_min, t_max)` meets.
 /// `visit(i, t_max)` may shrink `t_max` (for a closest-hit search) and returns false to stop.
-///
-/// With `NEAREST_FIRST` (closest-hit searches) the children a node's test finds are taken
-/// nearest entry first, and a child whose box the ray enters beyond the current `t_max` is
-/// dropped when it is popped, before its node is read: once a hit is found, the boxes behind
-/// it cost nothing. Without it (any-hit searches, which stop at the first hit) they are taken
-/// in slot order.
+/// See [`Traversal`] for the order.
 #[inline(always)]
 pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
     bvh: &CwBvh,
@@ -174,29 +175,60 @@ pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
     t_max: f32,
     mut visit: impl FnMut(usize, &mut f32) -> bool,
 ) {
-    if bvh.nodes.is_empty() {
-        return;
+    let mut traversal = Traversal::<NEAREST_FIRST>::new(bvh, ray, t_min, t_max);
+    while traversal.step(bvh, &mut visit) {}
+}
+
+/// One ray's walk through a `CwBvh`, a node or leaf per [`Traversal::step`], so that the walks
+/// of two rays can be interleaved (their cache misses then overlap).
+///
+/// With `NEAREST_FIRST` (closest-hit searches) the children a node's test finds are taken
+/// nearest entry first, and a child whose box the ray enters beyond the current `t_max` is
+/// dropped when it is popped, before its node is read: once a hit is found, the boxes behind
+/// it cost nothing. Without it (any-hit searches, which stop at the first hit) they are taken
+/// in slot order.
+pub(super) struct Traversal<const NEAREST_FIRST: bool> {
+    ray: obvhs::ray::Ray,
+    stack: Stack,
+    /// The child to take next without a round trip through the stack (the nearest found).
+    next: Option<Pending>,
+}
+
+impl<const NEAREST_FIRST: bool> Traversal<NEAREST_FIRST> {
+    /// A walk of `bvh` for the ray `(t_min, t_max)`, at its root.
+    #[inline(always)]
+    pub(super) fn new(bvh: &CwBvh, ray: &Ray, t_min: f32, t_max: f32) -> Self {
+        Traversal {
+            ray: traversal_ray(ray, t_min, t_max),
+            stack: Stack::new(),
+            next: (!bvh.nodes.is_empty()).then_some(Pending { t: t_min, item: 0 }),
+        }
     }
-    let mut traversal = traversal_ray(ray, t_min, t_max);
-    let mut stack = Stack::new();
-    // The child to take next without a round trip through the stack (the nearest one found).
-    let mut next = Some(Pending { t: t_min, item: 0 });
-    while let Some(pending) = next.take().or_else(|| stack.pop()) {
-        if pending.t > traversal.tmax {
-            continue;
+
+    /// Takes the next node or leaf: tests a node's children, or calls `visit(i, t_max)` for
+    /// each primitive of a leaf (`visit` may shrink `t_max`, and returns false to stop).
+    /// Returns false once the walk is over.
+    #[inline(always)]
+    pub(super) fn step(&mut self, bvh: &CwBvh, visit: &mut impl FnMut(usize, &mut f32) -> bool) -> bool {
+        let Some(pending) = self.next.take().or_else(|| self.stack.pop()) else {
+            return false;
+        };
+        if pending.t > self.ray.tmax {
+            return true;
         }
         if pending.item & LEAF != 0 {
             let first = (pending.item & FIRST_MASK) as usize;
             let count = ((pending.item & !LEAF) >> COUNT_SHIFT) as usize;
             for i in first..first + count {
-                if !visit(i, &mut traversal.tmax) {
-                    return;
+                if !visit(i, &mut self.ray.tmax) {
+                    self.stack.clear();
+                    return false;
                 }
             }
-            continue;
+            return true;
         }
         let node = &bvh.nodes[pending.item as usize];
-        let (mut mask, entries) = intersect_node(node, &traversal);
+        let (mut mask, entries) = intersect_node(node, &self.ray);
         let entries: [f32; 8] = lanes8(entries);
         let mut children = [Pending::default(); 8];
         let mut n = 0;
@@ -230,10 +262,11 @@ pub(super) fn for_each_leaf_primitive<const NEAREST_FIRST: bool>(
         }
         if let Some((&nearest, rest)) = children[..n].split_last() {
             for &child in rest {
-                stack.push(child);
+                self.stack.push(child);
             }
-            next = Some(nearest);
+            self.next = Some(nearest);
         }
+        true
     }
 }
 

@@ -9,7 +9,7 @@ pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
-use crate::bvh::{PartSurface, SceneBvh};
+use crate::bvh::{HitPrimitive, PartSurface, SceneBvh};
 use crate::shape::{RingSide, Shape};
 use crate::{Camera, Light, Material, Ray, SceneError, Surface};
 use glam::Vec3;
@@ -122,6 +122,12 @@ pub struct Scene {
     has_shading: bool,
 }
 
+/// Triangles from which [`Scene::prefers_ray_pairs`]: random rays cast in pairs were 20–26 %
+/// faster at 240k triangles and 5–8 % slower at 2.4k and 21.6k (one thread, the rooms with
+/// every face split; `benches/raycast.rs`), where everything fits in the cache and there are
+/// no misses to overlap.
+pub const PAIRED_RAYS_MIN_TRIANGLES: usize = 65_536;
+
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
 const SPHERE_PROXY_STACKS: u32 = 16;
 /// Segments of each ring side's proxy (64 quads).
@@ -143,17 +149,39 @@ impl Scene {
                 .bvh
                 .closest(ray, 0.0, t_max, |s| self.surfaces[s as usize].camera_visible)?,
         };
+        Some(self.hit_at(ray, t, index))
+    }
+
+    /// The closest hits of two rays of [`RayKind::Other`] with `0 < t < t_max`: the same hits
+    /// as two calls of [`Scene::intersect`], found faster where rays are incoherent (photon
+    /// paths), because the two searches are interleaved and their waits for memory overlap.
+    #[inline]
+    pub fn intersect_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<Hit>; 2] {
+        let hits = self.bvh.closest_pair(rays, t_max);
+        [0, 1].map(|k| hits[k].map(|(t, index)| self.hit_at(rays[k], t, index)))
+    }
+
+    /// True when [`Scene::intersect_pair`] beats two calls of [`Scene::intersect`] on
+    /// incoherent rays: scenes of at least [`PAIRED_RAYS_MIN_TRIANGLES`] triangles, whose
+    /// BVH and triangles no longer fit in a core's cache.
+    pub fn prefers_ray_pairs(&self) -> bool {
+        self.bvh.triangle_count() >= PAIRED_RAYS_MIN_TRIANGLES
+    }
+
+    /// The hit of `ray` at distance `t` on primitive `index`.
+    #[inline(always)]
+    fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Hit {
         let position = ray.at(t);
         let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
         let front_face = n.dot(ray.direction) < 0.0;
-        Some(Hit {
+        Hit {
             t,
             position,
             normal: if front_face { n } else { -n },
             front_face,
             part,
             surface,
-        })
+        }
     }
 
     /// True when a surface lies strictly between `from` and `to` (surfaces within
