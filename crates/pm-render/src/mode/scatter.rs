@@ -8,23 +8,55 @@ pub(crate) const MAX_SPECULAR_BOUNCES: u32 = 16;
 
 /// The next ray and throughput factor after a specular bounce at `hit`, or `None` when the
 /// material is diffuse.
+///
+/// Mirrors and glass bend light about the interpolated shading normal
+/// ([`Scene::shading_normal_at`]), so a smooth (`NORMAL`-attributed) mesh reflects and
+/// refracts like the surface it approximates. The geometric normal still decides sides: where
+/// the shading normal faces away from the incoming ray, or the direction it gives would reflect
+/// into the surface or refract back out of it (near the silhouette of a coarse mesh), the
+/// bounce uses the geometric normal instead, so no path crosses a surface it should not.
 #[inline]
 pub(crate) fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng) -> Option<(Ray, Vec3)> {
+    let d = ray.direction;
     match *scene.material(hit) {
         Material::Lambertian { .. } => None,
-        Material::Mirror { .. } => Some((
-            scene.spawn_ray(hit, reflect(ray.direction, hit.normal)),
-            scene.albedo_at(hit),
-        )),
+        Material::Mirror { .. } => {
+            let shading = scene.shading_normal_at(hit);
+            let mut r = reflect(d, shading);
+            if shading != hit.normal && (shading.dot(d) >= 0.0 || r.dot(hit.normal) <= 0.0) {
+                r = reflect(d, hit.normal);
+            }
+            Some((scene.spawn_ray(hit, r), scene.albedo_at(hit)))
+        }
         Material::Glass { ior } => {
             let eta = if hit.front_face { 1.0 / ior } else { ior };
-            let cos_i = (-ray.direction.dot(hit.normal)).clamp(0.0, 1.0);
-            let direction = match refract(ray.direction, hit.normal, cos_i, eta) {
-                Some((t, cos_t)) if rng.next_f32() >= fresnel_dielectric(cos_i, cos_t, eta) => t,
-                _ => reflect(ray.direction, hit.normal),
-            };
+            let shading = scene.shading_normal_at(hit);
+            // One uniform number per bounce, drawn only when refraction is possible (as many
+            // draws as before shading normals existed, so untextured scenes are unchanged).
+            let mut drawn = None;
+            let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
+            let mut direction = None;
+            if shading == hit.normal || shading.dot(d) < 0.0 {
+                let (t, reflected) = glass_direction(d, shading, eta, &mut u);
+                if shading == hit.normal || reflected == (t.dot(hit.normal) > 0.0) {
+                    direction = Some(t);
+                }
+            }
+            let direction = direction.unwrap_or_else(|| glass_direction(d, hit.normal, eta, &mut u).0);
             Some((scene.spawn_ray(hit, direction), Vec3::ONE))
         }
+    }
+}
+
+/// The direction leaving glass hit along `d` at unit normal `n` (facing against `d`), and
+/// whether it was reflected: Fresnel reflection chosen when `u()` falls below the reflectance,
+/// always under total internal reflection.
+#[inline]
+fn glass_direction(d: Vec3, n: Vec3, eta: f32, u: &mut impl FnMut() -> f32) -> (Vec3, bool) {
+    let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+    match refract(d, n, cos_i, eta) {
+        Some((t, cos_t)) if u() >= fresnel_dielectric(cos_i, cos_t, eta) => (t, false),
+        _ => (reflect(d, n), true),
     }
 }
 

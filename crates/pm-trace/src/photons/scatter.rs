@@ -1,6 +1,51 @@
-//! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance.
+//! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance,
+//! and the photon tracer's mirror and glass bounces about a shading normal.
 
+use crate::Rng;
 use glam::Vec3;
+
+/// The direction a mirror reflects `d` to at a hit with unit geometric normal `geometric`
+/// (facing against `d`) and unit shading normal `shading` (on the same side): reflection
+/// about the shading normal, unless the shading normal faces away from `d` or the reflection
+/// would go into the surface (near a coarse mesh's silhouette), where the geometric normal
+/// is used instead.
+#[inline]
+pub(crate) fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+    if shading != geometric && shading.dot(d) < 0.0 {
+        let r = reflect(d, shading);
+        if r.dot(geometric) > 0.0 {
+            return r;
+        }
+    }
+    reflect(d, geometric)
+}
+
+/// The direction a photon leaves smooth glass in, hitting it along `d` with normals as for
+/// [`mirror_direction`] and `eta = n_incident / n_transmitted`: Fresnel reflection or
+/// refraction about the shading normal, chosen with one uniform number, drawn only when
+/// refraction is possible. Where the shading normal faces away from `d`, or the chosen
+/// direction is on the wrong side of the geometric surface (a reflection into it, a
+/// refraction back out), the bounce is made about the geometric normal instead.
+#[inline]
+pub(crate) fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    let mut drawn = None;
+    let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
+    let mut about = |n: Vec3| {
+        let cos_i = -d.dot(n);
+        let f = fresnel_dielectric(cos_i, eta);
+        match refract(d, n, eta) {
+            Some(t) if u() >= f => (t, false),
+            _ => (reflect(d, n), true),
+        }
+    };
+    if shading != geometric && shading.dot(d) < 0.0 {
+        let (t, reflected) = about(shading);
+        if reflected == (t.dot(geometric) > 0.0) {
+            return t;
+        }
+    }
+    about(geometric).0
+}
 
 /// Mirror reflection of direction `d` about the unit normal `n`.
 #[inline]

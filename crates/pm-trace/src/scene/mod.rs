@@ -276,6 +276,13 @@ impl Scene {
     /// light direction or a bounce only when it is above *both* the shading and the geometric
     /// surface, so near the shadow terminator of a coarse mesh, where the two disagree, light
     /// does not leak through the surface (it is lost, a slight darkening, instead).
+    ///
+    /// Mirrors and glass (the photon tracer's and the render modes' specular bounces) reflect
+    /// and refract about this normal, so a smooth glass mesh focuses light like the surface it
+    /// approximates. Where it faces away from the incoming ray, or the direction it gives lies
+    /// on the wrong side of the geometric surface (a reflection into it, a refraction back out
+    /// of it, near a coarse mesh's silhouette), that bounce is made about the geometric normal
+    /// instead, so no specular path crosses a surface it should not.
     #[inline]
     pub fn shading_normal_at(&self, hit: &Hit) -> Vec3 {
         if !self.has_shading || hit.part.0 >= self.mesh_part_count {
