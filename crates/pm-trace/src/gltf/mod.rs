@@ -39,10 +39,14 @@
 //!   (`KHR_materials_ior`, default 1.5); metallic ≥ 0.9 and roughness ≤ 0.1 → mirror with
 //!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
 //!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
-//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear) and `COLOR_0` multiply that
-//!   colour at each hit ([`Scene::albedo_at`]); other textures (emissive, normal maps) and
-//!   `KHR_texture_transform` are ignored. `NORMAL` gives smooth shading normals
-//!   ([`Scene::shading_normal_at`]). A texture naming a missing image that no material uses is a warning in
+//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear, and `KHR_texture_transform`'s
+//!   offset, rotation, scale and `texCoord` applied to the coordinates: [`TextureRef`]) and
+//!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); other textures
+//!   (emissive, normal maps) are ignored. Textures are not prefiltered: a texture seen from
+//!   far away, many texels to a pixel, is point-sampled through its bilinear filter and
+//!   aliases (more samples per pixel average it out). `NORMAL` gives smooth shading normals
+//!   ([`Scene::shading_normal_at`]), used for the cosine terms and for mirror and glass
+//!   bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
@@ -88,6 +92,7 @@ mod light;
 mod material;
 mod primitive;
 mod source;
+mod texture_ref;
 
 pub use build::build_scene;
 pub use camera::{DEFAULT_VFOV, GltfCamera, frame_bounds};
@@ -96,6 +101,7 @@ pub use error::{BufferError, GltfError};
 pub use graph::MAX_DEPTH;
 pub use light::{GltfLight, LUMENS_PER_WATT};
 pub use material::GltfMaterial;
+pub use texture_ref::TextureRef;
 
 use std::path::Path;
 
