@@ -89,6 +89,15 @@ impl SceneMesh {
     pub fn part_of_face(&self, face: FaceId) -> PartId {
         PartId(self.first_part + face.0)
     }
+
+    /// This mesh's vertex attributes for a mesh re-made of pieces of its faces, piece `i`
+    /// lying inside face `faces[i]` (see `MeshShading::for_pieces`); `None` for a mesh
+    /// without attributes.
+    pub(crate) fn shading_for_pieces(&self, faces: &[FaceId]) -> Option<Box<MeshShading>> {
+        let shading = self.shading.as_ref()?;
+        let sources: Vec<usize> = faces.iter().map(|&f| self.mesh.source_face(f)).collect();
+        shading.for_pieces(&sources).map(Box::new)
+    }
 }
 
 /// A scene ready for ray queries: parts with surfaces, lights, a camera and a BVH.

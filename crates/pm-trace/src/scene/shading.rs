@@ -43,6 +43,22 @@ impl MeshShading {
         }
     }
 
+    /// The same attributes for a mesh re-made of pieces of this one's triangles (faces split
+    /// along contact lines): piece `i` lies inside triangle `sources[i]` and is shaded by
+    /// interpolating over that whole triangle, so every point keeps the attributes it had.
+    /// `None` when some source is not a triangle of this mesh.
+    pub(crate) fn for_pieces(&self, sources: &[usize]) -> Option<Self> {
+        let triangles = sources
+            .iter()
+            .map(|&s| self.triangles.get(s).copied())
+            .collect::<Option<Vec<_>>>()?;
+        Some(Self {
+            positions: self.positions.clone(),
+            triangles,
+            attributes: self.attributes.clone(),
+        })
+    }
+
     /// Checks every attribute has one entry per vertex and every corner is a vertex.
     pub(crate) fn validate(&self) -> Result<(), String> {
         let n = self.positions.len();
