@@ -22,30 +22,56 @@ pub(crate) fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng
         Material::Lambertian { .. } => None,
         Material::Mirror { .. } => {
             let shading = scene.shading_normal_at(hit);
-            let mut r = reflect(d, shading);
-            if shading != hit.normal && (shading.dot(d) >= 0.0 || r.dot(hit.normal) <= 0.0) {
-                r = reflect(d, hit.normal);
-            }
+            let r = if shading == hit.normal {
+                reflect(d, hit.normal)
+            } else {
+                shaded_mirror_direction(d, hit.normal, shading)
+            };
             Some((scene.spawn_ray(hit, r), scene.albedo_at(hit)))
         }
         Material::Glass { ior } => {
             let eta = if hit.front_face { 1.0 / ior } else { ior };
             let shading = scene.shading_normal_at(hit);
-            // One uniform number per bounce, drawn only when refraction is possible (as many
-            // draws as before shading normals existed, so untextured scenes are unchanged).
-            let mut drawn = None;
-            let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
-            let mut direction = None;
-            if shading == hit.normal || shading.dot(d) < 0.0 {
-                let (t, reflected) = glass_direction(d, shading, eta, &mut u);
-                if shading == hit.normal || reflected == (t.dot(hit.normal) > 0.0) {
-                    direction = Some(t);
-                }
-            }
-            let direction = direction.unwrap_or_else(|| glass_direction(d, hit.normal, eta, &mut u).0);
+            let direction = if shading == hit.normal {
+                // One uniform number, drawn only when refraction is possible.
+                glass_direction(d, hit.normal, eta, &mut || rng.next_f32()).0
+            } else {
+                shaded_glass_direction(d, hit.normal, shading, eta, rng)
+            };
             Some((scene.spawn_ray(hit, direction), Vec3::ONE))
         }
     }
+}
+
+/// Mirror reflection of `d` about the shading normal, or about the geometric one where the
+/// shading normal faces away from `d` or the reflection would go into the surface. Kept out
+/// of line: meshes without normals never come here.
+#[inline(never)]
+fn shaded_mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+    let r = reflect(d, shading);
+    if shading.dot(d) < 0.0 && r.dot(geometric) > 0.0 {
+        r
+    } else {
+        reflect(d, geometric)
+    }
+}
+
+/// The glass bounce about the shading normal, or about the geometric one where the shading
+/// normal faces away from `d` or the chosen direction lies on the wrong side of the geometric
+/// surface (a reflection into it, a refraction back out). One uniform number per bounce,
+/// drawn only when refraction is possible. Kept out of line: meshes without normals never
+/// come here.
+#[inline(never)]
+fn shaded_glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    let mut drawn = None;
+    let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
+    if shading.dot(d) < 0.0 {
+        let (t, reflected) = glass_direction(d, shading, eta, &mut u);
+        if reflected == (t.dot(geometric) > 0.0) {
+            return t;
+        }
+    }
+    glass_direction(d, geometric, eta, &mut u).0
 }
 
 /// The direction leaving glass hit along `d` at unit normal `n` (facing against `d`), and

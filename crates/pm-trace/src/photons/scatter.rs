@@ -11,13 +11,23 @@ use glam::Vec3;
 /// is used instead.
 #[inline]
 pub(crate) fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
-    if shading != geometric && shading.dot(d) < 0.0 {
-        let r = reflect(d, shading);
-        if r.dot(geometric) > 0.0 {
-            return r;
-        }
+    if shading == geometric {
+        reflect(d, geometric)
+    } else {
+        shaded_mirror_direction(d, geometric, shading)
     }
-    reflect(d, geometric)
+}
+
+/// [`mirror_direction`] where the normals differ; out of line, as meshes without normals
+/// never come here.
+#[inline(never)]
+fn shaded_mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+    let r = reflect(d, shading);
+    if shading.dot(d) < 0.0 && r.dot(geometric) > 0.0 {
+        r
+    } else {
+        reflect(d, geometric)
+    }
 }
 
 /// The direction a photon leaves smooth glass in, hitting it along `d` with normals as for
@@ -28,23 +38,38 @@ pub(crate) fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 
 /// refraction back out), the bounce is made about the geometric normal instead.
 #[inline]
 pub(crate) fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    if shading == geometric {
+        glass_about(d, geometric, eta, &mut || rng.next_f32()).0
+    } else {
+        shaded_glass_direction(d, geometric, shading, eta, rng)
+    }
+}
+
+/// [`glass_direction`] where the normals differ; out of line, as meshes without normals never
+/// come here.
+#[inline(never)]
+fn shaded_glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
     let mut drawn = None;
     let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
-    let mut about = |n: Vec3| {
-        let cos_i = -d.dot(n);
-        let f = fresnel_dielectric(cos_i, eta);
-        match refract(d, n, eta) {
-            Some(t) if u() >= f => (t, false),
-            _ => (reflect(d, n), true),
-        }
-    };
-    if shading != geometric && shading.dot(d) < 0.0 {
-        let (t, reflected) = about(shading);
+    if shading.dot(d) < 0.0 {
+        let (t, reflected) = glass_about(d, shading, eta, &mut u);
         if reflected == (t.dot(geometric) > 0.0) {
             return t;
         }
     }
-    about(geometric).0
+    glass_about(d, geometric, eta, &mut u).0
+}
+
+/// Fresnel reflection or refraction of `d` about the unit normal `n` (facing against `d`),
+/// refraction chosen when `u()` (called only when refraction is possible) is at least the
+/// reflectance; also whether it reflected.
+#[inline]
+fn glass_about(d: Vec3, n: Vec3, eta: f32, u: &mut impl FnMut() -> f32) -> (Vec3, bool) {
+    let f = fresnel_dielectric(-d.dot(n), eta);
+    match refract(d, n, eta) {
+        Some(t) if u() >= f => (t, false),
+        _ => (reflect(d, n), true),
+    }
 }
 
 /// Mirror reflection of direction `d` about the unit normal `n`.
