@@ -34,7 +34,7 @@ const TEXELS: u32 = 8;
 fn checker_png() -> Vec<u8> {
     let texels: Vec<[u8; 3]> = (0..TEXELS * TEXELS)
         .map(|i| {
-            if (i % TEXELS + i / TEXELS) % 2 == 0 {
+            if (i % TEXELS + i / TEXELS).is_multiple_of(2) {
                 WHITE
             } else {
                 BLACK
