@@ -44,8 +44,10 @@ fn peak_rss_kib() -> Option<u64> {
 
 /// Files of the corpus built into scenes before textures, vertex colours, normals and
 /// `KHR_texture_transform` were read (measured then with this test). Reading
-/// `KHR_texture_transform` refuses one deliberately malformed file (the extension given as a
-/// string, `assimp-glTF2/wrongTypes/badExtension.gltf`) that loaded while it was ignored.
+/// `KHR_texture_transform` refuses one file that loaded while the extension was ignored:
+/// `assimp-glTF2/wrongTypes/badExtension.gltf`, a deliberately broken copy of BoxTextured
+/// whose extension is a string instead of an object, made to be refused like its five
+/// `wrongTypes` siblings (which are).
 const BUILT_BEFORE_TEXTURES: usize = 37;
 
 #[test]
