@@ -42,9 +42,11 @@
 //!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear, and `KHR_texture_transform`'s
 //!   offset, rotation, scale and `texCoord` applied to the coordinates: [`TextureRef`]) and
 //!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); other textures
-//!   (emissive, normal maps) are ignored. Textures are not prefiltered: a texture seen from
-//!   far away, many texels to a pixel, is point-sampled through its bilinear filter and
-//!   aliases (more samples per pixel average it out). `NORMAL` gives smooth shading normals
+//!   (emissive, normal maps) are ignored. Each texture keeps a box-filtered mip chain: the
+//!   Visualize and ShadowRays modes average it over the camera pixel's footprint
+//!   ([`Scene::albedo_over`]), so a texture seen from afar does not alias; photon tracing,
+//!   the path tracer and the progressive modes look textures up at points (their many
+//!   samples average them). `NORMAL` gives smooth shading normals
 //!   ([`Scene::shading_normal_at`]), used for the cosine terms and for mirror and glass
 //!   bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].

@@ -258,6 +258,15 @@ impl Scene {
     /// factor, wherever a hit's colour matters.
     #[inline]
     pub fn albedo_at(&self, hit: &Hit) -> Vec3 {
+        self.albedo_over(hit, 0.0)
+    }
+
+    /// [`Scene::albedo_at`] with the texture averaged over a footprint `footprint` metres
+    /// across around the hit (its mip chain, [`crate::Sampler::sample_footprint`]): what a
+    /// camera pixel covering that much of the surface sees, without the aliasing of a point
+    /// lookup when many texels fall in one pixel. Zero is a point lookup.
+    #[inline]
+    pub fn albedo_over(&self, hit: &Hit, footprint: f32) -> Vec3 {
         let base = match self.surface(hit).material {
             Material::Lambertian { albedo } => albedo,
             Material::Mirror { reflectance } => reflectance,
@@ -270,7 +279,7 @@ impl Scene {
         match &mesh.shading {
             Some(shading) => {
                 let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
-                base * shading.colour_at(face, hit.position)
+                base * shading.colour_at(face, hit.position, footprint)
             }
             None => base,
         }
