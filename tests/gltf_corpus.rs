@@ -42,6 +42,14 @@ fn peak_rss_kib() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
+/// Files of the corpus built into scenes before textures, vertex colours, normals and
+/// `KHR_texture_transform` were read (measured then with this test). Reading
+/// `KHR_texture_transform` refuses one file that loaded while the extension was ignored:
+/// `assimp-glTF2/wrongTypes/badExtension.gltf`, a deliberately broken copy of BoxTextured
+/// whose extension is a string instead of an object, made to be refused like its five
+/// `wrongTypes` siblings (which are).
+const BUILT_BEFORE_TEXTURES: usize = 37;
+
 #[test]
 fn every_corpus_file_loads_or_errors_without_panic() {
     // PM_GLTF_CORPUS points elsewhere, for checkouts whose shared/ folder is not beside them.
@@ -97,6 +105,11 @@ fn every_corpus_file_loads_or_errors_without_panic() {
         "glTF corpus: {} files, {read} read, {loaded} built into scenes ({parts} parts), {errors} errors, in {:.2?}",
         files.len(),
         start.elapsed()
+    );
+    println!(
+        "  built before the texture work: {BUILT_BEFORE_TEXTURES} of 445; now {loaded} of {} ({:+})",
+        files.len(),
+        loaded as i64 - BUILT_BEFORE_TEXTURES as i64
     );
     for (kind, n) in &kinds {
         println!("  {n:4} {kind}");

@@ -1,11 +1,16 @@
-//! Shading normals: a coarse UV sphere with per-vertex normals, lit by a point light and
-//! path traced, matches the analytic sphere of the same radius away from the silhouette and
-//! the terminator, and clearly better than the same mesh without normals (faceted).
+//! Shading normals: a coarse UV sphere and a 320-triangle icosphere with per-vertex normals,
+//! lit by a point light and path traced, match the analytic sphere of the same radius pixel
+//! by pixel away from the silhouette and the terminator (mean and 95th percentile of the
+//! relative difference), and clearly better than the same meshes without normals (faceted).
 
 use glam::Vec3;
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, SceneBuilder, Surface, VertexAttributes};
 use std::f32::consts::PI;
+
+#[path = "support/icosphere.rs"]
+mod icosphere;
+use icosphere::icosphere;
 
 const STACKS: u32 = 10;
 const SLICES: u32 = 20;
@@ -67,55 +72,85 @@ fn render(scene: &Scene) -> Image {
         .image
 }
 
-/// Mean per-pixel relative difference to `reference` over pixels well lit in the reference
-/// whose 3×3 neighbourhoods are covered in both images (away from the silhouette).
-fn mean_relative_difference(image: &Image, reference: &Image) -> (f32, usize) {
+/// Per-pixel relative differences to `reference` over pixels well lit in the reference whose
+/// 3×3 neighbourhoods are covered in both images (away from the silhouette), sorted.
+fn relative_differences(image: &Image, reference: &Image) -> Vec<f32> {
     let peak = reference.pixels().iter().map(|p| p.x).fold(0.0, f32::max);
     let covered = |img: &Image, x: u32, y: u32| {
         (x.saturating_sub(1)..=(x + 1).min(img.width() - 1)).all(|i| {
             (y.saturating_sub(1)..=(y + 1).min(img.height() - 1)).all(|j| img.get(i, j).unwrap().x > 0.0)
         })
     };
-    let (mut sum, mut n) = (0.0, 0);
+    let mut out = Vec::new();
     for y in 0..reference.height() {
         for x in 0..reference.width() {
             let r = reference.get(x, y).unwrap().x;
             if r < 0.2 * peak || !covered(reference, x, y) || !covered(image, x, y) {
                 continue;
             }
-            sum += (image.get(x, y).unwrap().x - r).abs() / r;
-            n += 1;
+            out.push((image.get(x, y).unwrap().x - r).abs() / r);
         }
     }
-    (sum / n.max(1) as f32, n)
+    out.sort_by(f32::total_cmp);
+    out
+}
+
+/// Mean, 95th percentile and largest of sorted differences.
+fn summary(d: &[f32]) -> (f32, f32, f32) {
+    let mean = d.iter().sum::<f32>() / d.len().max(1) as f32;
+    let p95 = d[(d.len() * 95 / 100).min(d.len() - 1)];
+    (mean, p95, d[d.len() - 1])
+}
+
+/// Compares the smooth and faceted versions of a mesh with the analytic unit sphere: the
+/// smooth one must differ little per pixel (mean under 3 %, 95 % of pixels under `p95_limit`),
+/// the faceted one clearly more.
+fn check_against_analytic(label: &str, positions: &[Vec3], triangles: &[[u32; 3]], p95_limit: f32) {
+    let surface = Surface::diffuse(Vec3::splat(0.7));
+    let analytic = render(&lit(Scene::builder().sphere(Vec3::ZERO, 1.0, surface)));
+    let faceted = render(&lit(Scene::builder().mesh(positions, triangles, surface)));
+    let smooth = render(&lit(Scene::builder().attributed_mesh(
+        positions,
+        triangles,
+        surface,
+        VertexAttributes {
+            normals: Some(positions.to_vec()),
+            ..VertexAttributes::default()
+        },
+    )));
+    let smooth_d = relative_differences(&smooth, &analytic);
+    let faceted_d = relative_differences(&faceted, &analytic);
+    let (smooth_mean, smooth_p95, smooth_max) = summary(&smooth_d);
+    let (faceted_mean, faceted_p95, faceted_max) = summary(&faceted_d);
+    println!(
+        "{label}: relative difference per pixel from the analytic sphere over {} pixels: smooth mean {smooth_mean:.4}, 95th percentile {smooth_p95:.4}, max {smooth_max:.4}; faceted mean {faceted_mean:.4}, 95th percentile {faceted_p95:.4}, max {faceted_max:.4}",
+        smooth_d.len()
+    );
+    assert!(smooth_d.len() > 300, "only {} pixels compared", smooth_d.len());
+    assert!(
+        smooth_mean < 0.03,
+        "smooth sphere differs by {smooth_mean} on average"
+    );
+    assert!(
+        smooth_p95 < p95_limit,
+        "smooth sphere: 5 % of pixels differ by over {smooth_p95}"
+    );
+    assert!(
+        faceted_mean > 2.0 * smooth_mean && faceted_p95 > 2.0 * smooth_p95,
+        "faceted {faceted_mean}/{faceted_p95} vs smooth {smooth_mean}/{smooth_p95}"
+    );
 }
 
 #[test]
 fn smooth_uv_sphere_matches_the_analytic_sphere_and_beats_the_faceted_one() {
-    let surface = Surface::diffuse(Vec3::splat(0.7));
     let (positions, triangles) = uv_sphere();
-    let analytic = render(&lit(Scene::builder().sphere(Vec3::ZERO, 1.0, surface)));
-    let faceted = render(&lit(Scene::builder().mesh(&positions, &triangles, surface)));
-    let smooth = render(&lit(Scene::builder().attributed_mesh(
-        &positions,
-        &triangles,
-        surface,
-        VertexAttributes {
-            normals: Some(positions.clone()),
-            ..VertexAttributes::default()
-        },
-    )));
-    let (smooth_error, n) = mean_relative_difference(&smooth, &analytic);
-    let (faceted_error, _) = mean_relative_difference(&faceted, &analytic);
-    assert!(n > 300, "only {n} pixels compared");
-    assert!(
-        smooth_error < 0.03,
-        "smooth sphere differs by {smooth_error} on average"
-    );
-    assert!(
-        faceted_error > 2.0 * smooth_error,
-        "faceted {faceted_error} vs smooth {smooth_error}"
-    );
+    check_against_analytic("UV sphere", &positions, &triangles, 0.06);
+}
+
+#[test]
+fn smooth_icosphere_matches_the_analytic_sphere_per_pixel() {
+    let (positions, triangles) = icosphere(2);
+    check_against_analytic("icosphere", &positions, &triangles, 0.06);
 }
 
 #[test]

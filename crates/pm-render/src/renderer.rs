@@ -138,6 +138,7 @@ impl<E: Estimator> Renderer<E> {
             maps,
             estimator: &self.estimator,
             options: &options,
+            pixel_angle: scene.camera().pixel_angle(s.height),
         };
         let tiles = tiles(s.width, s.height, s.tile_size);
         let done = AtomicUsize::new(0);

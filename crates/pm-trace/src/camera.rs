@@ -83,6 +83,12 @@ impl Camera {
         self.forward
     }
 
+    /// The angle (radians, small-angle) a pixel spans at the image centre for an image
+    /// `height` pixels tall: how fast a camera ray's footprint grows with distance.
+    pub fn pixel_angle(&self, height: u32) -> f32 {
+        2.0 * self.tan_half_fov / height.max(1) as f32
+    }
+
     /// The primary ray through image point `(u, v)` for an image of width/height `aspect`.
     pub fn ray(&self, u: f32, v: f32, aspect: f32) -> Ray {
         let x = (2.0 * u - 1.0) * self.tan_half_fov * aspect;

@@ -99,6 +99,7 @@ pub mod scene;
 pub mod scenes;
 pub mod shape;
 pub mod texture;
+pub mod texture_transform;
 
 #[cfg(feature = "gltf")]
 pub mod gltf;
@@ -124,3 +125,4 @@ pub use scene::{
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use texture::{Sampler, Texture, Wrap};
+pub use texture_transform::TextureTransform;

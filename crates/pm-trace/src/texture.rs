@@ -1,17 +1,77 @@
-//! Colour textures and their sampling: 8-bit sRGB texels decoded to linear RGB, wrap modes
-//! and bilinear filtering, as glTF's base-colour textures need.
+//! Colour textures and their sampling: 8-bit sRGB texels decoded to linear RGB, wrap modes,
+//! bilinear filtering and a box-filtered mip chain for textures seen from afar, as glTF's
+//! base-colour textures need.
 
 use std::sync::LazyLock;
 
 use glam::{Vec2, Vec3};
 
-/// An RGB image stored as 8-bit sRGB texels (3 bytes a texel), sampled in linear RGB.
+/// An RGB image stored as 8-bit sRGB texels (3 bytes a texel), sampled in linear RGB, with
+/// its mip chain: each level half the size of the one before (rounded up), each texel the
+/// mean in linear RGB of the 2×2 texels below it (of those that exist: along the last row or
+/// column of an odd size those texels weigh a little more), down to 1×1. The chain takes a
+/// third more memory than the image.
 #[derive(Clone, PartialEq)]
 pub struct Texture {
     width: u32,
     height: u32,
     /// Row-major, top row first, `[r, g, b]` sRGB-encoded.
     texels: Vec<[u8; 3]>,
+    /// Levels 1, 2, … of the mip chain.
+    mips: Vec<Level>,
+}
+
+/// One level of a mip chain.
+#[derive(Clone, PartialEq)]
+struct Level {
+    width: u32,
+    height: u32,
+    texels: Vec<[u8; 3]>,
+}
+
+/// The image of one mip level, borrowed.
+#[derive(Clone, Copy)]
+struct LevelRef<'a> {
+    width: u32,
+    height: u32,
+    texels: &'a [[u8; 3]],
+}
+
+impl LevelRef<'_> {
+    #[inline]
+    fn texel(&self, x: u32, y: u32) -> Vec3 {
+        let [r, g, b] = self.texels[(y as usize) * self.width as usize + x as usize];
+        Vec3::new(srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b))
+    }
+
+    /// The level below this one: 2×2 blocks averaged in linear RGB, re-encoded as sRGB.
+    fn halved(&self) -> Level {
+        let (width, height) = (self.width.div_ceil(2), self.height.div_ceil(2));
+        let mut texels = Vec::with_capacity(width as usize * height as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let mut sum = Vec3::ZERO;
+                let mut n = 0.0;
+                for (sx, sy) in [
+                    (2 * x, 2 * y),
+                    (2 * x + 1, 2 * y),
+                    (2 * x, 2 * y + 1),
+                    (2 * x + 1, 2 * y + 1),
+                ] {
+                    if sx < self.width && sy < self.height {
+                        sum += self.texel(sx, sy);
+                        n += 1.0;
+                    }
+                }
+                texels.push((sum / n).to_array().map(linear_to_srgb));
+            }
+        }
+        Level {
+            width,
+            height,
+            texels,
+        }
+    }
 }
 
 impl std::fmt::Debug for Texture {
@@ -37,16 +97,63 @@ pub fn srgb_to_linear(code: u8) -> f32 {
     SRGB_TO_LINEAR[code as usize]
 }
 
+/// The 8-bit sRGB code whose linear value is nearest `value` (clamped to `[0, 1]`).
+pub fn linear_to_srgb(value: f32) -> u8 {
+    let table = &*SRGB_TO_LINEAR;
+    let above = table.partition_point(|&v| v < value).min(255);
+    if above > 0 && value - table[above - 1] <= table[above] - value {
+        (above - 1) as u8
+    } else {
+        above as u8
+    }
+}
+
 impl Texture {
     /// A texture from `width × height` sRGB texels, row-major with the top row first; `None`
     /// when the sizes disagree or either is zero.
     pub fn from_srgb8(width: u32, height: u32, texels: Vec<[u8; 3]>) -> Option<Self> {
         let count = (width as u64).checked_mul(height as u64)?;
-        (count > 0 && count == texels.len() as u64).then_some(Self {
+        if count == 0 || count != texels.len() as u64 {
+            return None;
+        }
+        let mut texture = Self {
             width,
             height,
             texels,
-        })
+            mips: Vec::new(),
+        };
+        let mut level = texture.level(0);
+        while level.width > 1 || level.height > 1 {
+            let next = level.halved();
+            texture.mips.push(next);
+            level = texture.level(texture.mips.len());
+        }
+        Some(texture)
+    }
+
+    /// Mip level `i` (0 is the image itself); `i` must be at most [`Self::mip_levels`].
+    #[inline]
+    fn level(&self, i: usize) -> LevelRef<'_> {
+        match i.checked_sub(1) {
+            None => LevelRef {
+                width: self.width,
+                height: self.height,
+                texels: &self.texels,
+            },
+            Some(m) => {
+                let l = &self.mips[m];
+                LevelRef {
+                    width: l.width,
+                    height: l.height,
+                    texels: &l.texels,
+                }
+            }
+        }
+    }
+
+    /// Levels of the mip chain below the image (0 for a 1×1 texture).
+    pub fn mip_levels(&self) -> usize {
+        self.mips.len()
     }
 
     /// Width in texels.
@@ -59,16 +166,17 @@ impl Texture {
         self.height
     }
 
-    /// Bytes held on the heap.
+    /// Bytes held on the heap (the image and its mip chain).
     pub fn heap_bytes(&self) -> usize {
         self.texels.capacity() * 3
+            + self.mips.capacity() * size_of::<Level>()
+            + self.mips.iter().map(|l| l.texels.capacity() * 3).sum::<usize>()
     }
 
     /// Linear RGB of texel `(x, y)` (column, row from the top); both must be in range.
     #[inline]
     pub fn texel(&self, x: u32, y: u32) -> Vec3 {
-        let [r, g, b] = self.texels[(y as usize) * self.width as usize + x as usize];
-        Vec3::new(srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b))
+        self.level(0).texel(x, y)
     }
 
     /// The mean linear colour over all texels (what a uniform surface of the same total
@@ -126,6 +234,30 @@ impl Sampler {
     /// top-left corner, v grows downwards). Non-finite coordinates read texel (0, 0).
     #[inline]
     pub fn sample(&self, texture: &Texture, uv: Vec2) -> Vec3 {
+        self.sample_level(texture.level(0), uv)
+    }
+
+    /// The linear colour at `uv` averaged over a footprint about `texels` texels of the image
+    /// across: trilinear filtering between the two mip levels whose texels bracket the
+    /// footprint. A footprint of one texel or less (or not a number) is [`Self::sample`].
+    #[inline]
+    pub fn sample_footprint(&self, texture: &Texture, uv: Vec2, texels: f32) -> Vec3 {
+        if texels.is_nan() || texels <= 1.0 {
+            return self.sample(texture, uv);
+        }
+        let lod = texels.log2().min(texture.mip_levels() as f32);
+        let below = lod.floor();
+        let (i, t) = (below as usize, lod - below);
+        let fine = self.sample_level(texture.level(i), uv);
+        if t <= 0.0 || i >= texture.mip_levels() {
+            return fine;
+        }
+        fine.lerp(self.sample_level(texture.level(i + 1), uv), t)
+    }
+
+    /// Bilinear (or nearest) lookup in one mip level.
+    #[inline]
+    fn sample_level(&self, texture: LevelRef<'_>, uv: Vec2) -> Vec3 {
         let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
         // Texel centres sit at half-integers; keep the integer parts in a safe range.
         let x = (uv.x as f64 * texture.width as f64 - 0.5).clamp(-1e15, 1e15);
@@ -162,6 +294,45 @@ mod tests {
         assert_eq!(srgb_to_linear(0), 0.0);
         assert!((srgb_to_linear(255) - 1.0).abs() < 1e-6);
         assert!((srgb_to_linear(188) - 0.5029).abs() < 1e-3);
+    }
+
+    #[test]
+    fn linear_to_srgb_inverts_the_decoding() {
+        for code in 0..=255u8 {
+            assert_eq!(linear_to_srgb(srgb_to_linear(code)), code);
+        }
+        assert_eq!(linear_to_srgb(-1.0), 0);
+        assert_eq!(linear_to_srgb(2.0), 255);
+    }
+
+    #[test]
+    fn mip_chain_of_a_checkerboard_is_its_mean() {
+        // 8×4 texels: levels 4×2, 2×1, 1×1, each texel 0.5 (to 8-bit rounding).
+        let checker = |w: u32, h: u32| {
+            (0..w * h)
+                .map(|i| {
+                    if (i % w + i / w).is_multiple_of(2) {
+                        [255; 3]
+                    } else {
+                        [0; 3]
+                    }
+                })
+                .collect::<Vec<_>>()
+        };
+        let t = Texture::from_srgb8(8, 4, checker(8, 4)).unwrap();
+        assert_eq!(t.mip_levels(), 3);
+        let s = Sampler::default();
+        for footprint in [2.0, 3.0, 8.0, 1e6] {
+            let far = s.sample_footprint(&t, Vec2::new(0.3, 0.6), footprint);
+            assert!((far - Vec3::splat(0.5)).abs().max_element() < 0.003, "{far}");
+        }
+        // One texel or less is the plain lookup.
+        assert_eq!(
+            s.sample_footprint(&t, Vec2::new(0.3, 0.5), 1.0),
+            s.sample(&t, Vec2::new(0.3, 0.5))
+        );
+        // Odd sizes round up (5×3: 3×2, 2×1, 1×1).
+        assert_eq!(Texture::from_srgb8(5, 3, checker(5, 3)).unwrap().mip_levels(), 3);
     }
 
     #[test]

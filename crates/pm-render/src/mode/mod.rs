@@ -78,6 +78,11 @@ pub struct Lighting<'a, E> {
     pub estimator: &'a E,
     /// Its options.
     pub options: &'a EstimatorOptions,
+    /// The angle a pixel spans ([`pm_trace::Camera::pixel_angle`]): Visualize and ShadowRays
+    /// average textures over the pixel's footprint at the diffuse hit (distance travelled
+    /// from the eye times this, over the square root of the cosine there). Zero point-samples
+    /// textures, as PathTrace always does (it averages them by its samples, unbiased).
+    pub pixel_angle: f32,
 }
 
 impl<E: Estimator> Lighting<'_, E> {

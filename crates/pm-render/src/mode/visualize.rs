@@ -19,12 +19,17 @@ pub(super) fn radiance<E: Estimator>(
 ) -> Vec3 {
     let scene = lighting.scene;
     let mut throughput = Vec3::ONE;
+    let mut distance = 0.0f32;
     for _ in 0..=MAX_SPECULAR_BOUNCES {
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
             break;
         };
+        distance += hit.t;
         if let Material::Lambertian { .. } = *scene.material(&hit) {
-            let albedo = scene.albedo_at(&hit);
+            // The pixel's footprint: its width at this distance, stretched on a tilted surface
+            // (by the square root of 1/cos, between the ellipse's two axes).
+            let cos = (-ray.direction.dot(hit.normal)).max(1e-3);
+            let albedo = scene.albedo_over(&hit, distance * lighting.pixel_angle / cos.sqrt());
             let mut e = lighting.photon_irradiance(&hit, scratch);
             if shadow_rays {
                 e += direct_irradiance(scene, &hit, rng);

@@ -41,7 +41,7 @@ pub struct GltfMesh {
     /// The material as this loader reads it.
     pub material: GltfMaterial,
     /// Texture coordinates per vertex, from the `TEXCOORD_n` set the material's base-colour
-    /// texture names (read only when it has one).
+    /// texture names (read only when it has one), with its `KHR_texture_transform` applied.
     pub uvs: Option<Vec<Vec2>>,
     /// Linear vertex colours (`COLOR_0`, alpha dropped), multiplying the base colour.
     pub colors: Option<Vec<Vec3>>,
@@ -210,7 +210,8 @@ fn flatten(
                         let n = positions.len();
                         let mut base_color_texture = None;
                         let mut uvs: Option<Vec<Vec2>> = None;
-                        if let Some((texture, set)) = material.base_color_texture {
+                        if let Some(reference) = material.base_color_texture {
+                            let texture = reference.index;
                             let loaded = match textures.get(&texture) {
                                 Some(t) => t.clone(),
                                 None => {
@@ -220,13 +221,13 @@ fn flatten(
                                     t
                                 }
                             };
-                            if let Some(a) = attribute(Semantic::TexCoords(set)) {
-                                let read = reader.read_vec(a, &[Type::Vec2])?;
-                                uvs = Some(read.iter().map(|v| v.truncate().truncate()).collect());
+                            uvs = reference.read_uvs(&reader, prim)?;
+                            if uvs.is_some() {
                                 base_color_texture = Some(loaded);
                             } else {
                                 content.warnings.push(format!(
-                                    "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{set}, base-colour texture ignored"
+                                    "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{}, base-colour texture ignored",
+                                    reference.tex_coord
                                 ));
                             }
                         }

@@ -5,6 +5,7 @@ use glam::Vec3;
 use gltf::json;
 
 use super::GltfOptions;
+use super::texture_ref::TextureRef;
 use crate::Material;
 
 /// A glTF material as this loader reads it.
@@ -15,7 +16,7 @@ use crate::Material;
 ///   the base colour as reflectance;
 /// - else [`Material::Lambertian`] with the base colour factor as albedo.
 ///
-/// Only the base-colour texture is read. `emission` is `emissiveFactor × emissiveStrength ×`
+/// Only the base-colour texture is read (with `KHR_texture_transform`). `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfMaterial {
@@ -23,9 +24,9 @@ pub struct GltfMaterial {
     pub kind: Material,
     /// Emitted radiance in W/(m²·sr); zero for a surface that does not glow.
     pub emission: Vec3,
-    /// The base-colour texture as `(texture index, TEXCOORD set)`, if the material has one;
-    /// its texels multiply the base colour factor.
-    pub base_color_texture: Option<(usize, u32)>,
+    /// The base-colour texture, its `TEXCOORD` set and `KHR_texture_transform`, if the
+    /// material has one; its texels multiply the base colour factor.
+    pub base_color_texture: Option<TextureRef>,
     /// The glTF `doubleSided` flag (an emissive surface emits from both sides when set).
     pub double_sided: bool,
 }
@@ -94,10 +95,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     GltfMaterial {
         kind,
         emission,
-        base_color_texture: pbr
-            .base_color_texture
-            .as_ref()
-            .map(|t| (t.index.value(), t.tex_coord)),
+        base_color_texture: pbr.base_color_texture.as_ref().map(TextureRef::from_info),
         double_sided: m.double_sided,
     }
 }

@@ -39,10 +39,16 @@
 //!   (`KHR_materials_ior`, default 1.5); metallic ≥ 0.9 and roughness ≤ 0.1 → mirror with
 //!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
 //!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
-//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear) and `COLOR_0` multiply that
-//!   colour at each hit ([`Scene::albedo_at`]); other textures (emissive, normal maps) and
-//!   `KHR_texture_transform` are ignored. `NORMAL` gives smooth shading normals
-//!   ([`Scene::shading_normal_at`]). A texture naming a missing image that no material uses is a warning in
+//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear, and `KHR_texture_transform`'s
+//!   offset, rotation, scale and `texCoord` applied to the coordinates: [`TextureRef`]) and
+//!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); other textures
+//!   (emissive, normal maps) are ignored. Each texture keeps a box-filtered mip chain: the
+//!   Visualize and ShadowRays modes average it over the camera pixel's footprint
+//!   ([`Scene::albedo_over`]), so a texture seen from afar does not alias; photon tracing,
+//!   the path tracer and the progressive modes look textures up at points (their many
+//!   samples average them). `NORMAL` gives smooth shading normals
+//!   ([`Scene::shading_normal_at`]), used for the cosine terms and for mirror and glass
+//!   bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
@@ -88,6 +94,7 @@ mod light;
 mod material;
 mod primitive;
 mod source;
+mod texture_ref;
 
 pub use build::build_scene;
 pub use camera::{DEFAULT_VFOV, GltfCamera, frame_bounds};
@@ -96,6 +103,7 @@ pub use error::{BufferError, GltfError};
 pub use graph::MAX_DEPTH;
 pub use light::{GltfLight, LUMENS_PER_WATT};
 pub use material::GltfMaterial;
+pub use texture_ref::TextureRef;
 
 use std::path::Path;
 

@@ -51,25 +51,44 @@ impl Contact {
     }
 
     /// Rebuilds `scene` with every mesh face that another face touches split along the contact
-    /// lines. Each piece keeps its face's surface; lights, analytic shapes and the camera are
-    /// unchanged, and so is the total area of every face.
+    /// lines. Each piece keeps its face's surface and its vertex attributes (texture
+    /// coordinates, colours and normals, interpolated over the original triangle, so
+    /// [`Scene::albedo_at`] and [`Scene::shading_normal_at`] give what they gave before the
+    /// split); lights, analytic shapes and the camera are unchanged, and so is the total area
+    /// of every face.
     pub fn split_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
         let tolerance = self.tolerance(&scene);
         let (polygons, surfaces, mesh_of) = mesh_faces(&scene);
         let split = split_polygons_at_contacts(&polygons, tolerance);
+        // The face (within its mesh) of each polygon, in the same order as `mesh_faces`.
+        let face_of: Vec<FaceId> = scene
+            .meshes()
+            .iter()
+            .flat_map(|m| m.half_edge_mesh().faces())
+            .collect();
 
         // One rebuilt mesh per original mesh, holding that mesh's pieces.
         let mesh_count = scene.meshes().len();
         let mut positions: Vec<Vec<Vec3>> = vec![Vec::new(); mesh_count];
         let mut faces: Vec<Vec<Vec<u32>>> = vec![Vec::new(); mesh_count];
         let mut face_surfaces: Vec<Vec<Surface>> = vec![Vec::new(); mesh_count];
+        let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
         for (piece, &source) in split.polygons.iter().zip(&split.source) {
             let m = mesh_of[source];
             let start = positions[m].len() as u32;
             positions[m].extend_from_slice(piece);
             faces[m].push((start..start + piece.len() as u32).collect());
             face_surfaces[m].push(surfaces[source]);
+            piece_faces[m].push(face_of[source]);
         }
+        // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
+        // shaded by interpolating over the whole original triangle it lies in.
+        let shading: Vec<_> = scene
+            .meshes()
+            .iter()
+            .zip(&piece_faces)
+            .map(|(mesh, pieces)| mesh.shading_for_pieces(pieces))
+            .collect();
         let weld = MeshOptions {
             weld_tolerance: tolerance,
         };
@@ -77,9 +96,9 @@ impl Contact {
             .into_builder_without_meshes()
             .mesh_options(weld)
             .split_at_contacts();
-        for m in 0..mesh_count {
+        for (m, shading) in shading.into_iter().enumerate() {
             if !faces[m].is_empty() {
-                builder = builder.mesh_per_face(&positions[m], &faces[m], &face_surfaces[m]);
+                builder = builder.mesh_per_face_shaded(&positions[m], &faces[m], &face_surfaces[m], shading);
             }
         }
         builder.build()

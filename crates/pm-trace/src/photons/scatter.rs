@@ -1,6 +1,76 @@
-//! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance.
+//! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance,
+//! and the photon tracer's mirror and glass bounces about a shading normal.
 
+use crate::Rng;
 use glam::Vec3;
+
+/// The direction a mirror reflects `d` to at a hit with unit geometric normal `geometric`
+/// (facing against `d`) and unit shading normal `shading` (on the same side): reflection
+/// about the shading normal, unless the shading normal faces away from `d` or the reflection
+/// would go into the surface (near a coarse mesh's silhouette), where the geometric normal
+/// is used instead.
+#[inline]
+pub(crate) fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+    if shading == geometric {
+        reflect(d, geometric)
+    } else {
+        shaded_mirror_direction(d, geometric, shading)
+    }
+}
+
+/// [`mirror_direction`] where the normals differ; out of line, as meshes without normals
+/// never come here.
+#[inline(never)]
+fn shaded_mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+    let r = reflect(d, shading);
+    if shading.dot(d) < 0.0 && r.dot(geometric) > 0.0 {
+        r
+    } else {
+        reflect(d, geometric)
+    }
+}
+
+/// The direction a photon leaves smooth glass in, hitting it along `d` with normals as for
+/// [`mirror_direction`] and `eta = n_incident / n_transmitted`: Fresnel reflection or
+/// refraction about the shading normal, chosen with one uniform number, drawn only when
+/// refraction is possible. Where the shading normal faces away from `d`, or the chosen
+/// direction is on the wrong side of the geometric surface (a reflection into it, a
+/// refraction back out), the bounce is made about the geometric normal instead.
+#[inline]
+pub(crate) fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    if shading == geometric {
+        glass_about(d, geometric, eta, &mut || rng.next_f32()).0
+    } else {
+        shaded_glass_direction(d, geometric, shading, eta, rng)
+    }
+}
+
+/// [`glass_direction`] where the normals differ; out of line, as meshes without normals never
+/// come here.
+#[inline(never)]
+fn shaded_glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    let mut drawn = None;
+    let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
+    if shading.dot(d) < 0.0 {
+        let (t, reflected) = glass_about(d, shading, eta, &mut u);
+        if reflected == (t.dot(geometric) > 0.0) {
+            return t;
+        }
+    }
+    glass_about(d, geometric, eta, &mut u).0
+}
+
+/// Fresnel reflection or refraction of `d` about the unit normal `n` (facing against `d`),
+/// refraction chosen when `u()` (called only when refraction is possible) is at least the
+/// reflectance; also whether it reflected.
+#[inline]
+fn glass_about(d: Vec3, n: Vec3, eta: f32, u: &mut impl FnMut() -> f32) -> (Vec3, bool) {
+    let f = fresnel_dielectric(-d.dot(n), eta);
+    match refract(d, n, eta) {
+        Some(t) if u() >= f => (t, false),
+        _ => (reflect(d, n), true),
+    }
+}
 
 /// Mirror reflection of direction `d` about the unit normal `n`.
 #[inline]

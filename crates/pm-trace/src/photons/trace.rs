@@ -2,7 +2,7 @@
 //! `(seed, pass, path index)`, chunks of paths run on rayon and are merged in path order, so the
 //! stored photons are bit-identical for any thread count.
 
-use super::scatter::{fresnel_dielectric, reflect, refract};
+use super::scatter::{glass_direction, mirror_direction};
 use crate::sampling::{cosine_hemisphere, pick_cumulative};
 use crate::{Hit, MapAssignment, Material, Ray, RayKind, Rng, Scene, TraceError};
 use glam::{Vec2, Vec3};
@@ -440,17 +440,18 @@ impl PhotonPath {
                     return;
                 }
                 self.specular = true;
-                reflect(self.ray.direction, hit.normal)
+                mirror_direction(self.ray.direction, hit.normal, scene.shading_normal_at(&hit))
             }
             Material::Glass { ior } => {
                 self.specular = true;
                 let eta = if hit.front_face { 1.0 / ior } else { ior };
-                let cos_i = -self.ray.direction.dot(hit.normal);
-                let f = fresnel_dielectric(cos_i, eta);
-                match refract(self.ray.direction, hit.normal, eta) {
-                    Some(t) if self.rng.next_f32() >= f => t,
-                    _ => reflect(self.ray.direction, hit.normal),
-                }
+                glass_direction(
+                    self.ray.direction,
+                    hit.normal,
+                    scene.shading_normal_at(&hit),
+                    eta,
+                    &mut self.rng,
+                )
             }
         };
         self.ray = scene.spawn_ray(&hit, direction);

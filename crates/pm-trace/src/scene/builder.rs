@@ -161,6 +161,21 @@ impl SceneBuilder {
         self
     }
 
+    /// [`Self::mesh_per_face`] with the vertex attributes `shading` (already made for these
+    /// faces: see `SceneMesh::shading_for_pieces`).
+    pub(crate) fn mesh_per_face_shaded<F: AsRef<[u32]>>(
+        mut self,
+        positions: &[Vec3],
+        faces: &[F],
+        surfaces: &[Surface],
+        shading: Option<Box<MeshShading>>,
+    ) -> Self {
+        let mut input = MeshInput::new(positions, faces, FaceSurfaces::PerFace(surfaces.to_vec()));
+        input.shading = shading;
+        self.meshes.push(input);
+        self
+    }
+
     /// Adds a triangle mesh whose vertices carry attributes (texture coordinates, colours, a
     /// base-colour texture), all with `surface`; [`Scene::albedo_at`] multiplies the surface's
     /// colour by them. Each attribute present must have one entry per vertex

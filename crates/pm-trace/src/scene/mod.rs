@@ -92,6 +92,15 @@ impl SceneMesh {
     pub fn part_of_face(&self, face: FaceId) -> PartId {
         PartId(self.first_part + face.0)
     }
+
+    /// This mesh's vertex attributes for a mesh re-made of pieces of its faces, piece `i`
+    /// lying inside face `faces[i]` (see `MeshShading::for_pieces`); `None` for a mesh
+    /// without attributes.
+    pub(crate) fn shading_for_pieces(&self, faces: &[FaceId]) -> Option<Box<MeshShading>> {
+        let shading = self.shading.as_ref()?;
+        let sources: Vec<usize> = faces.iter().map(|&f| self.mesh.source_face(f)).collect();
+        shading.for_pieces(&sources).map(Box::new)
+    }
 }
 
 /// A scene ready for ray queries: parts with surfaces, lights, a camera and a BVH.
@@ -281,6 +290,15 @@ impl Scene {
     /// factor, wherever a hit's colour matters.
     #[inline]
     pub fn albedo_at(&self, hit: &Hit) -> Vec3 {
+        self.albedo_over(hit, 0.0)
+    }
+
+    /// [`Scene::albedo_at`] with the texture averaged over a footprint `footprint` metres
+    /// across around the hit (its mip chain, [`crate::Sampler::sample_footprint`]): what a
+    /// camera pixel covering that much of the surface sees, without the aliasing of a point
+    /// lookup when many texels fall in one pixel. Zero is a point lookup.
+    #[inline]
+    pub fn albedo_over(&self, hit: &Hit, footprint: f32) -> Vec3 {
         let base = match self.surface(hit).material {
             Material::Lambertian { albedo } => albedo,
             Material::Mirror { reflectance } => reflectance,
@@ -293,7 +311,7 @@ impl Scene {
         match &mesh.shading {
             Some(shading) => {
                 let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
-                base * shading.colour_at(face, hit.position)
+                base * shading.colour_at(face, hit.position, footprint)
             }
             None => base,
         }
@@ -308,6 +326,13 @@ impl Scene {
     /// light direction or a bounce only when it is above *both* the shading and the geometric
     /// surface, so near the shadow terminator of a coarse mesh, where the two disagree, light
     /// does not leak through the surface (it is lost, a slight darkening, instead).
+    ///
+    /// Mirrors and glass (the photon tracer's and the render modes' specular bounces) reflect
+    /// and refract about this normal, so a smooth glass mesh focuses light like the surface it
+    /// approximates. Where it faces away from the incoming ray, or the direction it gives lies
+    /// on the wrong side of the geometric surface (a reflection into it, a refraction back out
+    /// of it, near a coarse mesh's silhouette), that bounce is made about the geometric normal
+    /// instead, so no specular path crosses a surface it should not.
     #[inline]
     pub fn shading_normal_at(&self, hit: &Hit) -> Vec3 {
         if !self.has_shading || hit.part.0 >= self.mesh_part_count {

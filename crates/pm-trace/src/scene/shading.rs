@@ -43,6 +43,22 @@ impl MeshShading {
         }
     }
 
+    /// The same attributes for a mesh re-made of pieces of this one's triangles (faces split
+    /// along contact lines): piece `i` lies inside triangle `sources[i]` and is shaded by
+    /// interpolating over that whole triangle, so every point keeps the attributes it had.
+    /// `None` when some source is not a triangle of this mesh.
+    pub(crate) fn for_pieces(&self, sources: &[usize]) -> Option<Self> {
+        let triangles = sources
+            .iter()
+            .map(|&s| self.triangles.get(s).copied())
+            .collect::<Option<Vec<_>>>()?;
+        Some(Self {
+            positions: self.positions.clone(),
+            triangles,
+            attributes: self.attributes.clone(),
+        })
+    }
+
     /// Checks every attribute has one entry per vertex and every corner is a vertex.
     pub(crate) fn validate(&self) -> Result<(), String> {
         let n = self.positions.len();
@@ -101,9 +117,10 @@ impl MeshShading {
         Some(na * w.x + nb * w.y + nc * w.z)
     }
 
-    /// The colour factor at point `p` of source triangle `face`: texture × vertex colour.
+    /// The colour factor at point `p` of source triangle `face`: texture × vertex colour, the
+    /// texture averaged over a footprint `footprint` metres across (0: a point lookup).
     #[inline]
-    pub(crate) fn colour_at(&self, face: usize, p: Vec3) -> Vec3 {
+    pub(crate) fn colour_at(&self, face: usize, p: Vec3, footprint: f32) -> Vec3 {
         let Some(&corners) = self.triangles.get(face) else {
             return Vec3::ONE;
         };
@@ -118,7 +135,18 @@ impl MeshShading {
             (&self.attributes.uvs, &self.attributes.base_color_texture)
         {
             let [ta, tb, tc] = corners.map(|i| uvs[i as usize]);
-            colour *= sampler.sample(texture, ta * w.x + tb * w.y + tc * w.z);
+            let uv = ta * w.x + tb * w.y + tc * w.z;
+            colour *= if footprint > 0.0 {
+                // Texture units per metre on this triangle (the square root of the ratio of
+                // its areas in texture and in space), times the texels per texture unit.
+                let uv_area = (tb - ta).perp_dot(tc - ta).abs();
+                let area = (b - a).cross(c - a).length();
+                let per_metre =
+                    (uv_area / area).sqrt() * (texture.width() as f32 * texture.height() as f32).sqrt();
+                sampler.sample_footprint(texture, uv, footprint * per_metre)
+            } else {
+                sampler.sample(texture, uv)
+            };
         }
         colour
     }
