@@ -2,6 +2,7 @@
 //! (kd-tree plus area geometry) from them.
 
 mod maps;
+mod path;
 mod scatter;
 mod trace;
 

@@ -1,0 +1,246 @@
+//! Photon paths: one path from its light to its end (`PhotonPath`), and a chunk of paths
+//! traced one at a time or, in large scenes, two at a time with their rays cast together.
+
+use super::scatter::{glass_direction, mirror_direction};
+use super::trace::{LightPicker, TraceOptions};
+use crate::sampling::cosine_hemisphere;
+use crate::{Hit, MapAssignment, Material, Ray, RayKind, Rng, Scene};
+use glam::{Vec2, Vec3};
+use pm_kdtree::{Photon, PhotonKind};
+
+/// Traces paths `begin..end` into `out`, in path order.
+///
+/// `paired` (chosen by [`Scene::prefers_ray_pairs`]: scenes large enough for memory to
+/// dominate) keeps two paths in flight and casts their rays together with
+/// [`Scene::intersect_pair`]; when one ends, the next path takes its place at once. Photons of
+/// a path that ends before an older one are held back until the older one has ended, so the
+/// order (and every photon) is what one path at a time gives.
+pub(super) fn trace_paths(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    picker: &LightPicker,
+    (begin, end): (u32, u32),
+    paired: bool,
+    out: &mut Vec<(u32, Photon)>,
+) {
+    if !paired {
+        for path in begin..end {
+            let mut p = PhotonPath::start(scene, options, picker, path);
+            while p.is_live() {
+                let hit = scene.intersect(&p.ray, f32::INFINITY, RayKind::Other);
+                p.interact(scene, assignment, hit, out);
+            }
+        }
+        return;
+    }
+    /// A path in flight and the photons it has stored so far.
+    struct Slot {
+        path: PhotonPath,
+        index: u32,
+        photons: Vec<(u32, Photon)>,
+    }
+    let mut next = begin;
+    let mut start = |photons: Vec<(u32, Photon)>| {
+        (next < end).then(|| {
+            next += 1;
+            Slot {
+                path: PhotonPath::start(scene, options, picker, next - 1),
+                index: next - 1,
+                photons,
+            }
+        })
+    };
+    let mut slots = [start(Vec::new()), start(Vec::new())];
+    // Photons of ended paths newer than the oldest path in flight, in path order.
+    let mut waiting = Vec::new();
+    loop {
+        match &mut slots {
+            [Some(a), Some(b)] => {
+                let [hit_a, hit_b] = scene.intersect_pair([&a.path.ray, &b.path.ray], f32::INFINITY);
+                a.path.interact(scene, assignment, hit_a, &mut a.photons);
+                b.path.interact(scene, assignment, hit_b, &mut b.photons);
+            }
+            [Some(s), None] | [None, Some(s)] => {
+                let hit = scene.intersect(&s.path.ray, f32::INFINITY, RayKind::Other);
+                s.path.interact(scene, assignment, hit, &mut s.photons);
+            }
+            [None, None] => break,
+        }
+        for k in 0..2 {
+            if slots[k].as_ref().is_none_or(|s| s.path.is_live()) {
+                continue;
+            }
+            let ended = slots[k].take().expect("checked above");
+            let mut photons = ended.photons;
+            if slots[1 - k].as_ref().is_some_and(|o| o.index < ended.index) {
+                waiting.append(&mut photons);
+            } else {
+                out.append(&mut photons);
+                out.append(&mut waiting);
+            }
+            slots[k] = start(photons);
+        }
+    }
+}
+
+/// One photon path in flight: emitted from a light, then carried from surface to surface
+/// until it is absorbed, leaves the scene or reaches `max_bounces` interactions.
+struct PhotonPath {
+    rng: Rng,
+    power: Vec3,
+    /// The ray to cast next.
+    ray: Ray,
+    diffuse_bounces: u32,
+    specular: bool,
+    /// Interactions left before the cut-off; zero once the path has ended.
+    bounces_left: u32,
+}
+
+impl PhotonPath {
+    /// Path `path` of the run, emitted from a light picked in proportion to its power.
+    #[inline]
+    fn start(scene: &Scene, options: &TraceOptions, picker: &LightPicker, path: u32) -> Self {
+        let mut rng = Rng::for_pass(options.seed, options.pass, path as u64);
+        let (li, photon_power) = picker.pick(&mut rng);
+        let emitted = scene.lights()[li].emit(&mut rng);
+        PhotonPath {
+            rng,
+            power: photon_power * emitted.weight,
+            // Step off the emitter's own surface (area lights start on their geometry).
+            ray: Ray {
+                origin: emitted.ray.at(scene.epsilon()),
+                direction: emitted.ray.direction,
+            },
+            diffuse_bounces: 0,
+            specular: false,
+            bounces_left: options.max_bounces,
+        }
+    }
+
+    #[inline]
+    fn is_live(&self) -> bool {
+        self.bounces_left > 0
+    }
+
+    /// What the path does at `hit`, the closest hit of its ray (`None`: it left the scene):
+    /// a photon stored in `out` at a diffuse hit, then absorption or the next ray.
+    #[inline]
+    fn interact(
+        &mut self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        hit: Option<Hit>,
+        out: &mut Vec<(u32, Photon)>,
+    ) {
+        self.bounces_left -= 1;
+        let Some(hit) = hit else {
+            self.bounces_left = 0;
+            return;
+        };
+        let direction = match *scene.material(&hit) {
+            Material::Lambertian { .. } => {
+                let albedo = scene.albedo_at(&hit);
+                let kind = match (self.diffuse_bounces, self.specular) {
+                    (0, false) => PhotonKind::Direct,
+                    (0, true) => PhotonKind::Caustic,
+                    _ => PhotonKind::Indirect,
+                };
+                out.push((
+                    assignment.map_of(hit.part),
+                    Photon {
+                        position: hit.position,
+                        power: self.power,
+                        direction: self.ray.direction,
+                        kind,
+                    },
+                ));
+                // Russian roulette on albedo: survive with q, scale by albedo / q (unbiased).
+                let q = albedo.max_element().min(1.0);
+                if self.rng.next_f32() >= q {
+                    self.bounces_left = 0;
+                    return;
+                }
+                self.power *= albedo / q;
+                self.diffuse_bounces += 1;
+                cosine_hemisphere(hit.normal, Vec2::new(self.rng.next_f32(), self.rng.next_f32()))
+            }
+            Material::Mirror { .. } => {
+                self.power *= scene.albedo_at(&hit);
+                if self.power.max_element() <= 0.0 {
+                    self.bounces_left = 0;
+                    return;
+                }
+                self.specular = true;
+                mirror_direction(self.ray.direction, hit.normal, scene.shading_normal_at(&hit))
+            }
+            Material::Glass { ior } => {
+                self.specular = true;
+                let eta = if hit.front_face { 1.0 / ior } else { ior };
+                glass_direction(
+                    self.ray.direction,
+                    hit.normal,
+                    scene.shading_normal_at(&hit),
+                    eta,
+                    &mut self.rng,
+                )
+            }
+        };
+        self.ray = scene.spawn_ray(&hit, direction);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::photons::trace::LightPicker;
+    use crate::scenes::scale::split_rooms;
+
+    /// Paths traced two at a time store exactly the photons, in exactly the order, of paths
+    /// traced one at a time (every path draws from its own stream, and the second path's
+    /// photons are held back until the first has ended), on a scene large enough to use pairs
+    /// and for an odd number of paths.
+    #[test]
+    fn paths_traced_in_pairs_store_what_paths_traced_one_at_a_time_store() {
+        let scene = split_rooms(60).unwrap();
+        assert!(scene.prefers_ray_pairs());
+        let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
+        let options = TraceOptions {
+            photons: 2_001,
+            seed: 7,
+            ..TraceOptions::default()
+        };
+        let picker = LightPicker::new(&scene, options.photons).unwrap();
+        let trace = |paired: bool| {
+            let mut out = Vec::new();
+            trace_paths(
+                &scene,
+                &assignment,
+                &options,
+                &picker,
+                (0, options.photons),
+                paired,
+                &mut out,
+            );
+            out
+        };
+        let (one, two) = (trace(false), trace(true));
+        assert!(one.len() > 5_000, "{}", one.len());
+        assert_eq!(one.len(), two.len());
+        for (k, ((ma, a), (mb, b))) in one.iter().zip(&two).enumerate() {
+            assert_eq!(ma, mb, "photon {k}");
+            assert_eq!(
+                a.position.to_array().map(f32::to_bits),
+                b.position.to_array().map(f32::to_bits),
+                "photon {k}"
+            );
+            assert_eq!(
+                a.power.to_array().map(f32::to_bits),
+                b.power.to_array().map(f32::to_bits),
+                "photon {k}"
+            );
+            assert_eq!(a.direction, b.direction, "photon {k}");
+            assert_eq!(a.kind, b.kind, "photon {k}");
+        }
+    }
+}
