@@ -14,6 +14,7 @@ use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 
 mod batch;
+mod pair;
 mod sah;
 mod scan;
 mod shape;
@@ -23,7 +24,7 @@ mod watertight;
 use batch::TriangleBatches;
 use scan::BoundsScan;
 pub(crate) use shape::ShapePrimitive;
-use traverse::{Traversal, for_each_leaf_primitive};
+use traverse::for_each_leaf_primitive;
 pub(crate) use watertight::WatertightRay;
 
 /// Triangle sets (and shape sets) of at most this many are searched by a flat scan instead
@@ -282,64 +283,9 @@ impl SceneBvh {
         (best.1 != u32::MAX).then_some((best.0, HitPrimitive::Triangle(best.1)))
     }
 
-    /// The closest hits of two rays in `(0, t_max)` among all primitives: the same hits as
-    /// two calls of [`SceneBvh::closest`], but the two rays' BVH walks are interleaved a node
-    /// at a time, so that the cache misses of one overlap those of the other (incoherent rays,
-    /// as photon paths cast, spend most of their time waiting for memory).
-    pub(crate) fn closest_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<(f32, HitPrimitive)>; 2] {
-        let Search::Bvh(bvh) = &self.triangle_search else {
-            return rays.map(|ray| self.closest(ray, 0.0, t_max, |_| true));
-        };
-        let [a, b] = rays;
-        let (wa, wb) = (
-            WatertightRay::new(a.origin, a.direction),
-            WatertightRay::new(b.origin, b.direction),
-        );
-        let (mut best_a, mut best_b) = ((t_max, u32::MAX), (t_max, u32::MAX));
-        let mut visit_a = |i: usize, limit: &mut f32| self.visit_closest(&wa, i, &mut best_a, limit);
-        let mut visit_b = |i: usize, limit: &mut f32| self.visit_closest(&wb, i, &mut best_b, limit);
-        let mut walk_a = Traversal::<true>::new(bvh, a, 0.0, t_max);
-        let mut walk_b = Traversal::<true>::new(bvh, b, 0.0, t_max);
-        let (mut live_a, mut live_b) = (true, true);
-        while live_a && live_b {
-            live_a = walk_a.step(bvh, &mut visit_a);
-            live_b = walk_b.step(bvh, &mut visit_b);
-        }
-        while live_a {
-            live_a = walk_a.step(bvh, &mut visit_a);
-        }
-        while live_b {
-            live_b = walk_b.step(bvh, &mut visit_b);
-        }
-        let mut hits =
-            [best_a, best_b].map(|(t, i)| (i != u32::MAX).then_some((t, HitPrimitive::Triangle(i))));
-        if !matches!(self.shape_search, Search::Empty) {
-            for (hit, ray) in hits.iter_mut().zip(rays) {
-                let limit = hit.map_or(t_max, |(t, _)| t);
-                if let Some(shape_hit) = self.closest_shape(ray, 0.0, limit, &|_| true) {
-                    *hit = Some(shape_hit);
-                }
-            }
-        }
-        hits
-    }
-
-    /// A closest-hit search's test of leaf triangle `i`: keeps it in `best` if nearer, and
-    /// shrinks the walk's `limit` to it.
-    #[inline(always)]
-    fn visit_closest(&self, w: &WatertightRay, i: usize, best: &mut (f32, u32), limit: &mut f32) -> bool {
-        let t = w.intersect_triangle(&self.triangles[i].v, 0.0, best.0);
-        if t < best.0 {
-            *best = (t, i as u32);
-            // Rounded up a little, so that pruning by it stays conservative.
-            *limit = t * (1.0 + 1e-6);
-        }
-        true
-    }
-
     /// The closest shape part in `(t_min, t_max)`.
     #[inline(never)]
-    fn closest_shape(
+    pub(super) fn closest_shape(
         &self,
         ray: &Ray,
         t_min: f32,
