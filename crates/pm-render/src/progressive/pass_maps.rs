@@ -1,0 +1,43 @@
+//! One pass's photons: a kd-tree per map, and nothing else. A map's polygons never change from
+//! pass to pass, so the renderers take them from the pilot maps built once.
+
+use crate::{RenderError, RenderSettings};
+use pm_kdtree::PhotonTree;
+use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
+use rayon::prelude::*;
+
+/// The photon trees of one pass, indexed by map id, and the photons stored in them.
+pub(crate) struct PassMaps {
+    pub(crate) trees: Vec<PhotonTree>,
+    pub(crate) stored: u64,
+}
+
+/// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map,
+/// in parallel.
+pub(crate) fn trace_pass(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    settings: &RenderSettings,
+    pass: u64,
+) -> Result<PassMaps, RenderError> {
+    let options = TraceOptions {
+        photons: settings.photons,
+        seed: settings.seed,
+        pass,
+        ..TraceOptions::default()
+    };
+    let traced = trace_photons(scene, assignment, &options)?;
+    let stored = traced.stats().total_stored();
+    let (photons, _) = traced.into_parts();
+    let trees = photons
+        .into_par_iter()
+        .enumerate()
+        .map(|(map, photons)| {
+            PhotonTree::build(photons).map_err(|source| MapError::Tree {
+                map: map as u32,
+                source,
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(PassMaps { trees, stored })
+}

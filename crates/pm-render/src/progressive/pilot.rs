@@ -1,0 +1,109 @@
+//! The pilot: a photon map traced once, whose k-nearest extents fix the gather volume at every
+//! surface point for all passes. The extents are computed once, at a sparse set of *sites*
+//! (every [`SITE_STRIDE`]-th pilot photon in tree order), and a point takes its nearest site's.
+//!
+//! A k-nearest query per pixel per pass cost as much as the rest of the pass's gather (a
+//! 100-nearest search is some 27,000 instructions; the nearest of a few thousand sites some
+//! hundreds). The extent at x is therefore the estimator's k-nearest extent in the full pilot
+//! map *at the site nearest to x* (in x's map): piecewise constant over the sites' Voronoi
+//! cells, which are a few photon spacings across, well inside a gather volume of k = 100
+//! photons. It is a deterministic function of x alone (never of a pass's photons), which is all
+//! that Knaus & Zwicker's argument asks of the volume; it adapts to the photon density as the
+//! k-nearest extent does.
+
+use crate::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, RenderError, SurfacePoint};
+use glam::Vec3;
+use pm_kdtree::{Euclidean, KindMask, PhotonTree};
+use pm_trace::{MapError, PhotonMaps};
+use rayon::prelude::*;
+
+/// One site per this many pilot photons (of the kinds gathered). The photon tree stores its
+/// photons in spatial order, so every 16th is an even thinning.
+pub(super) const SITE_STRIDE: usize = 16;
+
+/// One map's sites and their extents (`None`: the k nearest all at one point, no volume).
+struct Sites {
+    tree: PhotonTree,
+    extents: Vec<Option<f32>>,
+}
+
+/// The pilot maps and, per map, the sites with their extents.
+pub(super) struct Pilot {
+    pub(super) maps: PhotonMaps,
+    sites: Vec<Sites>,
+}
+
+impl Pilot {
+    /// Picks each map's sites and computes their extents with `estimator` (in parallel; the
+    /// result does not depend on the thread count).
+    pub(super) fn new<E: FixedVolumeEstimator>(
+        maps: PhotonMaps,
+        estimator: &E,
+        options: &EstimatorOptions,
+    ) -> Result<Self, RenderError> {
+        let sites = maps
+            .maps()
+            .iter()
+            .enumerate()
+            .map(|(m, map)| {
+                let pilot = map.tree();
+                let picked = (0..pilot.len() as u32)
+                    .filter(|&i| options.kinds.accepts(pilot.get(i).kind()))
+                    .step_by(SITE_STRIDE)
+                    .map(|i| pilot.photon(i))
+                    .collect();
+                let tree = PhotonTree::build(picked).map_err(|source| MapError::Tree {
+                    map: m as u32,
+                    source,
+                })?;
+                let view = MapView {
+                    tree: pilot,
+                    polygons: map.geometry(),
+                };
+                let extents = (0..tree.len() as u32)
+                    .into_par_iter()
+                    .map_init(EstimatorScratch::new, |scratch, i| {
+                        let site = tree.get(i);
+                        let at =
+                            SurfacePoint::front(site.position(), -site.direction_l1().normalize_or_zero());
+                        estimator.nearest_extent(at, view, options, scratch)
+                    })
+                    .collect();
+                Ok(Sites { tree, extents })
+            })
+            .collect::<Result<Vec<_>, RenderError>>()?;
+        Ok(Pilot { maps, sites })
+    }
+
+    /// Heap bytes of the sites (trees and extents).
+    pub(super) fn sites_bytes(&self) -> usize {
+        self.sites
+            .iter()
+            .map(|s| s.tree.memory_bytes() + s.extents.capacity() * size_of::<Option<f32>>())
+            .sum()
+    }
+
+    /// The gather extent at `at` in map `map` (before the pass's shrink factor): the
+    /// estimator's k-nearest extent at the site nearest to `at`, or the maximum distance when
+    /// no site of the map lies within it. `None` when there is no volume.
+    pub(super) fn extent(
+        &self,
+        map: usize,
+        at: Vec3,
+        options: &EstimatorOptions,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<f32> {
+        let sites = self.sites.get(map)?;
+        sites.tree.nearest_k::<Euclidean>(
+            at,
+            1,
+            options.max_distance,
+            KindMask::ALL,
+            &mut scratch.neighbours,
+        );
+        match scratch.neighbours.as_slice().first() {
+            Some(nearest) => sites.extents[nearest.index as usize],
+            None => Some(options.max_distance),
+        }
+    }
+}

@@ -1,0 +1,164 @@
+//! One run per (scene, method) to the largest budget, the accumulated image's relative RMSE
+//! read after every pass (progressive passes, SPPM iterations, path-traced samples per pixel).
+
+use super::clock::Clock;
+use photon_maps::render::glam::DVec3;
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
+};
+use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::{CreaseAngle, Scene, SingleMap};
+use std::ops::ControlFlow;
+
+/// A renderer the study compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The unbiased path tracer (next-event estimation), one sample per pixel per batch.
+    PathTrace,
+    /// pbrt-v4's SPPM: one global map, shadow rays for direct light.
+    Sppm,
+    /// The progressive renderer with crease maps and this fixed-volume estimator.
+    Progressive(EstimatorKind),
+}
+
+impl Method {
+    /// Every method, in the tables' column order.
+    pub const ALL: [Method; 5] = [
+        Method::PathTrace,
+        Method::Sppm,
+        Method::Progressive(EstimatorKind::Disc),
+        Method::Progressive(EstimatorKind::GeometryCube),
+        Method::Progressive(EstimatorKind::GeometryBall),
+    ];
+
+    /// The column and legend label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::PathTrace => "path tracing",
+            Method::Sppm => "SPPM",
+            Method::Progressive(EstimatorKind::Disc) => "progressive disc",
+            Method::Progressive(EstimatorKind::GeometryCube) => "progressive cube",
+            Method::Progressive(EstimatorKind::GeometryBall) => "progressive ball",
+        }
+    }
+}
+
+/// The error after one pass.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample {
+    /// Rendering seconds when the pass ended.
+    pub seconds: f64,
+    /// Passes (or samples per pixel) so far.
+    pub passes: u64,
+    /// Relative RMSE against the reference.
+    pub rel_rmse: f64,
+}
+
+/// The samples of one run.
+pub struct Run {
+    pub method: Method,
+    pub samples: Vec<Sample>,
+}
+
+impl Run {
+    /// The error of the image one has at `seconds`: the last pass that ended by then
+    /// (`None` when none had).
+    pub fn at(&self, seconds: f64) -> Option<Sample> {
+        self.samples
+            .iter()
+            .take_while(|s| s.seconds <= seconds)
+            .last()
+            .copied()
+    }
+}
+
+/// Renders `scene` with `method` until `max_seconds` of rendering, reading the error against
+/// `reference` after every pass. `direct` is the progressive renderer's mode
+/// ([`Mode::Visualize`]: photons for all light; [`Mode::ShadowRays`]: shadow rays for direct
+/// light, as SPPM has it).
+pub fn run(
+    method: Method,
+    scene: &Scene,
+    base: RenderSettings,
+    direct: Mode,
+    reference: &Image,
+    max_seconds: f64,
+) -> Result<Run, String> {
+    let mut clock = Clock::start();
+    let mut samples = Vec::new();
+    let mut failure = None;
+    let mut record = |clock: &mut Clock, passes: u64, image: &dyn Fn() -> Result<Image, String>| {
+        let seconds = clock.seconds();
+        clock.exclude(
+            || match image().and_then(|i| i.relative_rmse(reference).map_err(|e| e.to_string())) {
+                Ok(e) => samples.push(Sample {
+                    seconds,
+                    passes,
+                    rel_rmse: f64::from(e),
+                }),
+                Err(e) => failure = Some(e),
+            },
+        );
+        if seconds >= max_seconds || failure.is_some() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    match method {
+        Method::PathTrace => {
+            let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
+            for batch in 0u64.. {
+                let settings = RenderSettings {
+                    mode: Mode::PathTrace,
+                    samples_per_pixel: 1,
+                    seed: base.seed.wrapping_add(batch),
+                    ..base
+                };
+                let image = Renderer::new(EstimatorKind::Disc, settings)
+                    .render(scene, &SingleMap, &())
+                    .map_err(|e| e.to_string())?
+                    .image;
+                for (s, p) in sum.iter_mut().zip(image.pixels()) {
+                    *s += p.as_dvec3();
+                }
+                let n = (batch + 1) as f64;
+                let mean = || {
+                    let pixels = sum.iter().map(|s| (*s / n).as_vec3()).collect();
+                    Image::from_pixels(base.width, base.height, pixels).map_err(|e| e.to_string())
+                };
+                if record(&mut clock, batch + 1, &mean).is_break() {
+                    break;
+                }
+            }
+        }
+        Method::Sppm => {
+            let settings = SppmSettings {
+                passes: Some(u64::MAX),
+                ..SppmSettings::new(base, 1)
+            };
+            SppmRenderer::new(settings)
+                .render_observed(scene, &(), &mut |snapshot| {
+                    record(&mut clock, snapshot.stats().passes, &|| {
+                        snapshot.image().map_err(|e| e.to_string())
+                    })
+                })
+                .map_err(|e| e.to_string())?;
+        }
+        Method::Progressive(estimator) => {
+            let settings = ProgressiveSettings {
+                passes: Some(u64::MAX),
+                ..ProgressiveSettings::new(RenderSettings { mode: direct, ..base }, 1)
+            };
+            ProgressiveRenderer::new(estimator, settings)
+                .render_observed(scene, &CreaseAngle::default(), &(), &mut |sum, stats| {
+                    record(&mut clock, stats.passes, &|| Ok(sum.mean()))
+                })
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(Run { method, samples }),
+    }
+}
