@@ -19,6 +19,8 @@ mod chart;
 mod clock;
 #[path = "../tests/support/dark_room.rs"]
 mod dark_room;
+#[path = "convergence/mask.rs"]
+mod mask;
 #[path = "convergence/methods.rs"]
 mod methods;
 #[path = "convergence/per_pass.rs"]
@@ -29,7 +31,7 @@ mod reference;
 mod report;
 
 use clap::{Parser, ValueEnum};
-use methods::{Method, Run};
+use methods::{Method, Progressive, Run};
 use photon_maps::render::{Mode, RenderSettings};
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, scenes};
 use report::{BiasRow, LeakRow, SceneResult, Study};
@@ -79,6 +81,19 @@ struct Args {
     /// The progressive renderer's direct light.
     #[arg(long, value_enum, default_value_t = Direct::ShadowRays)]
     direct: Direct,
+    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball (the per-pass tables
+    /// always show the progressive ones and SPPM).
+    #[arg(long, default_value = "path-trace,sppm,disc,cube,ball")]
+    methods: String,
+    /// k of the progressive renderer's pilot extents (SPPM's initial radius keeps k = 100).
+    #[arg(long, default_value_t = 100)]
+    progressive_k: usize,
+    /// The progressive renderer's α (Knaus & Zwicker).
+    #[arg(long, default_value_t = 2.0 / 3.0)]
+    alpha: f32,
+    /// Skip the leak and crease tables (for quick experiments with the convergence tables).
+    #[arg(long)]
+    no_per_pass: bool,
     /// Output folder: writes convergence.md there and the charts in its images/ folder.
     #[arg(long, default_value = "docs")]
     out_dir: PathBuf,
@@ -129,10 +144,25 @@ fn run(args: &Args) -> Result<(), String> {
         return Err("--pass-counts must be at least 1".into());
     }
     let max_budget = budgets.iter().copied().fold(0.0, f64::max);
-    let direct = match args.direct {
-        Direct::ShadowRays => Mode::ShadowRays,
-        Direct::Photons => Mode::Visualize,
+    let progressive = Progressive {
+        direct: match args.direct {
+            Direct::ShadowRays => Mode::ShadowRays,
+            Direct::Photons => Mode::Visualize,
+        },
+        k: args.progressive_k,
+        alpha: args.alpha,
     };
+    let chosen: Vec<Method> = args
+        .methods
+        .split(',')
+        .map(|m| {
+            let m = m.trim();
+            Method::ALL
+                .into_iter()
+                .find(|x| x.name() == m)
+                .ok_or_else(|| format!("--methods: unknown method {m:?}"))
+        })
+        .collect::<Result<_, _>>()?;
     let base = RenderSettings {
         width: size,
         height: size,
@@ -152,7 +182,10 @@ fn run(args: &Args) -> Result<(), String> {
         size,
         photons,
         threads: args.threads,
-        direct: format!("{:?}", args.direct),
+        direct: format!(
+            "{:?}, k = {}, α = {:.3}",
+            args.direct, args.progressive_k, args.alpha
+        ),
         budgets: budgets.clone(),
         scenes: Vec::new(),
         leaks: Vec::new(),
@@ -161,34 +194,69 @@ fn run(args: &Args) -> Result<(), String> {
     for name in args.scenes.split(',').map(str::trim) {
         let scene = scenes::build(name).map_err(|e| e.to_string())?;
         let reference = reference::reference(name, &scene, base, reference_seconds, &args.reference_dir)?;
+        let mask = mask::Mask::new(&scene, size, size);
+        let noise = mask.relative_rmse(&reference.half, &reference.image);
         eprintln!(
-            "{name}: reference {} spp, its own noise {:.4}",
-            reference.spp, reference.noise
+            "{name}: reference {} spp, its own noise {noise:.4}; {:.1} % of the pixels count",
+            reference.spp,
+            100.0 * mask.coverage()
         );
         let mut runs: Vec<Run> = Vec::new();
-        for method in Method::ALL {
-            let run = methods::run(method, &scene, base, direct, &reference.image, max_budget)?;
+        for &method in &chosen {
+            let run = methods::run(
+                method,
+                &scene,
+                base,
+                progressive,
+                &reference.image,
+                &mask,
+                max_budget,
+            )?;
             let last = run.samples.last().map_or((0, 0.0), |s| (s.passes, s.rel_rmse));
+            let at =
+                [4u64, 16, 64, 256].map(|n| run.after(n).map_or("—".to_owned(), |e| format!("{e:.4}")));
             eprintln!(
-                "{name}: {}: {} passes, rel. RMSE {:.4}",
+                "{name}: {}: {} passes, rel. RMSE {:.4}; after 4/16/64/256 passes {}",
                 method.label(),
                 last.0,
-                last.1
+                last.1,
+                at.join(" / ")
             );
             runs.push(run);
         }
         let chart = images.join(format!("convergence-{name}.png"));
         if font.is_ok() {
-            chart::draw(&chart, name, &runs, reference.noise)?;
+            chart::draw(&chart, name, &runs, noise)?;
         }
         study.scenes.push(SceneResult {
             name: name.to_owned(),
             reference_spp: reference.spp,
-            reference_noise: reference.noise,
+            reference_noise: noise,
+            coverage: mask.coverage(),
             runs,
             chart: font.is_ok().then(|| format!("images/convergence-{name}.png")),
         });
     }
+    if !args.no_per_pass {
+        per_pass_tables(args, base, progressive, &counts, reference_seconds, &mut study)?;
+    }
+    let path = args.out_dir.join("convergence.md");
+    report::write(&path, &study)?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The leak table (lit-unlit-rooms with crease maps, touching-rooms with contact maps) and
+/// the accordion's crease table, at `counts` passes.
+fn per_pass_tables(
+    args: &Args,
+    base: RenderSettings,
+    progressive: Progressive,
+    counts: &[u64],
+    reference_seconds: f64,
+    study: &mut Study,
+) -> Result<(), String> {
+    let size = base.width;
     for (name, partitioner) in [
         (
             "lit-unlit-rooms",
@@ -206,8 +274,8 @@ fn run(args: &Args) -> Result<(), String> {
                 &scene,
                 &*partitioner,
                 base,
-                direct,
-                &counts,
+                progressive,
+                counts,
                 &mut |passes, image| {
                     let (max, ratio) = rooms.leak(image);
                     study.leaks.push(LeakRow {
@@ -237,8 +305,8 @@ fn run(args: &Args) -> Result<(), String> {
             &accordion,
             &CreaseAngle::default(),
             base,
-            direct,
-            &counts,
+            progressive,
+            counts,
             &mut |passes, image| {
                 let (crease, interior) = creases.bias(image, &reference.image);
                 study.creases.push(BiasRow {
@@ -251,8 +319,5 @@ fn run(args: &Args) -> Result<(), String> {
         )?;
     }
     eprintln!("accordion: crease bias measured");
-    let path = args.out_dir.join("convergence.md");
-    report::write(&path, &study)?;
-    eprintln!("wrote {}", path.display());
     Ok(())
 }

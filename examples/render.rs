@@ -24,6 +24,10 @@ mod files;
 mod progressive;
 #[path = "render/report.rs"]
 mod report;
+// Counts heap bytes so that progressive runs can report their peak (an atomic add per
+// allocation; the render loops do not allocate once warm).
+#[path = "../tests/support/tracking_allocator.rs"]
+mod tracking_allocator;
 
 use choices::{EstimatorChoice, MapsChoice, ModeChoice};
 use files::{check_writable, load_scene, refuse_shared_outputs, say};

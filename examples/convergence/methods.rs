@@ -2,6 +2,7 @@
 //! read after every pass (progressive passes, SPPM iterations, path-traced samples per pixel).
 
 use super::clock::Clock;
+use super::mask::Mask;
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
@@ -31,6 +32,17 @@ impl Method {
         Method::Progressive(EstimatorKind::GeometryBall),
     ];
 
+    /// The name `--methods` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::PathTrace => "path-trace",
+            Method::Sppm => "sppm",
+            Method::Progressive(EstimatorKind::Disc) => "disc",
+            Method::Progressive(EstimatorKind::GeometryCube) => "cube",
+            Method::Progressive(EstimatorKind::GeometryBall) => "ball",
+        }
+    }
+
     /// The column and legend label.
     pub fn label(self) -> &'static str {
         match self {
@@ -41,6 +53,18 @@ impl Method {
             Method::Progressive(EstimatorKind::GeometryBall) => "progressive ball",
         }
     }
+}
+
+/// The progressive renderer's own settings (SPPM keeps pbrt-v4's).
+#[derive(Clone, Copy, Debug)]
+pub struct Progressive {
+    /// [`Mode::Visualize`] (photons for all light) or [`Mode::ShadowRays`] (shadow rays for
+    /// direct light, as SPPM has it).
+    pub direct: Mode,
+    /// k of the pilot's extents (the first pass's gather volume holds about k photons).
+    pub k: usize,
+    /// Knaus & Zwicker's α.
+    pub alpha: f32,
 }
 
 /// The error after one pass.
@@ -61,6 +85,14 @@ pub struct Run {
 }
 
 impl Run {
+    /// The error after `passes` passes, if the run got there.
+    pub fn after(&self, passes: u64) -> Option<f64> {
+        self.samples
+            .iter()
+            .find(|s| s.passes == passes)
+            .map(|s| s.rel_rmse)
+    }
+
     /// The error of the image one has at `seconds`: the last pass that ended by then
     /// (`None` when none had).
     pub fn at(&self, seconds: f64) -> Option<Sample> {
@@ -73,15 +105,14 @@ impl Run {
 }
 
 /// Renders `scene` with `method` until `max_seconds` of rendering, reading the error against
-/// `reference` after every pass. `direct` is the progressive renderer's mode
-/// ([`Mode::Visualize`]: photons for all light; [`Mode::ShadowRays`]: shadow rays for direct
-/// light, as SPPM has it).
+/// `reference` (over the pixels `mask` counts) after every pass.
 pub fn run(
     method: Method,
     scene: &Scene,
     base: RenderSettings,
-    direct: Mode,
+    progressive: Progressive,
     reference: &Image,
+    mask: &Mask,
     max_seconds: f64,
 ) -> Result<Run, String> {
     let mut clock = Clock::start();
@@ -89,16 +120,14 @@ pub fn run(
     let mut failure = None;
     let mut record = |clock: &mut Clock, passes: u64, image: &dyn Fn() -> Result<Image, String>| {
         let seconds = clock.seconds();
-        clock.exclude(
-            || match image().and_then(|i| i.relative_rmse(reference).map_err(|e| e.to_string())) {
-                Ok(e) => samples.push(Sample {
-                    seconds,
-                    passes,
-                    rel_rmse: f64::from(e),
-                }),
-                Err(e) => failure = Some(e),
-            },
-        );
+        clock.exclude(|| match image() {
+            Ok(i) => samples.push(Sample {
+                seconds,
+                passes,
+                rel_rmse: mask.relative_rmse(&i, reference),
+            }),
+            Err(e) => failure = Some(e),
+        });
         if seconds >= max_seconds || failure.is_some() {
             ControlFlow::Break(())
         } else {
@@ -146,9 +175,15 @@ pub fn run(
                 .map_err(|e| e.to_string())?;
         }
         Method::Progressive(estimator) => {
+            let render = RenderSettings {
+                mode: progressive.direct,
+                k: progressive.k,
+                ..base
+            };
             let settings = ProgressiveSettings {
                 passes: Some(u64::MAX),
-                ..ProgressiveSettings::new(RenderSettings { mode: direct, ..base }, 1)
+                alpha: progressive.alpha,
+                ..ProgressiveSettings::new(render, 1)
             };
             ProgressiveRenderer::new(estimator, settings)
                 .render_observed(scene, &CreaseAngle::default(), &(), &mut |sum, stats| {

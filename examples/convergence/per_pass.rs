@@ -3,11 +3,12 @@
 //! error at the accordion's creases against inside its facets.
 
 use super::dark_room::dark_room_pixels;
+use super::methods::Progressive;
 use photon_maps::render::glam::{Vec2, Vec3};
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings};
+use photon_maps::render::{EstimatorKind, Image, RenderSettings};
 use photon_maps::trace::{Partitioner, RayKind, Scene};
 use std::ops::ControlFlow;
 
@@ -37,14 +38,22 @@ pub fn at_pass_counts(
     scene: &Scene,
     partitioner: &dyn Partitioner,
     base: RenderSettings,
-    direct: Mode,
+    progressive: Progressive,
     counts: &[u64],
     measure: &mut (dyn FnMut(u64, &Image) + Send),
 ) -> Result<(), String> {
     let last = counts.iter().copied().max().unwrap_or(1);
     match method {
         Some(estimator) => {
-            let settings = ProgressiveSettings::new(RenderSettings { mode: direct, ..base }, last);
+            let render = RenderSettings {
+                mode: progressive.direct,
+                k: progressive.k,
+                ..base
+            };
+            let settings = ProgressiveSettings {
+                alpha: progressive.alpha,
+                ..ProgressiveSettings::new(render, last)
+            };
             ProgressiveRenderer::new(estimator, settings)
                 .render_observed(scene, partitioner, &(), &mut |sum, stats| {
                     if counts.contains(&stats.passes) {

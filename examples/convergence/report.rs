@@ -13,6 +13,8 @@ pub struct SceneResult {
     pub name: String,
     pub reference_spp: u64,
     pub reference_noise: f64,
+    /// Share of the pixels the errors are measured over.
+    pub coverage: f64,
     pub runs: Vec<Run>,
     /// The chart's path relative to the Markdown file, when drawn.
     pub chart: Option<String>,
@@ -67,7 +69,7 @@ fn markdown(s: &Study) -> String {
     );
     let _ = writeln!(
         o,
-        "Each method runs once per scene to the largest budget; the accumulated image's relative RMSE (RMSE over the reference's mean) against a path-traced reference is read after every pass, off the clock. The error at a budget is that of the last pass that *ended* within it (— : no pass had ended). Path tracing is the renderer's unbiased path tracer (next-event estimation) at one sample per pixel per pass; SPPM is pbrt-v4's algorithm (one global map, α = 2/3, shadow rays for direct light, initial radius the 100-nearest distance at each pixel's first visible point); the progressive renderer uses crease maps (30°) and the fixed-volume estimators, k = 100 for the pilot's extents, α = 2/3. The reference's own noise is estimated from its two independent halves; errors near it are not resolved. Wall times on a loaded machine are only indicative.\n"
+        "Each method runs once per scene to the largest budget; the accumulated image's relative RMSE (RMSE over the reference's mean) against a path-traced reference is read after every pass, off the clock, over the pixels that see no light source (directly or through mirrors and glass) nor lie within two pixels of one: at one jittered sample per pass a pixel on a light's outline swings between the light and its surround, a noise that would swamp every method's error alike. The error at a budget is that of the last pass that *ended* within it (— : no pass had ended). Path tracing is the renderer's unbiased path tracer (next-event estimation) at one sample per pixel per pass; SPPM is pbrt-v4's algorithm (one global map, α = 2/3, shadow rays for direct light, initial radius the 100-nearest distance at each pixel's first visible point); the progressive renderer uses crease maps (30°) and the fixed-volume estimators, k = 100 for the pilot's extents, α = 2/3. The reference's own noise is estimated from its two independent halves; errors near it are not resolved. Wall times on a loaded machine are only indicative.\n"
     );
     for scene in &s.scenes {
         let _ = writeln!(o, "## {}\n", scene.name);
@@ -80,8 +82,10 @@ fn markdown(s: &Study) -> String {
         }
         let _ = writeln!(
             o,
-            "Reference: {} samples per pixel, its own relative noise {:.4}.\n",
-            scene.reference_spp, scene.reference_noise
+            "Reference: {} samples per pixel, its own relative noise {:.4}. Errors over {:.1} % of the pixels (those that see no light).\n",
+            scene.reference_spp,
+            scene.reference_noise,
+            100.0 * scene.coverage
         );
         let _ = write!(o, "| seconds |");
         for run in &scene.runs {

@@ -52,6 +52,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         check_writable(path)?;
     }
     let bar = PassBar::new(passes);
+    let heap_before = crate::tracking_allocator::reset_peak();
     let (image, stats, range, identity) = if sppm {
         let scene = load_scene(&args.scene)?.0;
         let s = SppmSettings {
@@ -88,12 +89,13 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
         (a.mean(), out.stats, a.pass_range(), identity)
     };
+    let heap_peak = crate::tracking_allocator::peak().saturating_sub(heap_before);
     image
         .write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let m = image.mean();
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
@@ -103,6 +105,8 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         stats.trace.as_secs_f64(),
         stats.render.as_secs_f64(),
         stats.total.as_secs_f64(),
+        heap_peak as f64 / (1 << 20) as f64,
+        stats.pass_tree_bytes as f64 / (1 << 20) as f64,
         m.x,
         m.y,
         m.z
@@ -118,7 +122,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             &scene_id,
             &identity,
             range,
-            Some(&stats),
+            Some((&stats, heap_peak)),
             m.to_array(),
         );
         write_atomically(path, |w| w.write_all(json.as_bytes()))
@@ -215,7 +219,7 @@ fn stats_json(
     scene: &str,
     settings: &str,
     range: std::ops::Range<u64>,
-    stats: Option<&ProgressiveStats>,
+    stats: Option<(&ProgressiveStats, usize)>,
     mean: [f32; 3],
 ) -> String {
     let mut o = String::from("{");
@@ -229,7 +233,12 @@ fn stats_json(
         range.end,
         range.end - range.start,
     );
-    if let Some(s) = stats {
+    if let Some((s, heap_peak)) = stats {
+        let _ = write!(
+            o,
+            "\"memory_bytes\": {{\"peak_heap\": {heap_peak}, \"pass_trees\": {}, \"pilot\": {}, \"accumulation\": {}}}, ",
+            s.pass_tree_bytes, s.pilot_bytes, s.accumulation_bytes
+        );
         let _ = write!(
             o,
             "\"photons_emitted\": {}, \"photons_stored\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",

@@ -204,6 +204,14 @@ pub struct ProgressiveStats {
     pub render: Duration,
     /// Wall time of the whole run.
     pub total: Duration,
+    /// Heap bytes of the largest pass's photon trees: the photons one pass holds (earlier
+    /// passes' are dropped before the next is traced; tracing needs about twice this while
+    /// the photons are sorted into trees).
+    pub pass_tree_bytes: u64,
+    /// Heap bytes of the pilot's photon trees and sites (zero for SPPM, which has no pilot).
+    pub pilot_bytes: u64,
+    /// Heap bytes of the running sum (SPPM: its per-pixel state).
+    pub accumulation_bytes: u64,
 }
 
 /// A progressive render's sum and figures.
@@ -303,7 +311,9 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             &options,
         )?;
         stats.pilot = start.elapsed();
+        stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
+        stats.accumulation_bytes = (accumulation.sum.capacity() * size_of::<DVec3>()) as u64;
         let tiles = tiles(r.width, r.height, r.tile_size);
         loop {
             if s.passes.is_some_and(|n| accumulation.passes >= n) {
@@ -316,6 +326,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             stats.trace += t.elapsed();
             stats.photons_emitted += u64::from(r.photons);
             stats.photons_stored += maps.stored;
+            stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
             progress.phase("render");
             let t = Instant::now();
             let lighting = PassLighting {

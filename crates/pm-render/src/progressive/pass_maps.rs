@@ -12,6 +12,13 @@ pub(crate) struct PassMaps {
     pub(crate) stored: u64,
 }
 
+impl PassMaps {
+    /// Heap bytes of the trees.
+    pub(crate) fn heap_bytes(&self) -> u64 {
+        self.trees.iter().map(|t| t.heap_bytes() as u64).sum()
+    }
+}
+
 /// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map,
 /// in parallel.
 pub(crate) fn trace_pass(

@@ -75,12 +75,16 @@ impl Pilot {
         Ok(Pilot { maps, sites })
     }
 
-    /// Heap bytes of the sites (trees and extents).
-    pub(super) fn sites_bytes(&self) -> usize {
-        self.sites
+    /// Heap bytes of the pilot's photon trees and of the sites (trees and extents); the
+    /// maps' polygons are the scene's and not counted.
+    pub(super) fn heap_bytes(&self) -> usize {
+        let trees: usize = self.maps.maps().iter().map(|m| m.tree().heap_bytes()).sum();
+        let sites: usize = self
+            .sites
             .iter()
-            .map(|s| s.tree.memory_bytes() + s.extents.capacity() * size_of::<Option<f32>>())
-            .sum()
+            .map(|s| s.tree.heap_bytes() + s.extents.capacity() * size_of::<Option<f32>>())
+            .sum();
+        trees + sites
     }
 
     /// The gather extent at `at` in map `map` (before the pass's shrink factor): the

@@ -142,6 +142,7 @@ impl SppmRenderer {
             let width = r.width as usize;
             crate::image::check_image_size(r.width, r.height)?;
             let mut state = vec![PixelState::default(); width * r.height as usize];
+            stats.accumulation_bytes = (state.capacity() * size_of::<PixelState>()) as u64;
             let mut passes = 0u64;
             loop {
                 if s.passes.is_some_and(|n| passes >= n) {
@@ -153,6 +154,7 @@ impl SppmRenderer {
                 stats.trace += t.elapsed();
                 stats.photons_emitted += u64::from(r.photons);
                 stats.photons_stored += maps.stored;
+                stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
                 progress.phase("render");
                 let t = Instant::now();
                 let pass = Pass {
