@@ -21,6 +21,8 @@ mod clock;
 mod dark_room;
 #[path = "convergence/mask.rs"]
 mod mask;
+#[path = "convergence/memory.rs"]
+mod memory;
 #[path = "convergence/methods.rs"]
 mod methods;
 #[path = "convergence/per_pass.rs"]
@@ -29,6 +31,10 @@ mod per_pass;
 mod reference;
 #[path = "convergence/report.rs"]
 mod report;
+// Counts heap bytes for the memory table (an atomic add per allocation; the render loops do
+// not allocate once warm).
+#[path = "../tests/support/tracking_allocator.rs"]
+mod tracking_allocator;
 
 use clap::{Parser, ValueEnum};
 use methods::{Method, Progressive, Run};
@@ -91,6 +97,9 @@ struct Args {
     /// The progressive renderer's α (Knaus & Zwicker).
     #[arg(long, default_value_t = 2.0 / 3.0)]
     alpha: f32,
+    /// Measure the errors over every pixel, light sources and their outlines included.
+    #[arg(long)]
+    all_pixels: bool,
     /// Skip the leak and crease tables (for quick experiments with the convergence tables).
     #[arg(long)]
     no_per_pass: bool,
@@ -186,15 +195,21 @@ fn run(args: &Args) -> Result<(), String> {
             "{:?}, k = {}, α = {:.3}",
             args.direct, args.progressive_k, args.alpha
         ),
+        all_pixels: args.all_pixels,
         budgets: budgets.clone(),
         scenes: Vec::new(),
         leaks: Vec::new(),
         creases: Vec::new(),
+        memory: Vec::new(),
     };
     for name in args.scenes.split(',').map(str::trim) {
         let scene = scenes::build(name).map_err(|e| e.to_string())?;
         let reference = reference::reference(name, &scene, base, reference_seconds, &args.reference_dir)?;
-        let mask = mask::Mask::new(&scene, size, size);
+        let mask = if args.all_pixels {
+            mask::Mask::all(size, size)
+        } else {
+            mask::Mask::new(&scene, size, size)
+        };
         let noise = mask.relative_rmse(&reference.half, &reference.image);
         eprintln!(
             "{name}: reference {} spp, its own noise {noise:.4}; {:.1} % of the pixels count",
@@ -238,7 +253,16 @@ fn run(args: &Args) -> Result<(), String> {
         });
     }
     if !args.no_per_pass {
-        per_pass_tables(args, base, progressive, &counts, reference_seconds, &mut study)?;
+        let memory_counts = [1, 10, 100].map(|n: u64| if args.quick { n.min(16) } else { n });
+        let cornell = scenes::build("cornell-box").map_err(|e| e.to_string())?;
+        study.memory = memory::rows(&cornell, base, &memory_counts)?;
+        eprintln!("memory measured");
+        // Photons for all light: the leak and the crease error are the photon estimate's.
+        let photons_only = Progressive {
+            direct: Mode::Visualize,
+            ..progressive
+        };
+        per_pass_tables(args, base, photons_only, &counts, reference_seconds, &mut study)?;
     }
     let path = args.out_dir.join("convergence.md");
     report::write(&path, &study)?;

@@ -51,6 +51,11 @@ impl Mask {
         Mask((0..w * h).map(|i| !near(i % w, i / w)).collect())
     }
 
+    /// Every pixel of a `width × height` image counts.
+    pub fn all(width: u32, height: u32) -> Self {
+        Mask(vec![true; (width * height) as usize])
+    }
+
     /// Share of the pixels that count.
     pub fn coverage(&self) -> f64 {
         self.0.iter().filter(|&&m| m).count() as f64 / self.0.len().max(1) as f64
