@@ -7,7 +7,7 @@ use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{EstimatorKind, Mode, Progress, RenderSettings};
+use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -37,8 +37,9 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     if sppm && args.first_pass != 0 {
         return Err("--first-pass: SPPM runs are not shardable".into());
     }
-    // Progressive passes render like `visualize` (photons for all light).
-    settings.mode = Mode::Visualize;
+    // Each progressive pass renders like `visualize` (photons for all light) or
+    // `shadow-rays`, as --direct says; SPPM always has shadow rays for direct light.
+    settings.mode = args.direct.mode();
     let (scene_name, scene_id) = scene_identity(&args.scene)?;
     let base = args
         .out

@@ -322,7 +322,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             let pass = s.first_pass + accumulation.passes;
             progress.phase("trace");
             let t = Instant::now();
-            let maps = trace_pass(scene, assignment, r, pass)?;
+            let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
             stats.trace += t.elapsed();
             stats.photons_emitted += u64::from(r.photons);
             stats.photons_stored += maps.stored;

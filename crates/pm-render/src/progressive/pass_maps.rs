@@ -1,8 +1,10 @@
 //! One pass's photons: a kd-tree per map, and nothing else. A map's polygons never change from
-//! pass to pass, so the renderers take them from the pilot maps built once.
+//! pass to pass, so the renderers take them from the pilot maps built once; and photons of
+//! kinds the pass never gathers (direct ones, when shadow rays carry direct light) are not put
+//! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
 
 use crate::{RenderError, RenderSettings};
-use pm_kdtree::PhotonTree;
+use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
 
@@ -19,13 +21,14 @@ impl PassMaps {
     }
 }
 
-/// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map,
-/// in parallel.
+/// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map
+/// of the photons of the kinds `kinds` accepts, in parallel.
 pub(crate) fn trace_pass(
     scene: &Scene,
     assignment: &MapAssignment,
     settings: &RenderSettings,
     pass: u64,
+    kinds: KindMask,
 ) -> Result<PassMaps, RenderError> {
     let options = TraceOptions {
         photons: settings.photons,
@@ -39,7 +42,10 @@ pub(crate) fn trace_pass(
     let trees = photons
         .into_par_iter()
         .enumerate()
-        .map(|(map, photons)| {
+        .map(|(map, mut photons)| {
+            if !kinds.accepts_all() {
+                photons.retain(|p| kinds.accepts(p.kind));
+            }
             PhotonTree::build(photons).map_err(|source| MapError::Tree {
                 map: map as u32,
                 source,

@@ -150,7 +150,7 @@ impl SppmRenderer {
                 }
                 progress.phase("trace");
                 let t = Instant::now();
-                let maps = trace_pass(scene, &assignment, r, passes)?;
+                let maps = trace_pass(scene, &assignment, r, passes, options.kinds)?;
                 stats.trace += t.elapsed();
                 stats.photons_emitted += u64::from(r.photons);
                 stats.photons_stored += maps.stored;
