@@ -9,7 +9,8 @@
 //! that ended within it. So the study takes about scenes × methods × the largest budget, plus
 //! the references (cached in `--reference-dir`, reused by later runs).
 //!
-//! The full study (about 30 minutes on 2 quiet cores, references included):
+//! The full study (about 70 minutes on 2 quiet cores, 40 of them the 600 s path-traced
+//! references, which later runs reuse from the cache):
 //! `cargo run --release --example convergence`
 //! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
 
@@ -97,6 +98,10 @@ struct Args {
     /// The progressive renderer's α (Knaus & Zwicker).
     #[arg(long, default_value_t = 2.0 / 3.0)]
     alpha: f32,
+    /// What the budgets count: wall time, or CPU time over the thread count (steadier on a
+    /// shared machine).
+    #[arg(long, value_enum, default_value_t = clock::ClockKind::Wall)]
+    clock: clock::ClockKind,
     /// Measure the errors over every pixel, light sources and their outlines included.
     #[arg(long)]
     all_pixels: bool,
@@ -191,6 +196,7 @@ fn run(args: &Args) -> Result<(), String> {
         size,
         photons,
         threads: args.threads,
+        clock: format!("{:?}", args.clock),
         direct: format!(
             "{:?}, k = {}, α = {:.3}",
             args.direct, args.progressive_k, args.alpha
@@ -226,6 +232,7 @@ fn run(args: &Args) -> Result<(), String> {
                 &reference.image,
                 &mask,
                 max_budget,
+                args.clock,
             )?;
             let last = run.samples.last().map_or((0, 0.0), |s| (s.passes, s.rel_rmse));
             let at =

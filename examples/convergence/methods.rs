@@ -1,7 +1,7 @@
 //! One run per (scene, method) to the largest budget, the accumulated image's relative RMSE
 //! read after every pass (progressive passes, SPPM iterations, path-traced samples per pixel).
 
-use super::clock::Clock;
+use super::clock::{Clock, ClockKind};
 use super::mask::Mask;
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::progressive::{
@@ -114,8 +114,9 @@ pub fn run(
     reference: &Image,
     mask: &Mask,
     max_seconds: f64,
+    clock: ClockKind,
 ) -> Result<Run, String> {
-    let mut clock = Clock::start();
+    let mut clock = Clock::start(clock, base.threads);
     let mut samples = Vec::new();
     let mut failure = None;
     let mut record = |clock: &mut Clock, passes: u64, image: &dyn Fn() -> Result<Image, String>| {
