@@ -224,16 +224,13 @@ fn run(args: &Args) -> Result<(), String> {
         );
         let mut runs: Vec<Run> = Vec::new();
         for &method in &chosen {
-            let run = methods::run(
-                method,
-                &scene,
-                base,
-                progressive,
-                &reference.image,
-                &mask,
-                max_budget,
-                args.clock,
-            )?;
+            let measure = methods::Measure {
+                reference: &reference.image,
+                mask: &mask,
+                max_seconds: max_budget,
+                clock: args.clock,
+            };
+            let run = methods::run(method, &scene, base, progressive, &measure)?;
             let last = run.samples.last().map_or((0, 0.0), |s| (s.passes, s.rel_rmse));
             let at =
                 [4u64, 16, 64, 256].map(|n| run.after(n).map_or("—".to_owned(), |e| format!("{e:.4}")));

@@ -104,18 +104,33 @@ impl Run {
     }
 }
 
-/// Renders `scene` with `method` until `max_seconds` of rendering, reading the error against
-/// `reference` (over the pixels `mask` counts) after every pass.
+/// What a run is measured against and for how long.
+pub struct Measure<'a> {
+    /// The path-traced reference.
+    pub reference: &'a Image,
+    /// The pixels the error counts.
+    pub mask: &'a Mask,
+    /// Stop after the pass that ends past this many seconds.
+    pub max_seconds: f64,
+    /// What the seconds count.
+    pub clock: ClockKind,
+}
+
+/// Renders `scene` with `method` until `measure.max_seconds` of rendering, reading the error
+/// against the reference after every pass.
 pub fn run(
     method: Method,
     scene: &Scene,
     base: RenderSettings,
     progressive: Progressive,
-    reference: &Image,
-    mask: &Mask,
-    max_seconds: f64,
-    clock: ClockKind,
+    measure: &Measure<'_>,
 ) -> Result<Run, String> {
+    let Measure {
+        reference,
+        mask,
+        max_seconds,
+        clock,
+    } = *measure;
     let mut clock = Clock::start(clock, base.threads);
     let mut samples = Vec::new();
     let mut failure = None;

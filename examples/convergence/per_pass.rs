@@ -148,7 +148,7 @@ impl Creases {
         if ((bounds.max.x - bounds.min.x) - expected).abs() > 0.05 * expected {
             return Err("the accordion's size changed: update STEP and FACETS".into());
         }
-        let fold = |i: usize| Vec2::new(i as f32 * STEP, if i % 2 == 0 { 0.0 } else { STEP });
+        let fold = |i: usize| Vec2::new(i as f32 * STEP, if i.is_multiple_of(2) { 0.0 } else { STEP });
         let camera = scene.camera();
         let aspect = width as f32 / height as f32;
         let (mut crease, mut interior) = (Vec::new(), Vec::new());
