@@ -198,8 +198,13 @@ fn run(args: &Args) -> Result<(), String> {
         threads: args.threads,
         clock: format!("{:?}", args.clock),
         direct: format!(
-            "{:?}, k = {}, α = {:.3}",
-            args.direct, args.progressive_k, args.alpha
+            "{}, k = {}, α = {:.3}",
+            match args.direct {
+                Direct::ShadowRays => "shadow rays",
+                Direct::Photons => "photons",
+            },
+            args.progressive_k,
+            args.alpha
         ),
         all_pixels: args.all_pixels,
         budgets: budgets.clone(),
@@ -245,7 +250,11 @@ fn run(args: &Args) -> Result<(), String> {
         }
         let chart = images.join(format!("convergence-{name}.png"));
         if font.is_ok() {
-            chart::draw(&chart, name, &runs, noise)?;
+            let axis = match args.clock {
+                clock::ClockKind::Wall => format!("rendering seconds, wall time ({} threads)", args.threads),
+                clock::ClockKind::Cpu => format!("rendering seconds, CPU time / {} threads", args.threads),
+            };
+            chart::draw(&chart, name, &runs, noise, &axis)?;
         }
         study.scenes.push(SceneResult {
             name: name.to_owned(),
@@ -259,7 +268,11 @@ fn run(args: &Args) -> Result<(), String> {
     if !args.no_per_pass {
         let memory_counts = [1, 10, 100].map(|n: u64| if args.quick { n.min(16) } else { n });
         let cornell = scenes::build("cornell-box").map_err(|e| e.to_string())?;
-        study.memory = memory::rows(&cornell, base, &memory_counts)?;
+        let memory_base = RenderSettings {
+            mode: progressive.direct,
+            ..base
+        };
+        study.memory = memory::rows(&cornell, memory_base, &memory_counts)?;
         eprintln!("memory measured");
         // Photons for all light: the leak and the crease error are the photon estimate's.
         let photons_only = Progressive {

@@ -25,8 +25,8 @@ pub fn register_font(path: &Path) -> Result<(), String> {
 }
 
 /// Draws `runs` of scene `title` into `path` (800 × 500 PNG); `floor` is the reference's own
-/// noise, drawn as a dashed line.
-pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64) -> Result<(), String> {
+/// noise, drawn as a dashed line; `seconds` labels the time axis.
+pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64, seconds: &str) -> Result<(), String> {
     let (width, height) = (800u32, 500u32);
     let mut buffer = vec![255u8; (width * height * 3) as usize];
     let points = runs.iter().flat_map(|r| r.samples.iter());
@@ -56,7 +56,7 @@ pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64) -> Result<(), St
             .map_err(|e| fail(&e))?;
         chart
             .configure_mesh()
-            .x_desc("rendering seconds (2 threads)")
+            .x_desc(seconds)
             .y_desc("relative RMSE")
             .label_style(("sans-serif", 14))
             .draw()
