@@ -111,3 +111,74 @@ impl Pilot {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::progressive::{PILOT_PASS, trace_and_build};
+    use crate::{GeometryCube, Mode, RenderSettings};
+    use pm_trace::{CreaseAngle, Partitioner, scenes};
+
+    /// The pilot's extent at a point against brute force: the nearest site (every 16th
+    /// photon of the gathered kinds, in tree order) found by a scan, and the k-th smallest
+    /// Chebyshev distance from it to the map's photons of those kinds (the maximum distance
+    /// when fewer than k lie within it).
+    #[test]
+    fn extent_is_the_brute_force_k_nearest_extent_at_the_nearest_site() {
+        let scene = scenes::build("colored-rooms").unwrap();
+        let assignment = CreaseAngle::default().partition(&scene);
+        let settings = RenderSettings {
+            photons: 4_000,
+            k: 20,
+            mode: Mode::ShadowRays,
+            seed: 3,
+            ..RenderSettings::default()
+        };
+        let options = settings.estimator_options(&scene.bounds());
+        let maps = trace_and_build(&scene, &assignment, &settings, PILOT_PASS)
+            .unwrap()
+            .0;
+        let queries = trace_and_build(&scene, &assignment, &settings, 0).unwrap().0;
+        let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
+        let mut scratch = EstimatorScratch::new();
+        let mut checked = 0;
+        for (m, map) in pilot.maps.maps().iter().enumerate() {
+            let tree = map.tree();
+            let accepted: Vec<Vec3> = (0..tree.len() as u32)
+                .filter(|&i| options.kinds.accepts(tree.get(i).kind()))
+                .map(|i| tree.position(i))
+                .collect();
+            let sites: Vec<Vec3> = accepted.iter().copied().step_by(SITE_STRIDE).collect();
+            let probe = queries.map(m as u32).tree();
+            for q in (0..probe.len() as u32).step_by(37).map(|i| probe.position(i)) {
+                let got = pilot.extent(m, q, &options, &mut scratch);
+                let nearest = sites
+                    .iter()
+                    .copied()
+                    .filter(|s| s.distance(q) <= options.max_distance)
+                    .min_by(|a, b| a.distance(q).total_cmp(&b.distance(q)));
+                let expected = match nearest {
+                    None => Some(options.max_distance),
+                    Some(site) => {
+                        let mut d: Vec<f32> = accepted
+                            .iter()
+                            .map(|p| (*p - site).abs().max_element())
+                            .filter(|&d| d <= options.max_distance)
+                            .collect();
+                        d.sort_by(f32::total_cmp);
+                        let extent = d.get(options.k - 1).copied().unwrap_or(options.max_distance);
+                        (extent > 0.0).then_some(extent)
+                    }
+                };
+                match (got, expected) {
+                    (Some(g), Some(e)) => {
+                        assert!((g - e).abs() <= 1e-5 * e.max(1e-3), "map {m} at {q}: {g} vs {e}")
+                    }
+                    (g, e) => assert_eq!(g, e, "map {m} at {q}"),
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked > 50, "only {checked} points checked");
+    }
+}
