@@ -1,105 +1,364 @@
-//! Equal-time convergence: relative RMSE against a path-traced reference versus wall time for
-//! the progressive renderer (cube + crease maps; photons for all light, or shadow rays for
-//! direct light as SPPM has it) and the SPPM baseline (one global map), on
-//! the report's four scenes. Prints a Markdown table.
+//! The convergence study: relative RMSE against a path-traced reference versus rendering
+//! seconds for path tracing, SPPM and the progressive renderer (disc, cube and ball with crease
+//! maps) on the report's four scenes; the light leaked into the unlit room and the accordion's
+//! crease bias per pass count. Writes `docs/convergence.md` and
+//! `docs/images/convergence-<scene>.png`.
 //!
-//! `cargo run --release --example convergence -- --size 96 --budgets 0.5,1,2,4,8`
+//! Each (scene, method) is run once, to the largest budget, and the accumulated image's error
+//! is read after every pass (off the clock): the error at a budget is that of the last pass
+//! that ended within it. So the study takes about scenes × methods × the largest budget, plus
+//! the references (cached in `--reference-dir`, reused by later runs).
+//!
+//! The full study (about 70 minutes on 2 quiet cores, 40 of them the 600 s path-traced
+//! references, which later runs reuse from the cache):
+//! `cargo run --release --example convergence`
+//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
 
-use clap::Parser;
-use photon_maps::render::progressive::{
-    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
-};
-use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, scenes};
-use std::time::{Duration, Instant};
+#[path = "convergence/chart.rs"]
+mod chart;
+#[path = "convergence/clock.rs"]
+mod clock;
+#[path = "../tests/support/dark_room.rs"]
+mod dark_room;
+#[path = "convergence/mask.rs"]
+mod mask;
+#[path = "convergence/memory.rs"]
+mod memory;
+#[path = "convergence/methods.rs"]
+mod methods;
+#[path = "convergence/per_pass.rs"]
+mod per_pass;
+#[path = "convergence/reference.rs"]
+mod reference;
+#[path = "convergence/report.rs"]
+mod report;
+// Counts heap bytes for the memory table (an atomic add per allocation; the render loops do
+// not allocate once warm).
+#[path = "../tests/support/tracking_allocator.rs"]
+mod tracking_allocator;
 
-/// Equal-time comparison of progressive photon mapping (cube + crease) with SPPM.
+use clap::{Parser, ValueEnum};
+use methods::{Method, Progressive, Run};
+use photon_maps::render::{Mode, RenderSettings};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, scenes};
+use report::{BiasRow, LeakRow, SceneResult, Study};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// How the progressive renderer lights the first diffuse hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Direct {
+    /// Shadow rays for direct light, photons for the rest (as SPPM has it).
+    ShadowRays,
+    /// Photons for all light.
+    Photons,
+}
+
+/// Convergence of progressive photon mapping against SPPM and path tracing.
 #[derive(Parser, Debug)]
 struct Args {
-    /// Image side in pixels (square images).
-    #[arg(long, default_value_t = 96)]
-    size: u32,
-    /// Photon paths per pass, for both renderers.
-    #[arg(long, default_value_t = 50_000)]
-    photons: u32,
-    /// Wall-time budgets in seconds, comma-separated.
-    #[arg(long, default_value = "0.5,1,2,4,8")]
-    budgets: String,
-    /// Path-traced reference samples per pixel.
-    #[arg(long, default_value_t = 2048)]
-    reference_spp: u32,
+    /// A small, fast run for smoke tests: 24×24 pixels, 4,000 photons per pass, budgets up to
+    /// 0.2 s, 1 s references, pass counts 1, 2, 4 (explicit options still win).
+    #[arg(long)]
+    quick: bool,
+    /// Image side in pixels (square images) [default: 128; quick: 24].
+    #[arg(long)]
+    size: Option<u32>,
+    /// Photon paths per pass, for SPPM and the progressive renderer [default: 50000; quick: 4000].
+    #[arg(long)]
+    photons: Option<u32>,
+    /// Wall-time budgets in seconds, comma-separated [default: 0.5,1,2,4,8,15,30,60].
+    #[arg(long)]
+    budgets: Option<String>,
+    /// Pass counts of the leak and crease tables, comma-separated [default: 1,4,16,64].
+    #[arg(long)]
+    pass_counts: Option<String>,
+    /// Seconds of path tracing per reference [default: 600; quick: 1].
+    #[arg(long)]
+    reference_seconds: Option<f64>,
+    /// Where references are cached (one EXR per scene and size; delete to re-render).
+    #[arg(long, default_value = "target/convergence-reference")]
+    reference_dir: PathBuf,
     /// Scenes, comma-separated.
     #[arg(long, default_value = "cornell-box,lit-unlit-rooms,colored-rooms,accordion")]
     scenes: String,
+    /// Worker threads for every renderer.
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
+    /// The progressive renderer's direct light.
+    #[arg(long, value_enum, default_value_t = Direct::ShadowRays)]
+    direct: Direct,
+    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball (the per-pass tables
+    /// always show the progressive ones and SPPM).
+    #[arg(long, default_value = "path-trace,sppm,disc,cube,ball")]
+    methods: String,
+    /// k of the progressive renderer's pilot extents (SPPM's initial radius keeps k = 100).
+    #[arg(long, default_value_t = 100)]
+    progressive_k: usize,
+    /// The progressive renderer's α (Knaus & Zwicker).
+    #[arg(long, default_value_t = 2.0 / 3.0)]
+    alpha: f32,
+    /// What the budgets count: wall time, or CPU time over the thread count (steadier on a
+    /// shared machine).
+    #[arg(long, value_enum, default_value_t = clock::ClockKind::Wall)]
+    clock: clock::ClockKind,
+    /// Measure the errors over every pixel, light sources and their outlines included.
+    #[arg(long)]
+    all_pixels: bool,
+    /// Skip the leak and crease tables (for quick experiments with the convergence tables).
+    #[arg(long)]
+    no_per_pass: bool,
+    /// Output folder: writes convergence.md there and the charts in its images/ folder.
+    #[arg(long, default_value = "docs")]
+    out_dir: PathBuf,
+    /// TrueType font for the charts' labels.
+    #[arg(long, default_value = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")]
+    font: PathBuf,
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args = Args::parse();
-    let budgets: Vec<f64> = args
-        .budgets
-        .split(',')
-        .map(|b| b.trim().parse())
-        .collect::<Result<_, _>>()?;
-    let base = RenderSettings {
-        width: args.size,
-        height: args.size,
-        photons: args.photons,
-        mode: Mode::Visualize,
-        seed: 1,
-        ..RenderSettings::default()
-    };
-    println!(
-        "| scene | budget (s) | progressive passes | progressive rel. RMSE | progressive + shadow rays passes | rel. RMSE | SPPM passes | SPPM rel. RMSE | SPPM / progressive | SPPM / progressive + shadow rays |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
-    for name in args.scenes.split(',') {
-        let scene = scenes::build(name.trim())?;
-        let start = Instant::now();
-        let reference: Image = Renderer::new(
-            EstimatorKind::Disc,
-            RenderSettings {
-                mode: Mode::PathTrace,
-                samples_per_pixel: args.reference_spp,
-                seed: 1234,
-                ..base
-            },
-        )
-        .render(&scene, &CreaseAngle::default(), &())?
-        .image;
-        eprintln!("{name}: reference in {:.1} s", start.elapsed().as_secs_f64());
-        for &budget in &budgets {
-            let time = Some(Duration::from_secs_f64(budget));
-            let progressive = |mode| {
-                ProgressiveRenderer::new(
-                    EstimatorKind::GeometryCube,
-                    ProgressiveSettings {
-                        passes: None,
-                        time_budget: time,
-                        ..ProgressiveSettings::new(RenderSettings { mode, ..base }, 1)
-                    },
-                )
-                .render(&scene, &CreaseAngle::default(), &())
-            };
-            let visualize = progressive(Mode::Visualize)?;
-            let shadow = progressive(Mode::ShadowRays)?;
-            let sppm = SppmRenderer::new(SppmSettings {
-                passes: None,
-                time_budget: time,
-                ..SppmSettings::new(base, 1)
-            })
-            .render(&scene, &())?;
-            let p = visualize.accumulation.mean().relative_rmse(&reference)?;
-            let q = shadow.accumulation.mean().relative_rmse(&reference)?;
-            let s = sppm.image.relative_rmse(&reference)?;
-            println!(
-                "| {name} | {budget} | {} | {p:.4} | {} | {q:.4} | {} | {s:.4} | {:.2} | {:.2} |",
-                visualize.stats.passes,
-                shadow.stats.passes,
-                sppm.stats.passes,
-                s / p,
-                s / q
-            );
+fn main() -> ExitCode {
+    match run(&Args::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("convergence: {e}");
+            ExitCode::FAILURE
         }
     }
+}
+
+fn list<T: std::str::FromStr>(text: &str, what: &str) -> Result<Vec<T>, String> {
+    text.split(',')
+        .map(|t| t.trim().parse().map_err(|_| format!("{what}: cannot read {t:?}")))
+        .collect()
+}
+
+fn run(args: &Args) -> Result<(), String> {
+    let q = args.quick;
+    let size = args.size.unwrap_or(if q { 24 } else { 128 });
+    let photons = args.photons.unwrap_or(if q { 4_000 } else { 50_000 });
+    let budgets: Vec<f64> = list(
+        args.budgets.as_deref().unwrap_or(if q {
+            "0.02,0.05,0.1,0.15,0.2"
+        } else {
+            "0.5,1,2,4,8,15,30,60"
+        }),
+        "--budgets",
+    )?;
+    let counts: Vec<u64> = list(
+        args.pass_counts
+            .as_deref()
+            .unwrap_or(if q { "1,2,4" } else { "1,4,16,64" }),
+        "--pass-counts",
+    )?;
+    let reference_seconds = args.reference_seconds.unwrap_or(if q { 1.0 } else { 600.0 });
+    if budgets.is_empty() || budgets.iter().any(|b| !(b.is_finite() && *b > 0.0)) {
+        return Err("--budgets must be positive seconds".into());
+    }
+    if counts.contains(&0) {
+        return Err("--pass-counts must be at least 1".into());
+    }
+    let max_budget = budgets.iter().copied().fold(0.0, f64::max);
+    let progressive = Progressive {
+        direct: match args.direct {
+            Direct::ShadowRays => Mode::ShadowRays,
+            Direct::Photons => Mode::Visualize,
+        },
+        k: args.progressive_k,
+        alpha: args.alpha,
+    };
+    let chosen: Vec<Method> = args
+        .methods
+        .split(',')
+        .map(|m| {
+            let m = m.trim();
+            Method::ALL
+                .into_iter()
+                .find(|x| x.name() == m)
+                .ok_or_else(|| format!("--methods: unknown method {m:?}"))
+        })
+        .collect::<Result<_, _>>()?;
+    let base = RenderSettings {
+        width: size,
+        height: size,
+        photons,
+        seed: 1,
+        threads: args.threads,
+        ..RenderSettings::default()
+    };
+    let images = args.out_dir.join("images");
+    std::fs::create_dir_all(&images).map_err(|e| format!("{}: {e}", images.display()))?;
+    let font = chart::register_font(&args.font);
+    if let Err(e) = &font {
+        eprintln!("convergence: {e}; charts are not drawn");
+    }
+    let mut study = Study {
+        command: std::env::args().skip(1).collect::<Vec<_>>().join(" "),
+        size,
+        photons,
+        threads: args.threads,
+        clock: format!("{:?}", args.clock),
+        direct: format!(
+            "{}, k = {}, α = {:.3}",
+            match args.direct {
+                Direct::ShadowRays => "shadow rays",
+                Direct::Photons => "photons",
+            },
+            args.progressive_k,
+            args.alpha
+        ),
+        all_pixels: args.all_pixels,
+        budgets: budgets.clone(),
+        scenes: Vec::new(),
+        leaks: Vec::new(),
+        creases: Vec::new(),
+        memory: Vec::new(),
+    };
+    for name in args.scenes.split(',').map(str::trim) {
+        let scene = scenes::build(name).map_err(|e| e.to_string())?;
+        let reference = reference::reference(name, &scene, base, reference_seconds, &args.reference_dir)?;
+        let mask = if args.all_pixels {
+            mask::Mask::all(size, size)
+        } else {
+            mask::Mask::new(&scene, size, size)
+        };
+        let noise = mask.relative_rmse(&reference.half, &reference.image);
+        eprintln!(
+            "{name}: reference {} spp, its own noise {noise:.4}; {:.1} % of the pixels count",
+            reference.spp,
+            100.0 * mask.coverage()
+        );
+        let mut runs: Vec<Run> = Vec::new();
+        for &method in &chosen {
+            let measure = methods::Measure {
+                reference: &reference.image,
+                mask: &mask,
+                max_seconds: max_budget,
+                clock: args.clock,
+            };
+            let run = methods::run(method, &scene, base, progressive, &measure)?;
+            let last = run.samples.last().map_or((0, 0.0), |s| (s.passes, s.rel_rmse));
+            let at =
+                [4u64, 16, 64, 256].map(|n| run.after(n).map_or("—".to_owned(), |e| format!("{e:.4}")));
+            eprintln!(
+                "{name}: {}: {} passes, rel. RMSE {:.4}; after 4/16/64/256 passes {}",
+                method.label(),
+                last.0,
+                last.1,
+                at.join(" / ")
+            );
+            runs.push(run);
+        }
+        let chart = images.join(format!("convergence-{name}.png"));
+        if font.is_ok() {
+            let axis = match args.clock {
+                clock::ClockKind::Wall => format!("rendering seconds, wall time ({} threads)", args.threads),
+                clock::ClockKind::Cpu => format!("rendering seconds, CPU time / {} threads", args.threads),
+            };
+            chart::draw(&chart, name, &runs, noise, &axis)?;
+        }
+        study.scenes.push(SceneResult {
+            name: name.to_owned(),
+            reference_spp: reference.spp,
+            reference_noise: noise,
+            coverage: mask.coverage(),
+            runs,
+            chart: font.is_ok().then(|| format!("images/convergence-{name}.png")),
+        });
+    }
+    if !args.no_per_pass {
+        let memory_counts = [1, 10, 100].map(|n: u64| if args.quick { n.min(16) } else { n });
+        let cornell = scenes::build("cornell-box").map_err(|e| e.to_string())?;
+        let memory_base = RenderSettings {
+            mode: progressive.direct,
+            ..base
+        };
+        study.memory = memory::rows(&cornell, memory_base, &memory_counts)?;
+        eprintln!("memory measured");
+        // Photons for all light: the leak and the crease error are the photon estimate's.
+        let photons_only = Progressive {
+            direct: Mode::Visualize,
+            ..progressive
+        };
+        per_pass_tables(args, base, photons_only, &counts, reference_seconds, &mut study)?;
+    }
+    let path = args.out_dir.join("convergence.md");
+    report::write(&path, &study)?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// The leak table (lit-unlit-rooms with crease maps, touching-rooms with contact maps) and
+/// the accordion's crease table, at `counts` passes.
+fn per_pass_tables(
+    args: &Args,
+    base: RenderSettings,
+    progressive: Progressive,
+    counts: &[u64],
+    reference_seconds: f64,
+    study: &mut Study,
+) -> Result<(), String> {
+    let size = base.width;
+    for (name, partitioner) in [
+        (
+            "lit-unlit-rooms",
+            Box::new(CreaseAngle::default()) as Box<dyn Partitioner>,
+        ),
+        ("touching-rooms", Box::new(Contact::default())),
+    ] {
+        let scene = partitioner
+            .prepare_scene(scenes::build(name).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?;
+        let rooms = per_pass::Rooms::new(&scene, size, size);
+        for method in per_pass::METHODS {
+            per_pass::at_pass_counts(
+                method,
+                &scene,
+                &*partitioner,
+                base,
+                progressive,
+                counts,
+                &mut |passes, image| {
+                    let (max, ratio) = rooms.leak(image);
+                    study.leaks.push(LeakRow {
+                        scene: name,
+                        method: per_pass::label(method),
+                        passes,
+                        dark_max: max,
+                        ratio,
+                    });
+                },
+            )?;
+        }
+        eprintln!("{name}: leaks measured");
+    }
+    let accordion = scenes::build("accordion").map_err(|e| e.to_string())?;
+    let reference = reference::reference(
+        "accordion",
+        &accordion,
+        base,
+        reference_seconds,
+        &args.reference_dir,
+    )?;
+    let creases = per_pass::Creases::new(&accordion, size, size, 0.03)?;
+    for method in per_pass::METHODS {
+        per_pass::at_pass_counts(
+            method,
+            &accordion,
+            &CreaseAngle::default(),
+            base,
+            progressive,
+            counts,
+            &mut |passes, image| {
+                let (crease, interior) = creases.bias(image, &reference.image);
+                study.creases.push(BiasRow {
+                    method: per_pass::label(method),
+                    passes,
+                    crease,
+                    interior,
+                });
+            },
+        )?;
+    }
+    eprintln!("accordion: crease bias measured");
     Ok(())
 }

@@ -24,8 +24,12 @@ mod files;
 mod progressive;
 #[path = "render/report.rs"]
 mod report;
+// Counts heap bytes so that progressive runs can report their peak (an atomic add per
+// allocation; the render loops do not allocate once warm).
+#[path = "../tests/support/tracking_allocator.rs"]
+mod tracking_allocator;
 
-use choices::{EstimatorChoice, MapsChoice, ModeChoice};
+use choices::{DirectChoice, EstimatorChoice, MapsChoice, ModeChoice};
 use files::{check_writable, load_scene, refuse_shared_outputs, say};
 use report::{Record, json_number, json_object, json_string, summary};
 
@@ -88,6 +92,10 @@ struct Args {
     /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
     #[arg(long)]
     time: Option<f64>,
+    /// Progressive mode: direct light by photons (as `visualize`) or by shadow rays with
+    /// photons for the rest (as SPPM has it).
+    #[arg(long, value_enum, default_value_t = DirectChoice::Photons)]
+    direct: DirectChoice,
     /// Merge progressive shards (EXR files) into --out.
     #[arg(long, num_args = 1..)]
     merge: Vec<PathBuf>,

@@ -14,6 +14,9 @@ struct Case {
     /// Passes of the first shard; the second brings the total to `many`.
     few: u64,
     many: u64,
+    /// Photons for all light, or shadow rays for direct light (the pass trees then hold no
+    /// direct photons).
+    mode: Mode,
 }
 
 /// Relative RMSE after `few` and after `many` passes, and the relative error of the mean
@@ -25,6 +28,7 @@ fn run(case: &Case) -> (f32, f32, f32) {
         height: case.size,
         photons: case.photons,
         seed: 1,
+        mode: case.mode,
         ..RenderSettings::default()
     };
     let reference = Renderer::new(
@@ -80,6 +84,21 @@ fn cornell_box_rmse_falls_with_passes() {
         reference_spp: 1024,
         few: 2,
         many: 16,
+        mode: Mode::Visualize,
+    });
+    assert!(few / many >= 1.4, "RMSE {few} -> {many}");
+    assert!(mean_error < 0.03, "mean error {mean_error}");
+}
+
+#[test]
+fn cornell_box_with_shadow_rays_for_direct_light_converges_too() {
+    let (few, many, mean_error) = run(&Case {
+        size: 32,
+        photons: 10_000,
+        reference_spp: 1024,
+        few: 2,
+        many: 16,
+        mode: Mode::ShadowRays,
     });
     assert!(few / many >= 1.4, "RMSE {few} -> {many}");
     assert!(mean_error < 0.03, "mean error {mean_error}");
@@ -95,6 +114,7 @@ fn cornell_box_128_rmse_falls_from_4_to_32_passes() {
         reference_spp: 4096,
         few: 4,
         many: 32,
+        mode: Mode::Visualize,
     });
     assert!(few / many >= 1.6, "RMSE {few} -> {many}");
     assert!(mean_error < 0.02, "mean error {mean_error}");

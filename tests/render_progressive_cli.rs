@@ -93,9 +93,17 @@ fn cli_shards_merge_into_the_single_run_and_mismatches_are_refused() {
         &["--first-pass", "5", "--passes", "1", "--k", "20"],
     )
     .unwrap();
+    // Shadow rays for direct light make another image: such a shard does not merge either.
+    let shadow = shard(
+        &dir,
+        "shadow",
+        &["--first-pass", "5", "--passes", "1", "--direct", "shadow-rays"],
+    )
+    .unwrap();
     let bad = dir.join("bad.exr");
     for (inputs, needle) in [
         ([&a, &other], "settings"),
+        ([&a, &shadow], "settings"),
         ([&a, &a], "overlap"),
         ([&a, &full], "overlap"),
     ] {

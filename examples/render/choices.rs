@@ -99,3 +99,22 @@ impl fmt::Display for ModeChoice {
         write_name(self, f)
     }
 }
+
+/// `--direct`: how a progressive pass lights the first diffuse hit directly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DirectChoice {
+    /// Photons for all light (the `visualize` mode per pass).
+    Photons,
+    /// Shadow rays for direct light, photons for the rest (the `shadow-rays` mode per pass).
+    ShadowRays,
+}
+
+impl DirectChoice {
+    /// The render mode of each progressive pass.
+    pub fn mode(self) -> Mode {
+        match self {
+            DirectChoice::Photons => Mode::Visualize,
+            DirectChoice::ShadowRays => Mode::ShadowRays,
+        }
+    }
+}

@@ -7,7 +7,7 @@ use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{EstimatorKind, Mode, Progress, RenderSettings};
+use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -37,8 +37,9 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     if sppm && args.first_pass != 0 {
         return Err("--first-pass: SPPM runs are not shardable".into());
     }
-    // Progressive passes render like `visualize` (photons for all light).
-    settings.mode = Mode::Visualize;
+    // Each progressive pass renders like `visualize` (photons for all light) or
+    // `shadow-rays`, as --direct says; SPPM always has shadow rays for direct light.
+    settings.mode = args.direct.mode();
     let (scene_name, scene_id) = scene_identity(&args.scene)?;
     let base = args
         .out
@@ -52,6 +53,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         check_writable(path)?;
     }
     let bar = PassBar::new(passes);
+    let heap_before = crate::tracking_allocator::reset_peak();
     let (image, stats, range, identity) = if sppm {
         let scene = load_scene(&args.scene)?.0;
         let s = SppmSettings {
@@ -88,12 +90,13 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
         (a.mean(), out.stats, a.pass_range(), identity)
     };
+    let heap_peak = crate::tracking_allocator::peak().saturating_sub(heap_before);
     image
         .write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let m = image.mean();
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
@@ -103,6 +106,8 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         stats.trace.as_secs_f64(),
         stats.render.as_secs_f64(),
         stats.total.as_secs_f64(),
+        heap_peak as f64 / (1 << 20) as f64,
+        stats.pass_tree_bytes as f64 / (1 << 20) as f64,
         m.x,
         m.y,
         m.z
@@ -118,7 +123,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             &scene_id,
             &identity,
             range,
-            Some(&stats),
+            Some((&stats, heap_peak)),
             m.to_array(),
         );
         write_atomically(path, |w| w.write_all(json.as_bytes()))
@@ -215,7 +220,7 @@ fn stats_json(
     scene: &str,
     settings: &str,
     range: std::ops::Range<u64>,
-    stats: Option<&ProgressiveStats>,
+    stats: Option<(&ProgressiveStats, usize)>,
     mean: [f32; 3],
 ) -> String {
     let mut o = String::from("{");
@@ -229,7 +234,12 @@ fn stats_json(
         range.end,
         range.end - range.start,
     );
-    if let Some(s) = stats {
+    if let Some((s, heap_peak)) = stats {
+        let _ = write!(
+            o,
+            "\"memory_bytes\": {{\"peak_heap\": {heap_peak}, \"pass_trees\": {}, \"pilot\": {}, \"accumulation\": {}}}, ",
+            s.pass_tree_bytes, s.pilot_bytes, s.accumulation_bytes
+        );
         let _ = write!(
             o,
             "\"photons_emitted\": {}, \"photons_stored\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",

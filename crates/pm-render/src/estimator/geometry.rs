@@ -142,6 +142,21 @@ pub(super) fn collect_faces<V: GatherVolume>(
 
 pub(super) fn spread_power(normal: Vec3, photons: &[GatheredPhoton], faces: &[(f32, Vec3)]) -> Vec3 {
     let normal = snap_normal(normal, faces);
+    if faces.iter().all(|&(_, n)| n == normal) {
+        // One plane (the common case: a flat map, or a merged wall, away from its edges):
+        // `S_p = A · cos_x` for every photon facing x, so `E = Σ Φ_p / A` without the
+        // per-photon sum over faces.
+        let area: f32 = faces.iter().map(|&(a, _)| a).sum();
+        if area <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let facing: Vec3 = photons
+            .iter()
+            .filter(|p| normal.dot(p.direction) < 0.0)
+            .map(|p| p.power)
+            .sum();
+        return facing / area;
+    }
     let mut e = Vec3::ZERO;
     for p in photons {
         let cos_x = -normal.dot(p.direction);

@@ -23,11 +23,12 @@
 //!
 //! - The volume at a surface point x is fixed by a **pilot** photon map, traced once from its
 //!   own streams (pass [`PILOT_PASS`]) with the same settings and partition: `r_pilot(x)` is
-//!   the estimator's k-nearest extent at x in the pilot map of x's map (the k-th Euclidean
-//!   distance for the disc and ball, the k-th Chebyshev distance — a cube's half-size — for
-//!   the cube; the maximum distance where fewer than k are found). Every shard rebuilds the
-//!   same pilot, so the volume is a deterministic function of x. It adapts to the photon
-//!   density as the k-nearest estimate does.
+//!   the estimator's k-nearest extent (the k-th Euclidean distance for the disc and ball, the
+//!   k-th Chebyshev distance — a cube's half-size — for the cube; the maximum distance where
+//!   fewer than k are found) in x's pilot map, taken at the *site* nearest to x (sites: every
+//!   16th pilot photon, their extents computed once; a k-nearest search per pixel and pass
+//!   cost as much as the pass's own gather). Every shard rebuilds the same pilot, so the volume is a deterministic
+//!   function of x. It adapts to the photon density as the k-nearest estimate does.
 //! - Pass i gathers **every** photon of x's map within `r_i(x) = r_pilot(x) · s_i` and divides
 //!   by the volume's area: `π r_i²` for the disc, and for the cube and the ball the area of the
 //!   map's own polygons inside it (Hey & Purgathofer's estimate,
@@ -38,6 +39,8 @@
 //! The passes are independent given their index, so a run can be split into shards of passes
 //! rendered anywhere and merged ([`Shard::merge`]).
 
+mod pass_maps;
+mod pilot;
 mod radiance;
 mod schedule;
 mod shard;
@@ -45,15 +48,17 @@ mod sppm;
 
 pub use schedule::radius_scale;
 pub use shard::{Shard, ShardError};
-pub use sppm::{SppmRendered, SppmRenderer, SppmSettings};
+pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
 use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
 use crate::{EstimatorScratch, FixedVolumeEstimator, Image, Mode, Progress, RenderError, RenderSettings};
 use glam::{DVec3, Vec3};
+use pass_maps::trace_pass;
+use pilot::Pilot;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use radiance::PassLighting;
 use rayon::prelude::*;
-use std::ops::Range;
+use std::ops::{ControlFlow, Range};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -199,6 +204,14 @@ pub struct ProgressiveStats {
     pub render: Duration,
     /// Wall time of the whole run.
     pub total: Duration,
+    /// Heap bytes of the largest pass's photon trees: the photons one pass holds (earlier
+    /// passes' are dropped before the next is traced; tracing needs about twice this while
+    /// the photons are sorted into trees).
+    pub pass_tree_bytes: u64,
+    /// Heap bytes of the pilot's photon trees and sites (zero for SPPM, which has no pilot).
+    pub pilot_bytes: u64,
+    /// Heap bytes of the running sum (SPPM: its per-pixel state).
+    pub accumulation_bytes: u64,
 }
 
 /// A progressive render's sum and figures.
@@ -247,11 +260,30 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         partitioner: &P,
         progress: &dyn Progress,
     ) -> Result<ProgressiveRendered, RenderError> {
+        self.render_observed(
+            scene,
+            partitioner,
+            progress,
+            &mut |_, _| ControlFlow::Continue(()),
+        )
+    }
+
+    /// As [`ProgressiveRenderer::render`], calling `observe` with the sum and the figures so
+    /// far after every pass; the run also stops after a pass for which it returns
+    /// [`ControlFlow::Break`]. (A convergence study reads the image at chosen times this way
+    /// without rendering again.) The observer's own time counts in the wall time.
+    pub fn render_observed<P: Partitioner + ?Sized>(
+        &self,
+        scene: &Scene,
+        partitioner: &P,
+        progress: &dyn Progress,
+        observe: &mut (dyn FnMut(&Accumulation, &ProgressiveStats) -> ControlFlow<()> + Send),
+    ) -> Result<ProgressiveRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
         let assignment = partitioner.try_partition(scene)?;
         in_pool(self.settings.render.threads, || {
-            self.render_in_pool(scene, &assignment, progress, start)
+            self.render_in_pool(scene, &assignment, progress, start, observe)
         })?
     }
 
@@ -261,6 +293,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         assignment: &MapAssignment,
         progress: &dyn Progress,
         start: Instant,
+        observe: &mut (dyn FnMut(&Accumulation, &ProgressiveStats) -> ControlFlow<()> + Send),
     ) -> Result<ProgressiveRendered, RenderError> {
         let s = &self.settings;
         let r = &s.render;
@@ -270,11 +303,17 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             ..ProgressiveStats::default()
         };
         progress.phase("pilot");
-        let pilot = trace_and_build(scene, assignment, r, PILOT_PASS)?.0;
-        stats.pilot = start.elapsed();
         let options = r.estimator_options(&scene.bounds());
         options.validate()?;
+        let pilot = Pilot::new(
+            trace_and_build(scene, assignment, r, PILOT_PASS)?.0,
+            &self.estimator,
+            &options,
+        )?;
+        stats.pilot = start.elapsed();
+        stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
+        stats.accumulation_bytes = (accumulation.sum.capacity() * size_of::<DVec3>()) as u64;
         let tiles = tiles(r.width, r.height, r.tile_size);
         loop {
             if s.passes.is_some_and(|n| accumulation.passes >= n) {
@@ -283,15 +322,16 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             let pass = s.first_pass + accumulation.passes;
             progress.phase("trace");
             let t = Instant::now();
-            let (maps, stored) = trace_and_build(scene, assignment, r, pass)?;
+            let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
             stats.trace += t.elapsed();
             stats.photons_emitted += u64::from(r.photons);
-            stats.photons_stored += stored;
+            stats.photons_stored += maps.stored;
+            stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
             progress.phase("render");
             let t = Instant::now();
             let lighting = PassLighting {
                 scene,
-                maps: &maps,
+                trees: &maps.trees,
                 pilot: &pilot,
                 estimator: &self.estimator,
                 options: &options,
@@ -303,6 +343,11 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             stats.render += t.elapsed();
             accumulation.passes += 1;
             progress.pass_done(accumulation.passes, stats.photons_emitted);
+            stats.passes = accumulation.passes;
+            stats.total = start.elapsed();
+            if observe(&accumulation, &stats).is_break() {
+                break;
+            }
             if s.time_budget.is_some_and(|b| start.elapsed() >= b) {
                 break;
             }

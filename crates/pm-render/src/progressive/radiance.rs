@@ -1,21 +1,24 @@
 //! The radiance one camera ray carries in one progressive pass: specular bounces from the
 //! eye, then at the first diffuse hit a fixed-volume estimate in the hit's map, its extent the
-//! pilot map's k-nearest extent there times the pass's shrink factor.
+//! pilot's extent there times the pass's shrink factor.
 
+use super::pilot::Pilot;
 use crate::mode::direct_irradiance;
 use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
 use crate::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
 use glam::Vec3;
-use pm_trace::{Hit, Material, PhotonMaps, Ray, RayKind, Rng, Scene};
+use pm_kdtree::PhotonTree;
+use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Everything a pass reads.
 pub(super) struct PassLighting<'a, E> {
     pub scene: &'a Scene,
-    /// This pass's photons.
-    pub maps: &'a PhotonMaps,
-    /// The pilot photons, which fix the gather volume at each point.
-    pub pilot: &'a PhotonMaps,
+    /// This pass's photons, one tree per map.
+    pub trees: &'a [PhotonTree],
+    /// The pilot, which fixes the gather volume at each point, and every map's polygons (the
+    /// same in every pass).
+    pub pilot: &'a Pilot,
     pub estimator: &'a E,
     pub options: &'a EstimatorOptions,
     /// This pass's shrink factor `s_i`.
@@ -26,8 +29,8 @@ pub(super) struct PassLighting<'a, E> {
 
 impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
     fn irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
-        let map_id = self.maps.map_of(hit.part) as usize;
-        let (Some(map), Some(pilot)) = (self.maps.maps().get(map_id), self.pilot.maps().get(map_id)) else {
+        let map_id = self.pilot.maps.map_of(hit.part) as usize;
+        let (Some(tree), Some(pilot)) = (self.trees.get(map_id), self.pilot.maps.maps().get(map_id)) else {
             return Vec3::ZERO;
         };
         let at = SurfacePoint {
@@ -35,19 +38,12 @@ impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
             normal: self.scene.shading_normal_at(hit),
             front_face: hit.front_face,
         };
-        let pilot_view = MapView {
-            tree: pilot.tree(),
-            polygons: pilot.geometry(),
-        };
-        let Some(extent) = self
-            .estimator
-            .nearest_extent(at, pilot_view, self.options, scratch)
-        else {
+        let Some(extent) = self.pilot.extent(map_id, hit.position, self.options, scratch) else {
             return Vec3::ZERO;
         };
         let view = MapView {
-            tree: map.tree(),
-            polygons: map.geometry(),
+            tree,
+            polygons: pilot.geometry(),
         };
         self.estimator
             .irradiance_within(at, view, extent * self.scale, self.options, scratch)

@@ -18,7 +18,8 @@
 //! and the progressive renderer's pilot have, so that the comparison does not hinge on a
 //! hand-tuned constant.
 
-use super::{ProgressiveStats, trace_and_build};
+use super::ProgressiveStats;
+use super::pass_maps::trace_pass;
 use crate::mode::direct_irradiance;
 use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
 use crate::renderer::PIXEL_SEED_SALT;
@@ -26,9 +27,10 @@ use crate::renderer::in_pool;
 use crate::{EstimatorOptions, Image, Mode, Progress, RenderError, RenderSettings};
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
-use pm_trace::{Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, SingleMap};
+use pm_trace::{Material, Partitioner, RayKind, Rng, Scene, SingleMap};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};
+use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
 
 /// Settings of an SPPM render.
@@ -106,6 +108,18 @@ impl SppmRenderer {
     /// Renders the passes from pass 0 (photon streams `(seed, pass, path)` as in the
     /// progressive renderer).
     pub fn render(&self, scene: &Scene, progress: &dyn Progress) -> Result<SppmRendered, RenderError> {
+        self.render_observed(scene, progress, &mut |_| ControlFlow::Continue(()))
+    }
+
+    /// As [`SppmRenderer::render`], calling `observe` after every pass with the state so far
+    /// (whose [`SppmSnapshot::image`] is the estimate after that pass); the run also stops
+    /// after a pass for which it returns [`ControlFlow::Break`].
+    pub fn render_observed(
+        &self,
+        scene: &Scene,
+        progress: &dyn Progress,
+        observe: &mut (dyn FnMut(&SppmSnapshot<'_>) -> ControlFlow<()> + Send),
+    ) -> Result<SppmRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
         let assignment = SingleMap.partition(scene);
@@ -128,6 +142,7 @@ impl SppmRenderer {
             let width = r.width as usize;
             crate::image::check_image_size(r.width, r.height)?;
             let mut state = vec![PixelState::default(); width * r.height as usize];
+            stats.accumulation_bytes = (state.capacity() * size_of::<PixelState>()) as u64;
             let mut passes = 0u64;
             loop {
                 if s.passes.is_some_and(|n| passes >= n) {
@@ -135,15 +150,16 @@ impl SppmRenderer {
                 }
                 progress.phase("trace");
                 let t = Instant::now();
-                let (maps, stored) = trace_and_build(scene, &assignment, r, passes)?;
+                let maps = trace_pass(scene, &assignment, r, passes, options.kinds)?;
                 stats.trace += t.elapsed();
                 stats.photons_emitted += u64::from(r.photons);
-                stats.photons_stored += stored;
+                stats.photons_stored += maps.stored;
+                stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
                 progress.phase("render");
                 let t = Instant::now();
                 let pass = Pass {
                     scene,
-                    maps: &maps,
+                    tree: &maps.trees[0],
                     options: &options,
                     settings: r,
                     alpha: s.alpha,
@@ -158,38 +174,76 @@ impl SppmRenderer {
                     },
                 );
                 stats.render += t.elapsed();
+                drop(maps);
                 passes += 1;
                 progress.pass_done(passes, stats.photons_emitted);
+                stats.passes = passes;
+                stats.total = start.elapsed();
+                let snapshot = SppmSnapshot {
+                    state: &state,
+                    width: r.width,
+                    height: r.height,
+                    stats: &stats,
+                };
+                if observe(&snapshot).is_break() {
+                    break;
+                }
                 if s.time_budget.is_some_and(|b| start.elapsed() >= b) {
                     break;
                 }
             }
-            let n = passes.max(1) as f64;
-            let pixels = state
-                .iter()
-                .map(|p| {
-                    let indirect = if p.radius > 0.0 {
-                        p.tau.as_dvec3() / (n * f64::from(PI * p.radius * p.radius))
-                    } else {
-                        DVec3::ZERO
-                    };
-                    (p.direct / n + indirect).as_vec3()
-                })
-                .collect();
             stats.passes = passes;
             stats.total = start.elapsed();
-            Ok(SppmRendered {
-                image: Image::from_pixels(r.width, r.height, pixels)?,
-                stats,
-            })
+            let image = SppmSnapshot {
+                state: &state,
+                width: r.width,
+                height: r.height,
+                stats: &stats,
+            }
+            .image()?;
+            Ok(SppmRendered { image, stats })
         })?
+    }
+}
+
+/// The SPPM state after a pass, as an observer of [`SppmRenderer::render_observed`] sees it.
+pub struct SppmSnapshot<'a> {
+    state: &'a [PixelState],
+    width: u32,
+    height: u32,
+    stats: &'a ProgressiveStats,
+}
+
+impl SppmSnapshot<'_> {
+    /// Counts and timings so far (`passes` and `total` up to date).
+    pub fn stats(&self) -> &ProgressiveStats {
+        self.stats
+    }
+
+    /// The radiance estimate after the passes so far: `L_direct/passes + τ/(passes · π r²)`.
+    pub fn image(&self) -> Result<Image, RenderError> {
+        let n = self.stats.passes.max(1) as f64;
+        let pixels = self
+            .state
+            .iter()
+            .map(|p| {
+                let indirect = if p.radius > 0.0 {
+                    p.tau.as_dvec3() / (n * f64::from(PI * p.radius * p.radius))
+                } else {
+                    DVec3::ZERO
+                };
+                (p.direct / n + indirect).as_vec3()
+            })
+            .collect();
+        Image::from_pixels(self.width, self.height, pixels)
     }
 }
 
 /// One pass's photons and what the per-pixel update reads.
 struct Pass<'a> {
     scene: &'a Scene,
-    maps: &'a PhotonMaps,
+    /// The pass's one global map.
+    tree: &'a PhotonTree,
     options: &'a EstimatorOptions,
     settings: &'a RenderSettings,
     alpha: f32,
@@ -218,7 +272,7 @@ impl Pass<'_> {
                 if direct.is_finite() {
                     pixel.direct += direct.as_dvec3();
                 }
-                let tree = self.maps.map(0).tree();
+                let tree = self.tree;
                 if pixel.radius == 0.0 {
                     pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
                 }

@@ -1,0 +1,56 @@
+//! One pass's photons: a kd-tree per map, and nothing else. A map's polygons never change from
+//! pass to pass, so the renderers take them from the pilot maps built once; and photons of
+//! kinds the pass never gathers (direct ones, when shadow rays carry direct light) are not put
+//! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
+
+use crate::{RenderError, RenderSettings};
+use pm_kdtree::{KindMask, PhotonTree};
+use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
+use rayon::prelude::*;
+
+/// The photon trees of one pass, indexed by map id, and the photons stored in them.
+pub(crate) struct PassMaps {
+    pub(crate) trees: Vec<PhotonTree>,
+    pub(crate) stored: u64,
+}
+
+impl PassMaps {
+    /// Heap bytes of the trees.
+    pub(crate) fn heap_bytes(&self) -> u64 {
+        self.trees.iter().map(|t| t.heap_bytes() as u64).sum()
+    }
+}
+
+/// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map
+/// of the photons of the kinds `kinds` accepts, in parallel.
+pub(crate) fn trace_pass(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    settings: &RenderSettings,
+    pass: u64,
+    kinds: KindMask,
+) -> Result<PassMaps, RenderError> {
+    let options = TraceOptions {
+        photons: settings.photons,
+        seed: settings.seed,
+        pass,
+        ..TraceOptions::default()
+    };
+    let traced = trace_photons(scene, assignment, &options)?;
+    let stored = traced.stats().total_stored();
+    let (photons, _) = traced.into_parts();
+    let trees = photons
+        .into_par_iter()
+        .enumerate()
+        .map(|(map, mut photons)| {
+            if !kinds.accepts_all() {
+                photons.retain(|p| kinds.accepts(p.kind));
+            }
+            PhotonTree::build(photons).map_err(|source| MapError::Tree {
+                map: map as u32,
+                source,
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(PassMaps { trees, stored })
+}

@@ -1,0 +1,50 @@
+//! Peak heap of progressive and SPPM runs of growing pass counts, measured by the counting
+//! allocator: it stays at one pass's photons, the pilot's and the running sum, however many
+//! passes run.
+
+use super::tracking_allocator::{peak, reset_peak};
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, SppmRenderer, SppmSettings,
+};
+use photon_maps::render::{EstimatorKind, RenderSettings};
+use photon_maps::trace::{CreaseAngle, Scene};
+
+/// One run's figures.
+pub struct MemoryRow {
+    pub method: &'static str,
+    pub passes: u64,
+    pub photons: u64,
+    /// Peak heap bytes during the run, above what was live before it.
+    pub peak: usize,
+    pub stats: ProgressiveStats,
+}
+
+/// Runs progressive cube (crease maps) and SPPM for each of `counts` passes on `scene`.
+pub fn rows(scene: &Scene, base: RenderSettings, counts: &[u64]) -> Result<Vec<MemoryRow>, String> {
+    let mut out = Vec::new();
+    for &passes in counts {
+        for method in ["progressive cube", "SPPM"] {
+            let before = reset_peak();
+            let stats = if method == "SPPM" {
+                SppmRenderer::new(SppmSettings::new(base, passes))
+                    .render(scene, &())
+                    .map_err(|e| e.to_string())?
+                    .stats
+            } else {
+                let settings = ProgressiveSettings::new(base, passes);
+                ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
+                    .render(scene, &CreaseAngle::default(), &())
+                    .map_err(|e| e.to_string())?
+                    .stats
+            };
+            out.push(MemoryRow {
+                method,
+                passes,
+                photons: stats.photons_emitted,
+                peak: peak().saturating_sub(before),
+                stats,
+            });
+        }
+    }
+    Ok(out)
+}

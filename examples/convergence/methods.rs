@@ -1,0 +1,215 @@
+//! One run per (scene, method) to the largest budget, the accumulated image's relative RMSE
+//! read after every pass (progressive passes, SPPM iterations, path-traced samples per pixel).
+
+use super::clock::{Clock, ClockKind};
+use super::mask::Mask;
+use photon_maps::render::glam::DVec3;
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
+};
+use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::{CreaseAngle, Scene, SingleMap};
+use std::ops::ControlFlow;
+
+/// A renderer the study compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The unbiased path tracer (next-event estimation), one sample per pixel per batch.
+    PathTrace,
+    /// pbrt-v4's SPPM: one global map, shadow rays for direct light.
+    Sppm,
+    /// The progressive renderer with crease maps and this fixed-volume estimator.
+    Progressive(EstimatorKind),
+}
+
+impl Method {
+    /// Every method, in the tables' column order.
+    pub const ALL: [Method; 5] = [
+        Method::PathTrace,
+        Method::Sppm,
+        Method::Progressive(EstimatorKind::Disc),
+        Method::Progressive(EstimatorKind::GeometryCube),
+        Method::Progressive(EstimatorKind::GeometryBall),
+    ];
+
+    /// The name `--methods` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::PathTrace => "path-trace",
+            Method::Sppm => "sppm",
+            Method::Progressive(EstimatorKind::Disc) => "disc",
+            Method::Progressive(EstimatorKind::GeometryCube) => "cube",
+            Method::Progressive(EstimatorKind::GeometryBall) => "ball",
+        }
+    }
+
+    /// The column and legend label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::PathTrace => "path tracing",
+            Method::Sppm => "SPPM",
+            Method::Progressive(EstimatorKind::Disc) => "progressive disc",
+            Method::Progressive(EstimatorKind::GeometryCube) => "progressive cube",
+            Method::Progressive(EstimatorKind::GeometryBall) => "progressive ball",
+        }
+    }
+}
+
+/// The progressive renderer's own settings (SPPM keeps pbrt-v4's).
+#[derive(Clone, Copy, Debug)]
+pub struct Progressive {
+    /// [`Mode::Visualize`] (photons for all light) or [`Mode::ShadowRays`] (shadow rays for
+    /// direct light, as SPPM has it).
+    pub direct: Mode,
+    /// k of the pilot's extents (the first pass's gather volume holds about k photons).
+    pub k: usize,
+    /// Knaus & Zwicker's α.
+    pub alpha: f32,
+}
+
+/// The error after one pass.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample {
+    /// Rendering seconds when the pass ended.
+    pub seconds: f64,
+    /// Passes (or samples per pixel) so far.
+    pub passes: u64,
+    /// Relative RMSE against the reference.
+    pub rel_rmse: f64,
+}
+
+/// The samples of one run.
+pub struct Run {
+    pub method: Method,
+    pub samples: Vec<Sample>,
+}
+
+impl Run {
+    /// The error after `passes` passes, if the run got there.
+    pub fn after(&self, passes: u64) -> Option<f64> {
+        self.samples
+            .iter()
+            .find(|s| s.passes == passes)
+            .map(|s| s.rel_rmse)
+    }
+
+    /// The error of the image one has at `seconds`: the last pass that ended by then
+    /// (`None` when none had).
+    pub fn at(&self, seconds: f64) -> Option<Sample> {
+        self.samples
+            .iter()
+            .take_while(|s| s.seconds <= seconds)
+            .last()
+            .copied()
+    }
+}
+
+/// What a run is measured against and for how long.
+pub struct Measure<'a> {
+    /// The path-traced reference.
+    pub reference: &'a Image,
+    /// The pixels the error counts.
+    pub mask: &'a Mask,
+    /// Stop after the pass that ends past this many seconds.
+    pub max_seconds: f64,
+    /// What the seconds count.
+    pub clock: ClockKind,
+}
+
+/// Renders `scene` with `method` until `measure.max_seconds` of rendering, reading the error
+/// against the reference after every pass.
+pub fn run(
+    method: Method,
+    scene: &Scene,
+    base: RenderSettings,
+    progressive: Progressive,
+    measure: &Measure<'_>,
+) -> Result<Run, String> {
+    let Measure {
+        reference,
+        mask,
+        max_seconds,
+        clock,
+    } = *measure;
+    let mut clock = Clock::start(clock, base.threads);
+    let mut samples = Vec::new();
+    let mut failure = None;
+    let mut record = |clock: &mut Clock, passes: u64, image: &dyn Fn() -> Result<Image, String>| {
+        let seconds = clock.seconds();
+        clock.exclude(|| match image() {
+            Ok(i) => samples.push(Sample {
+                seconds,
+                passes,
+                rel_rmse: mask.relative_rmse(&i, reference),
+            }),
+            Err(e) => failure = Some(e),
+        });
+        if seconds >= max_seconds || failure.is_some() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    match method {
+        Method::PathTrace => {
+            let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
+            for batch in 0u64.. {
+                let settings = RenderSettings {
+                    mode: Mode::PathTrace,
+                    samples_per_pixel: 1,
+                    seed: base.seed.wrapping_add(batch),
+                    ..base
+                };
+                let image = Renderer::new(EstimatorKind::Disc, settings)
+                    .render(scene, &SingleMap, &())
+                    .map_err(|e| e.to_string())?
+                    .image;
+                for (s, p) in sum.iter_mut().zip(image.pixels()) {
+                    *s += p.as_dvec3();
+                }
+                let n = (batch + 1) as f64;
+                let mean = || {
+                    let pixels = sum.iter().map(|s| (*s / n).as_vec3()).collect();
+                    Image::from_pixels(base.width, base.height, pixels).map_err(|e| e.to_string())
+                };
+                if record(&mut clock, batch + 1, &mean).is_break() {
+                    break;
+                }
+            }
+        }
+        Method::Sppm => {
+            let settings = SppmSettings {
+                passes: Some(u64::MAX),
+                ..SppmSettings::new(base, 1)
+            };
+            SppmRenderer::new(settings)
+                .render_observed(scene, &(), &mut |snapshot| {
+                    record(&mut clock, snapshot.stats().passes, &|| {
+                        snapshot.image().map_err(|e| e.to_string())
+                    })
+                })
+                .map_err(|e| e.to_string())?;
+        }
+        Method::Progressive(estimator) => {
+            let render = RenderSettings {
+                mode: progressive.direct,
+                k: progressive.k,
+                ..base
+            };
+            let settings = ProgressiveSettings {
+                passes: Some(u64::MAX),
+                alpha: progressive.alpha,
+                ..ProgressiveSettings::new(render, 1)
+            };
+            ProgressiveRenderer::new(estimator, settings)
+                .render_observed(scene, &CreaseAngle::default(), &(), &mut |sum, stats| {
+                    record(&mut clock, stats.passes, &|| Ok(sum.mean()))
+                })
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(Run { method, samples }),
+    }
+}
