@@ -66,6 +66,11 @@ use std::time::{Duration, Instant};
 /// The pass index whose photon streams trace the pilot map (never a render pass).
 pub const PILOT_PASS: u64 = u64::MAX;
 
+/// The version of the progressive algorithm, part of [`ProgressiveSettings::identity`]: bumped
+/// whenever the same settings would render a different image (v2: pilot extents at sparse
+/// sites, computed once), so that shards of different versions are never merged.
+pub const PROGRESSIVE_VERSION: &str = "v2";
+
 /// Settings of a progressive render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProgressiveSettings {
@@ -114,14 +119,15 @@ impl ProgressiveSettings {
     }
 
     /// A text naming every setting that changes the image (not the pass range, threads or
-    /// tiles): shards merge only when theirs are equal.
+    /// tiles), and the version of the algorithm ([`PROGRESSIVE_VERSION`]): shards merge only
+    /// when theirs are equal.
     pub fn identity(&self) -> String {
         let s = &self.render;
         let max_distance = s
             .max_distance
             .map_or_else(|| "default".to_owned(), |d| format!("{d:e}"));
         format!(
-            "progressive size={}x{} spp={} photons={} k={} max_distance={} reject_behind={} mode={} seed={} alpha={:e}",
+            "progressive {PROGRESSIVE_VERSION} size={}x{} spp={} photons={} k={} max_distance={} reject_behind={} mode={} seed={} alpha={:e}",
             s.width,
             s.height,
             s.samples_per_pixel,
