@@ -87,6 +87,7 @@
 
 mod bvh;
 pub mod camera;
+pub mod emission;
 pub mod error;
 pub mod light;
 pub mod material;
@@ -98,16 +99,19 @@ pub mod sampling;
 pub mod scene;
 pub mod scenes;
 pub mod shape;
+pub mod sides;
 pub mod texture;
 
 #[cfg(feature = "gltf")]
 pub mod gltf;
 
 pub use camera::Camera;
+pub use emission::EmissionTexture;
 pub use error::{MapError, SceneError, TraceError};
 pub use glam;
 pub use light::{
     AreaLight, DirectionalLight, EmittedRay, Light, LightClone, LightSample, PointLight, SpotLight,
+    TexturedAreaLight,
 };
 pub use material::{Material, Surface};
 pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
@@ -122,4 +126,5 @@ pub use scene::{
     Hit, MAX_SCENE_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder, SceneMesh, VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
+pub use sides::Sides;
 pub use texture::{Sampler, Texture, Wrap};

@@ -1,15 +1,17 @@
 //! Lights: a trait with photon emission and shadow-ray sampling, and the point, spot,
-//! directional and area lights.
+//! directional, area and textured area lights.
 
 mod area;
 mod directional;
 mod point;
 mod spot;
+mod textured_area;
 
 pub use area::AreaLight;
 pub use directional::DirectionalLight;
 pub use point::PointLight;
 pub use spot::SpotLight;
+pub use textured_area::TexturedAreaLight;
 
 use crate::{Ray, Rng};
 use glam::Vec3;

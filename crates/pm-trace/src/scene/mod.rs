@@ -117,6 +117,10 @@ pub struct Scene {
     split_at_contacts: bool,
     /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
     has_shading: bool,
+    /// True when some mesh has an emission texture (else [`Scene::emission`] skips the lookup).
+    has_emission_textures: bool,
+    /// True when some surface is [`crate::Sides::Single`] (else camera rays cull nothing).
+    has_culling: bool,
 }
 
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
@@ -132,24 +136,40 @@ impl Scene {
 
     /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
     /// [`Scene::spawn_ray`]'s offset origin.
+    ///
+    /// Camera rays skip surfaces hidden from the camera and the backs of
+    /// [`crate::Sides::Single`] surfaces (back-face culling, as glTF viewers do); other rays
+    /// see every side of every surface.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let (t, index) = match kind {
-            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
-            RayKind::Camera => self
-                .bvh
-                .closest(ray, 0.0, t_max, |p| self.part_surface(p).camera_visible)?,
-        };
-        let position = ray.at(t);
-        let (part, n) = self.bvh.part_and_normal(index, position);
-        let front_face = n.dot(ray.direction) < 0.0;
-        Some(Hit {
-            t,
-            position,
-            normal: if front_face { n } else { -n },
-            front_face,
-            part,
-        })
+        let mut t_min = 0.0;
+        loop {
+            let (t, index) = match kind {
+                RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
+                RayKind::Camera => self
+                    .bvh
+                    .closest(ray, t_min, t_max, |p| self.part_surface(p).camera_visible)?,
+            };
+            let position = ray.at(t);
+            let (part, n) = self.bvh.part_and_normal(index, position);
+            let front_face = n.dot(ray.direction) < 0.0;
+            let culled = kind == RayKind::Camera
+                && self.has_culling
+                && !front_face
+                && self.part_surface(part).sides.culls_back();
+            if !culled {
+                return Some(Hit {
+                    t,
+                    position,
+                    normal: if front_face { n } else { -n },
+                    front_face,
+                    part,
+                });
+            }
+            // Look again beyond the culled back face (hits are strictly past `t_min`, so
+            // this ends after at most one round per surface along the ray).
+            t_min = t;
+        }
     }
 
     /// True when a surface lies strictly between `from` and `to` (surfaces within
@@ -293,13 +313,28 @@ impl Scene {
         if n.dot(hit.normal) < 0.0 { -n } else { n }
     }
 
-    /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
+    /// Radiance emitted towards the ray that made `hit`: the surface's emission, times its
+    /// mesh's emission texture at the hit where it has one; zero on the back of emitters
+    /// unless their surface is [`crate::Sides::Double`].
     #[inline]
     pub fn emission(&self, hit: &Hit) -> Vec3 {
-        if hit.front_face {
-            self.surface(hit).emission
-        } else {
-            Vec3::ZERO
+        let surface = self.surface(hit);
+        if !(hit.front_face || surface.sides.emits_back()) {
+            return Vec3::ZERO;
+        }
+        if !self.has_emission_textures || hit.part.0 >= self.mesh_part_count || surface.emission == Vec3::ZERO
+        {
+            return surface.emission;
+        }
+        let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
+        let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
+        match mesh
+            .shading
+            .as_ref()
+            .and_then(|s| s.emission_texture_at(face, hit.position))
+        {
+            Some(texture) => surface.emission * texture,
+            None => surface.emission,
         }
     }
 
