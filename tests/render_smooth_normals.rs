@@ -102,7 +102,7 @@ fn smooth_uv_sphere_matches_the_analytic_sphere_and_beats_the_faceted_one() {
         surface,
         VertexAttributes {
             normals: Some(positions.clone()),
-            ..VertexAttributes::default()..VertexAttributes::default()
+            ..VertexAttributes::default()
         },
     )));
     let (smooth_error, n) = mean_relative_difference(&smooth, &analytic);
@@ -130,7 +130,7 @@ fn shading_normal_is_on_the_geometric_side_and_absent_without_normals() {
         surface,
         VertexAttributes {
             normals: Some(inward),
-            ..VertexAttributes::default()..VertexAttributes::default()
+            ..VertexAttributes::default()
         },
     ));
     let ray = photon_maps::trace::Ray::new(Vec3::new(0.1, 0.2, 4.0), Vec3::NEG_Z);
