@@ -260,7 +260,7 @@ fn emissive_textured_quad_power_is_the_texture_integral_times_strength() {
     // periodic bilinear image keeps its texels' mean).
     let factor = [1.0f32, 0.8, 0.6];
     let strength = 5.0f32;
-    let truth = DVec3::from(Vec3::from(factor).as_dvec3()) * texel_mean() * (PI * 0.25 * strength as f64);
+    let truth = Vec3::from(factor).as_dvec3() * texel_mean() * (PI * 0.25 * strength as f64);
     for (name, textures, tolerance) in [
         ("nearest", r#"[{"source":0,"sampler":0}]"#, 1e-5),
         ("bilinear", r#"[{"source":0}]"#, 2e-3),
