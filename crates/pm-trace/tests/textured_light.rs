@@ -100,6 +100,40 @@ fn photon_weights_average_one_per_channel() {
     }
 }
 
+#[test]
+fn photons_carry_each_texel_region_its_own_power() {
+    // Each quadrant of the quad emits π · ¼ · factor ⊙ its texel; the triangles cut the
+    // quadrants on (0,0) and (1,1) in half, so per-triangle means alone would not give this.
+    let factor = Vec3::new(1.0, 0.5, 2.0);
+    let light = light(factor, Sides::Single);
+    let n = 400_000u32;
+    let share = light.power().as_dvec3() / n as f64;
+    let (mut sum, mut sum2) = ([Vec3::ZERO.as_dvec3(); 4], [Vec3::ZERO.as_dvec3(); 4]);
+    for i in 0..n {
+        let e = light.emit(&mut Rng::new(13, i as u64));
+        let k = (e.ray.origin.x >= 0.5) as usize + 2 * (e.ray.origin.z >= 0.5) as usize;
+        let p = e.weight.as_dvec3() * share;
+        sum[k] += p;
+        sum2[k] += p * p;
+    }
+    for k in 0..4 {
+        let truth = (factor * linear(CODES[k])).as_dvec3() * (PI * 0.25);
+        // The per-quadrant total is a sum over all n paths of (p if in k else 0).
+        let mean = sum[k] / n as f64;
+        let se = ((sum2[k] / n as f64 - mean * mean) * n as f64).map(f64::sqrt);
+        for c in 0..3 {
+            let off = (sum[k][c] - truth[c]).abs();
+            assert!(
+                off <= 4.0 * se[c] + 1e-9,
+                "quadrant {k} channel {c}: {} ± {} vs {}",
+                sum[k][c],
+                se[c],
+                truth[c]
+            );
+        }
+    }
+}
+
 /// Configuration factor from a point to a parallel rectangle `a × b` at distance `h`, the
 /// point on the normal through one of its corners (Howell's catalogue, C-11).
 fn corner_factor(a: f64, b: f64, h: f64) -> f64 {
