@@ -8,7 +8,7 @@
 use glam::{Vec2, Vec3};
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{
-    Camera, CreaseAngle, EmissionTexture, Light, Ray, RayKind, Sampler, Scene, Sides, Surface, Texture,
+    Camera, CreaseAngle, EmissionTexture, Ray, RayKind, Sampler, Scene, Sides, Surface, Texture,
     TexturedAreaLight, VertexAttributes, Wrap,
 };
 use std::f64::consts::PI;
