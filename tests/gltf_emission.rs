@@ -430,7 +430,17 @@ fn broken_emissive_texture_in_use_is_a_typed_error_and_missing_coordinates_warn(
         &[png_image(truncated)],
         &[([0.5, 0.8, 0.5], 1.0)],
     );
-    load_scene_with(&write("unlit-texture.gltf", &json), &GltfOptions::default()).unwrap();
+    let path = write("unlit-texture.gltf", &json);
+    let content = read_content(&path, &GltfOptions::default()).unwrap();
+    assert!(
+        content
+            .warnings
+            .iter()
+            .any(|w| w.contains("black emission factor")),
+        "{:?}",
+        content.warnings
+    );
+    load_scene_with(&path, &GltfOptions::default()).unwrap();
     // Without TEXCOORD_0 the texture is ignored with a warning and the factor emits alone.
     let mut bare = emitter_quad([0.5, 0.5, 0.5], 0.5, 1);
     bare.uvs = None;

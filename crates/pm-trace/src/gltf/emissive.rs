@@ -58,7 +58,7 @@ pub(super) fn cached_texture(
 /// The emission texture of primitive `prim` (mesh and primitive indices `at`) with
 /// `material`, read only when the material has an emissive texture *and* a non-zero
 /// emission factor (glTF's `emissiveFactor` defaults to black, which no texture can
-/// brighten). A primitive without the named `TEXCOORD_n` set gets a warning and emits the
+/// brighten: such a texture is not decoded, with a warning). A primitive without the named `TEXCOORD_n` set gets a warning and emits the
 /// factor alone, as base-colour textures do.
 pub(super) fn emission_texture(
     sources: &TextureSources<'_>,
@@ -73,6 +73,10 @@ pub(super) fn emission_texture(
         return Ok(None);
     };
     if material.emission.max_element() <= 0.0 {
+        warnings.push(format!(
+            "mesh {} primitive {}: emissive texture {texture} ignored under a black emission factor",
+            at.0, at.1
+        ));
         return Ok(None);
     }
     let Some(accessor) = prim.attributes.get(&Checked::Valid(Semantic::TexCoords(set))) else {
