@@ -221,3 +221,44 @@ fn camera_rays_see_the_texture_on_the_back_of_a_two_sided_light() {
         );
     }
 }
+
+#[test]
+fn textured_two_sided_light_renders_bit_identically_on_one_and_three_threads() {
+    let scene = scene().with_camera(Camera::new(
+        Vec3::new(0.5, 0.3, 0.05),
+        Vec3::new(0.5, 0.5, 0.9),
+        Vec3::Y,
+        1.2,
+    ));
+    let scene = scene.unwrap();
+    for mode in [Mode::Visualize, Mode::PathTrace] {
+        let render = |threads| {
+            let out = Renderer::new(
+                EstimatorKind::GeometryCube,
+                RenderSettings {
+                    width: 24,
+                    height: 16,
+                    samples_per_pixel: 2,
+                    photons: 20_000,
+                    seed: 9,
+                    threads,
+                    mode,
+                    ..RenderSettings::default()
+                },
+            )
+            .render(&scene, &CreaseAngle::default(), &())
+            .unwrap();
+            out.image
+                .pixels()
+                .iter()
+                .flat_map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<u32>>()
+        };
+        let one = render(1);
+        assert!(
+            one.iter().any(|&b| b != 0),
+            "{mode:?}: a black image proves nothing"
+        );
+        assert_eq!(one, render(3), "{mode:?}: images differ between 1 and 3 threads");
+    }
+}
