@@ -142,33 +142,51 @@ impl Scene {
     /// see every side of every surface.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let mut t_min = 0.0;
+        let hit = self.intersect_beyond(ray, 0.0, t_max, kind)?;
+        if kind == RayKind::Camera && self.has_culling && self.is_culled(&hit) {
+            return self.intersect_past_culled(ray, hit.t, t_max);
+        }
+        Some(hit)
+    }
+
+    /// The closest hit with `t_min < t < t_max`, culling nothing.
+    #[inline]
+    fn intersect_beyond(&self, ray: &Ray, t_min: f32, t_max: f32, kind: RayKind) -> Option<Hit> {
+        let (t, index) = match kind {
+            RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
+            RayKind::Camera => self
+                .bvh
+                .closest(ray, t_min, t_max, |p| self.part_surface(p).camera_visible)?,
+        };
+        let position = ray.at(t);
+        let (part, n) = self.bvh.part_and_normal(index, position);
+        let front_face = n.dot(ray.direction) < 0.0;
+        Some(Hit {
+            t,
+            position,
+            normal: if front_face { n } else { -n },
+            front_face,
+            part,
+        })
+    }
+
+    /// True when `hit` is the back of a [`crate::Sides::Single`] surface.
+    #[inline]
+    fn is_culled(&self, hit: &Hit) -> bool {
+        !hit.front_face && self.part_surface(hit.part).sides.culls_back()
+    }
+
+    /// The closest camera hit past a culled back face at `t`: out of line, so scenes without
+    /// single-sided surfaces pay one test per camera ray and nothing more.
+    #[inline(never)]
+    fn intersect_past_culled(&self, ray: &Ray, mut t: f32, t_max: f32) -> Option<Hit> {
+        // Hits are strictly past `t`, so each round moves on along the ray.
         loop {
-            let (t, index) = match kind {
-                RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
-                RayKind::Camera => self
-                    .bvh
-                    .closest(ray, t_min, t_max, |p| self.part_surface(p).camera_visible)?,
-            };
-            let position = ray.at(t);
-            let (part, n) = self.bvh.part_and_normal(index, position);
-            let front_face = n.dot(ray.direction) < 0.0;
-            let culled = kind == RayKind::Camera
-                && self.has_culling
-                && !front_face
-                && self.part_surface(part).sides.culls_back();
-            if !culled {
-                return Some(Hit {
-                    t,
-                    position,
-                    normal: if front_face { n } else { -n },
-                    front_face,
-                    part,
-                });
+            let hit = self.intersect_beyond(ray, t, t_max, RayKind::Camera)?;
+            if !self.is_culled(&hit) {
+                return Some(hit);
             }
-            // Look again beyond the culled back face (hits are strictly past `t_min`, so
-            // this ends after at most one round per surface along the ray).
-            t_min = t;
+            t = hit.t;
         }
     }
 
