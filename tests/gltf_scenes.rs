@@ -34,10 +34,11 @@ fn corpus_cornell_box_has_an_emissive_area_light_and_a_camera_looking_in() {
     };
     let scene = load_scene(&file).unwrap();
     // The file's light: emissiveFactor (1, 0.70588, 0.23529) × emissiveStrength 17 on a
-    // 0.47 m × 0.38 m quad (its accessor's min/max); an area light's power is π L A.
+    // 0.47 m × 0.38 m quad (its accessor's min/max); an area light's power is π L A per
+    // side, and its material is `doubleSided`, so both sides emit.
     assert_eq!(scene.lights().len(), 1);
     let radiance = Vec3::new(1.0, 0.705_882_4, 0.235_294_1) * 17.0;
-    let expected = PI * radiance * (0.47 * 0.38);
+    let expected = 2.0 * PI * radiance * (0.47 * 0.38);
     let power = scene.lights()[0].power();
     assert!(close(power, expected, 1e-3), "{power} vs {expected}");
 

@@ -135,6 +135,7 @@ fn checkerboard_scene(tiles: f32) -> Scene {
                 colors: None,
                 normals: None,
                 base_color_texture: Some((texture, Sampler::default())),
+                ..VertexAttributes::default()
             },
         )
         .light(PointLight::new(Vec3::new(0.0, 2.0, 0.0), Vec3::splat(10.0)))

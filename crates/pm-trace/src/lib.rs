@@ -16,6 +16,15 @@
 //!   radiance in W/(m²·sr), irradiance in W/m². Colours are linear RGB.
 //! - Right-handed coordinates, +y up (as glTF); angles in radians; `f32` throughout.
 //! - Polygons are counter-clockwise seen from the side their normal points to.
+//! - Emitters: an emitting surface of radiance `L` and area `A` emits `π L A` watts from its
+//!   front, `2π L A` when its [`Surface::sides`] is [`Sides::Double`]; a point light of
+//!   intensity `I` (W/sr) emits `4π I`. [`Sides::Single`] surfaces are culled for camera rays
+//!   seen from the back; photon, shadow and path rays see both sides of every surface. An
+//!   [`EmissionTexture`] multiplies a mesh's emission; its [`TexturedAreaLight`] takes power
+//!   and light selection from each triangle's mean emission and reads the texture at each
+//!   sampled point (so its estimates are unbiased). The glTF loader's
+//!   `gltf::GltfOptions::light_units` says how a file's emissive strength (cd/m²), candela
+//!   and lux become these watts, keeping emitters and lamps at their authored ratio or not.
 //! - With `N` photons emitted, each starts with `Φ_total / N` on average (lights are chosen in
 //!   proportion to their power).
 //! - Tracing is deterministic: photon path `i` draws from its own stream `Rng::new(seed, i)`
@@ -87,6 +96,7 @@
 
 mod bvh;
 pub mod camera;
+pub mod emission;
 pub mod error;
 pub mod light;
 pub mod material;
@@ -98,6 +108,7 @@ pub mod sampling;
 pub mod scene;
 pub mod scenes;
 pub mod shape;
+pub mod sides;
 pub mod texture;
 pub mod texture_transform;
 
@@ -105,10 +116,12 @@ pub mod texture_transform;
 pub mod gltf;
 
 pub use camera::Camera;
+pub use emission::EmissionTexture;
 pub use error::{MapError, SceneError, TraceError};
 pub use glam;
 pub use light::{
     AreaLight, DirectionalLight, EmittedRay, Light, LightClone, LightSample, PointLight, SpotLight,
+    TexturedAreaLight,
 };
 pub use material::{Material, Surface};
 pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
@@ -124,5 +137,6 @@ pub use scene::{
     SceneMesh, VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
+pub use sides::Sides;
 pub use texture::{Sampler, Texture, Wrap};
 pub use texture_transform::TextureTransform;

@@ -3,6 +3,8 @@
 
 use glam::Vec3;
 
+use crate::Sides;
+
 /// How a surface scatters light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Material {
@@ -35,10 +37,14 @@ impl Material {
 pub struct Surface {
     /// Scattering.
     pub material: Material,
-    /// Emitted radiance, W/(m²·sr) per channel, on the side the normal points to (area lights).
+    /// Emitted radiance, W/(m²·sr) per channel, from the front (the side the normal points to)
+    /// and, for [`Sides::Double`], from the back too (area lights).
     pub emission: Vec3,
     /// False for cut-away walls: invisible to camera rays, still blocking light and storing photons.
     pub camera_visible: bool,
+    /// Which sides emit and which camera rays see ([`Sides::Front`] for the constructors
+    /// here: front-emitting, seen from both sides).
+    pub sides: Sides,
 }
 
 impl Surface {
@@ -48,6 +54,7 @@ impl Surface {
             material: Material::Lambertian { albedo },
             emission: Vec3::ZERO,
             camera_visible: true,
+            sides: Sides::Front,
         }
     }
 
@@ -57,6 +64,7 @@ impl Surface {
             material: Material::Mirror { reflectance },
             emission: Vec3::ZERO,
             camera_visible: true,
+            sides: Sides::Front,
         }
     }
 
@@ -66,7 +74,13 @@ impl Surface {
             material: Material::Glass { ior },
             emission: Vec3::ZERO,
             camera_visible: true,
+            sides: Sides::Front,
         }
+    }
+
+    /// The same surface with `sides` (see [`Sides`]).
+    pub fn with_sides(self, sides: Sides) -> Self {
+        Surface { sides, ..self }
     }
 
     /// The same surface, hidden from camera rays.

@@ -48,6 +48,7 @@ fn scene() -> Scene {
                 colors: Some(floor.iter().map(|&p| colour(p)).collect()),
                 normals: Some(normals.to_vec()),
                 base_color_texture: Some((texture, sampler)),
+                ..VertexAttributes::default()
             },
         )
         .mesh(&wall, &[[0u32, 1, 2, 3]], Surface::diffuse(Vec3::splat(0.5)))

@@ -1,18 +1,22 @@
 //! World-space glTF content to a [`Scene`]: one scene mesh per primitive, an area light per
-//! emissive primitive, the punctual lights converted to the library's lights, the camera, and
-//! a headlight for files without any light.
+//! emissive primitive (textured when its emission is), the punctual lights converted to the
+//! library's lights, the camera, and a headlight for files without any light.
 
 use std::f32::consts::PI;
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::GltfOptions;
 use super::camera::frame_bounds;
 use super::content::GltfContent;
+use super::content::GltfMesh;
 use super::error::GltfError;
 use super::light::GltfLight;
-use crate::{AreaLight, Camera, DirectionalLight, PointLight, Scene, SpotLight, Surface, VertexAttributes};
+use crate::{
+    AreaLight, Camera, DirectionalLight, Light, PointLight, Scene, Sides, SpotLight, Surface,
+    TexturedAreaLight, VertexAttributes,
+};
 
 /// Builds a scene from content read by [`read_content`](super::read_content). `file` only
 /// names the source in errors.
@@ -28,33 +32,38 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
     let mut has_light = false;
     for mesh in content.meshes.iter().filter(|m| !m.triangles.is_empty()) {
         let material = mesh.material;
+        let sides = if material.double_sided {
+            Sides::Double
+        } else {
+            Sides::Single
+        };
         let surface = Surface {
             material: material.kind,
             emission: material.emission,
             camera_visible: true,
+            sides,
         };
-        builder = if mesh.uvs.is_some() || mesh.colors.is_some() || mesh.normals.is_some() {
+        let attributed = mesh.uvs.is_some()
+            || mesh.colors.is_some()
+            || mesh.normals.is_some()
+            || mesh.emission_texture.is_some();
+        builder = if attributed {
             let attributes = VertexAttributes {
                 uvs: mesh.uvs.clone(),
                 colors: mesh.colors.clone(),
                 normals: mesh.normals.clone(),
                 base_color_texture: mesh.base_color_texture.clone(),
+                emission_texture: mesh.emission_texture.clone(),
             };
             builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)
         } else {
             builder.mesh(&mesh.positions, &mesh.triangles, surface)
         };
-        if material.emission.max_element() > 0.0 {
-            let triangles: Vec<[Vec3; 3]> = mesh
-                .triangles
-                .iter()
-                .map(|t| t.map(|i| mesh.positions[i as usize]))
-                .collect();
-            let light = AreaLight::from_triangles(&triangles, material.emission);
-            if light.area() > 0.0 {
-                builder = builder.light(light);
-                has_light = true;
-            }
+        if material.emission.max_element() > 0.0
+            && let Some(light) = emitter(mesh, sides)
+        {
+            builder = builder.boxed_light(light);
+            has_light = true;
         }
     }
     for light in &content.lights {
@@ -102,6 +111,40 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
             file: file.to_path_buf(),
             source,
         })
+}
+
+/// The area light of an emissive mesh: textured when its emission is (power and selection
+/// per triangle from the texture's mean over it), else of constant radiance; emitting from
+/// both sides for [`Sides::Double`]. `None` when nothing emits (no area, or a black texture).
+fn emitter(mesh: &GltfMesh, sides: Sides) -> Option<Box<dyn Light>> {
+    let emission = mesh.material.emission;
+    let triangles: Vec<[Vec3; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| mesh.positions[i as usize]))
+        .collect();
+    match &mesh.emission_texture {
+        Some(texture) => {
+            let uvs: Vec<[Vec2; 3]> = mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| texture.uvs[i as usize]))
+                .collect();
+            let light = TexturedAreaLight::new(
+                &triangles,
+                &uvs,
+                emission,
+                texture.texture.clone(),
+                texture.sampler,
+                sides,
+            );
+            (light.triangle_count() > 0).then(|| Box::new(light) as Box<dyn Light>)
+        }
+        None => {
+            let light = AreaLight::from_triangles(&triangles, emission).with_sides(sides);
+            (light.area() > 0.0).then(|| Box::new(light) as Box<dyn Light>)
+        }
+    }
 }
 
 /// Total power of a uniform cone of half-angle `outer` with radiant intensity `intensity`:

@@ -13,6 +13,7 @@ use super::GltfOptions;
 use super::accessor::AccessorReader;
 use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
+use super::emissive::{TextureSources, emission_texture};
 use super::error::GltfError;
 use super::graph::{root_nodes, walk};
 use super::image::load_texture;
@@ -20,6 +21,7 @@ use super::light::{GltfLight, place_light};
 use super::material::{GltfMaterial, map_material};
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use super::source::{guard, parse, read_bounded};
+use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
 
 /// One mesh primitive placed in the world.
@@ -51,6 +53,10 @@ pub struct GltfMesh {
     pub normals: Option<Vec<Vec3>>,
     /// The decoded base-colour texture and its sampler, shared by every mesh that uses it.
     pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
+    /// The decoded emissive texture with its own texture coordinates per vertex (read only
+    /// when the material has one and a non-zero emission factor); it multiplies
+    /// [`GltfMaterial::emission`].
+    pub emission_texture: Option<EmissionTexture>,
 }
 
 /// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
@@ -152,6 +158,13 @@ fn flatten(
     let mut content = GltfContent::default();
     let mut triangle_count = 0u64;
     let mut textures: HashMap<usize, (Arc<Texture>, Sampler)> = HashMap::new();
+    let sources = TextureSources {
+        file,
+        root,
+        buffers,
+        reader: &reader,
+        options,
+    };
     for p in &placed {
         let node = &root.nodes[p.index];
         let missing = |what: &str, index: usize, len: usize| GltfError::Node {
@@ -231,6 +244,15 @@ fn flatten(
                                 ));
                             }
                         }
+                        let emission_texture = emission_texture(
+                            &sources,
+                            &mut textures,
+                            &mut scene_bytes,
+                            &mut content.warnings,
+                            (mesh_index, primitive),
+                            prim,
+                            &material,
+                        )?;
                         let colors = match attribute(Semantic::Colors(0)) {
                             Some(a) => Some(
                                 reader
@@ -267,6 +289,11 @@ fn flatten(
                         {
                             return Err(wrong("texture coordinates", u.len()));
                         }
+                        if let Some(e) = &emission_texture
+                            && e.uvs.len() != n
+                        {
+                            return Err(wrong("emissive texture coordinates", e.uvs.len()));
+                        }
                         if let Some(c) = &colors
                             && c.len() != n
                         {
@@ -289,6 +316,7 @@ fn flatten(
                             colors,
                             normals,
                             base_color_texture,
+                            emission_texture,
                         })
                     }
                     PrimitiveGeometry::NotTriangles => content.skipped_non_triangle += 1,

@@ -1,5 +1,6 @@
 //! `KHR_lights_punctual` lights to radiometric lights. Photometric glTF units become watts
-//! through the luminous efficacy of 555 nm light, 683 lm/W, times
+//! by [`LightUnits::punctual_factor`](super::LightUnits::punctual_factor) (by default the
+//! luminous efficacy of 555 nm light, 683 lm/W), times
 //! [`GltfOptions::light_scale`](super::GltfOptions::light_scale).
 
 use std::path::Path;
@@ -22,7 +23,8 @@ pub enum GltfLight {
     Point {
         /// World position in metres.
         position: Vec3,
-        /// Radiant intensity in W/sr per channel: `color × candela / 683 × light_scale`.
+        /// Radiant intensity in W/sr per channel: `color × candela × punctual_factor ×
+        /// light_scale` (`punctual_factor` is 1/683 by default; see `LightUnits`).
         intensity: Vec3,
     },
     /// Emits in a cone around `direction` (the node's −Z axis).
@@ -31,7 +33,7 @@ pub enum GltfLight {
         position: Vec3,
         /// Unit direction of the cone's axis.
         direction: Vec3,
-        /// Radiant intensity inside the inner cone in W/sr: `color × candela / 683 × light_scale`.
+        /// Radiant intensity inside the inner cone in W/sr: `color × candela × punctual_factor × light_scale`.
         intensity: Vec3,
         /// Angle from the axis where the falloff starts, radians.
         inner_cone_angle: f32,
@@ -42,7 +44,7 @@ pub enum GltfLight {
     Directional {
         /// Unit direction the light travels in.
         direction: Vec3,
-        /// Irradiance on a surface facing the light in W/m²: `color × lux / 683 × light_scale`.
+        /// Irradiance on a surface facing the light in W/m²: `color × lux × punctual_factor × light_scale`.
         irradiance: Vec3,
     },
 }
@@ -73,7 +75,8 @@ pub(super) fn place_light(
             lights.len()
         ))
     })?;
-    let power = Vec3::from(l.color) * l.intensity / LUMENS_PER_WATT * options.light_scale;
+    let power =
+        Vec3::from(l.color) * l.intensity * options.light_units.punctual_factor() * options.light_scale;
     if !power.is_finite() || power.min_element() < 0.0 {
         return Err(error(format!(
             "light {light}: colour × intensity {power} is not finite and non-negative"

@@ -16,8 +16,11 @@ use crate::Material;
 ///   the base colour as reflectance;
 /// - else [`Material::Lambertian`] with the base colour factor as albedo.
 ///
-/// Only the base-colour texture is read (with `KHR_texture_transform`). `emission` is `emissiveFactor × emissiveStrength ×`
-/// [`GltfOptions::emission_scale`], read as radiance in W/(m²·sr).
+/// The base-colour and emissive textures are read (with `KHR_texture_transform`). `emission`
+/// is `emissiveFactor × emissiveStrength ×`
+/// [`LightUnits::emission_factor`](super::LightUnits::emission_factor) `×`
+/// [`GltfOptions::emission_scale`], a radiance in W/(m²·sr), which the emissive texture (if
+/// any) multiplies at each point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfMaterial {
     /// How the surface scatters light.
@@ -27,7 +30,12 @@ pub struct GltfMaterial {
     /// The base-colour texture, its `TEXCOORD` set and `KHR_texture_transform`, if the
     /// material has one; its texels multiply the base colour factor.
     pub base_color_texture: Option<TextureRef>,
-    /// The glTF `doubleSided` flag (an emissive surface emits from both sides when set).
+    /// The emissive texture, its `TEXCOORD` set and `KHR_texture_transform`, if the material
+    /// has one; its texels multiply `emission`.
+    pub emissive_texture: Option<TextureRef>,
+    /// The glTF `doubleSided` flag: when set, an emissive surface emits from both sides
+    /// ([`crate::Sides::Double`]); when clear, camera rays pass through its back
+    /// ([`crate::Sides::Single`]).
     pub double_sided: bool,
 }
 
@@ -56,6 +64,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
             kind: Material::Lambertian { albedo: Vec3::ONE },
             emission: Vec3::ZERO,
             base_color_texture: None,
+            emissive_texture: None,
             double_sided: false,
         };
     };
@@ -78,7 +87,10 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
         .and_then(|e| e.emissive_strength.as_ref())
         .map_or(1.0, |s| s.emissive_strength.0);
     let strength = finite_or(strength, 0.0).max(0.0);
-    let emission = Vec3::from(m.emissive_factor.0) * strength * options.emission_scale;
+    let emission = Vec3::from(m.emissive_factor.0)
+        * strength
+        * options.light_units.emission_factor()
+        * options.emission_scale;
     let emission = Vec3::new(
         finite_or(emission.x, 0.0),
         finite_or(emission.y, 0.0),
@@ -96,6 +108,7 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
         kind,
         emission,
         base_color_texture: pbr.base_color_texture.as_ref().map(TextureRef::from_info),
+        emissive_texture: m.emissive_texture.as_ref().map(TextureRef::from_info),
         double_sided: m.double_sided,
     }
 }

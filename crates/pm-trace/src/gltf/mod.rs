@@ -10,7 +10,8 @@
 //! `file:` and every other scheme, escapes such as `..%2F`, invalid escapes such as `%FF`,
 //! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
 //! buffer. A GLB container's length fields are checked against the file before parsing.
-//! Images are read only for base-colour textures that a placed mesh's material uses, through
+//! Images are read only for base-colour and emissive textures that a placed mesh's material
+//! uses (an emissive one only under a non-zero `emissiveFactor`), through
 //! the same resolver (buffer views, `data:` URIs, files in the folder), and decoded only as
 //! PNG or JPEG (`zune-jpeg`), refused from the header when larger than
 //! [`GltfOptions::max_texture_pixels`]; each is decoded once however many materials share
@@ -41,9 +42,10 @@
 //!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
 //!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear, and `KHR_texture_transform`'s
 //!   offset, rotation, scale and `texCoord` applied to the coordinates: [`TextureRef`]) and
-//!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); other textures
-//!   (emissive, normal maps) are ignored. Each texture keeps a box-filtered mip chain: the
-//!   Visualize and ShadowRays modes average it over the camera pixel's footprint
+//!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); the emissive texture
+//!   is read for emission (below, with `KHR_texture_transform` too); other textures (normal
+//!   maps, metallic-roughness, occlusion) are ignored. Each texture keeps a box-filtered mip
+//!   chain: the Visualize and ShadowRays modes average it over the camera pixel's footprint
 //!   ([`Scene::albedo_over`]), so a texture seen from afar does not alias; photon tracing,
 //!   the path tracer and the progressive modes look textures up at points (their many
 //!   samples average them). `NORMAL` gives smooth shading normals
@@ -51,15 +53,31 @@
 //!   bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
-//!   [`GltfOptions::emission_scale`] is the surface's radiance in W/(m²·sr) (glTF's
-//!   nit-like units taken 1:1). Every emissive primitive also becomes an
-//!   [`AreaLight`](crate::AreaLight) emitting from the front (counter-clockwise) side of its
-//!   triangles, like the scene's own area lights, whatever `doubleSided` says.
+//!   [`LightUnits::emission_factor`] `×` [`GltfOptions::emission_scale`] is the surface's
+//!   radiance in W/(m²·sr), times the `emissiveTexture` (sRGB decoded to linear, at its own
+//!   `TEXCOORD_n`, with its sampler) at each point. Every emissive primitive also becomes a
+//!   light: an [`AreaLight`](crate::AreaLight) of constant radiance, or with a texture a
+//!   [`TexturedAreaLight`](crate::TexturedAreaLight), whose power and triangle selection come
+//!   from each triangle's mean emission (a fixed quadrature of the texture) while photons and
+//!   shadow rays read the texture at the point they sample (unbiased; see that type).
+//! - **Sides** ([`crate::Sides`]): `doubleSided: true` emitters emit from both sides (power
+//!   `2πLA` for radiance `L` and area `A`, against `πLA` from the front alone) in photon
+//!   emission, shadow rays and camera or path hits. `doubleSided: false` faces (the default
+//!   material too) emit from the front (counter-clockwise) side only and are culled for camera
+//!   rays seen from the back, as glTF viewers do; photons, shadow and path rays still meet
+//!   both sides, so closed scenes stay closed and single-sided walls still cast shadows.
 //! - **Punctual lights** (`KHR_lights_punctual`): point and spot intensities in candela
 //!   become radiant intensities in W/sr, directional illuminance in lux becomes irradiance in
-//!   W/m², dividing by [`LUMENS_PER_WATT`] (683 lm/W, the efficacy of 555 nm light) and
-//!   multiplying by [`GltfOptions::light_scale`] (files that store "watts-like" numbers want
-//!   683). A point light of intensity `I` has power `4π I`; a spot becomes a hard cone of the
+//!   W/m², multiplying by [`LightUnits::punctual_factor`] (by default 1 / [`LUMENS_PER_WATT`],
+//!   683 lm/W, the efficacy of 555 nm light) and by [`GltfOptions::light_scale`] (files that
+//!   store "watts-like" numbers want 683).
+//! - **Units** ([`GltfOptions::light_units`]): the default [`LightUnits::Mixed`] reads
+//!   emission 1:1 as radiance but divides lamps by 683, so a file authored in one system of
+//!   units gets emitters 683 times too bright relative to its lamps;
+//!   [`LightUnits::Photometric`] (all photometric, divided by 683: physical watts) and
+//!   [`LightUnits::Viewer`] (all taken 1:1, as glTF viewers shade) keep the authored ratio:
+//!   an emitter of luminance `L` and area `A` to a point light of intensity `I` is
+//!   `π L A : 4π I` in power. A point light of intensity `I` has power `4π I`; a spot becomes a hard cone of the
 //!   outer angle with power `2π (1 − cos θ_outer) I` (the spec's advice for single-angle
 //!   engines). Lights and cameras point down their node's −Z axis; `range` is ignored.
 //! - **Camera**: the first perspective camera met in the walk (orthographic ones are
@@ -87,6 +105,7 @@ mod buffers;
 mod build;
 mod camera;
 mod content;
+mod emissive;
 mod error;
 mod graph;
 mod image;
@@ -95,6 +114,7 @@ mod material;
 mod primitive;
 mod source;
 mod texture_ref;
+mod units;
 
 pub use build::build_scene;
 pub use camera::{DEFAULT_VFOV, GltfCamera, frame_bounds};
@@ -104,6 +124,7 @@ pub use graph::MAX_DEPTH;
 pub use light::{GltfLight, LUMENS_PER_WATT};
 pub use material::GltfMaterial;
 pub use texture_ref::TextureRef;
+pub use units::LightUnits;
 
 use std::path::Path;
 
@@ -112,10 +133,16 @@ use crate::Scene;
 /// Knobs for loading a glTF file. `GltfOptions::default()` follows the glTF units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfOptions {
-    /// Multiplies every punctual light's power after the photometric conversion (1 by
-    /// default; 683 for files whose intensities are really watts).
+    /// How emissive strength and punctual intensities become watts ([`LightUnits::Mixed`] by
+    /// default, as the loader always read them; [`LightUnits::Photometric`] or
+    /// [`LightUnits::Viewer`] for files authored in one system of units, so that emitters
+    /// and lamps keep their ratio).
+    pub light_units: LightUnits,
+    /// Multiplies every punctual light's power after the [`Self::light_units`] conversion (1
+    /// by default; 683 for files whose intensities are really watts).
     pub light_scale: f32,
-    /// Multiplies every emissive surface's radiance (1 by default).
+    /// Multiplies every emissive surface's radiance after the [`Self::light_units`]
+    /// conversion (1 by default).
     pub emission_scale: f32,
     /// The largest scene file read, and the most bytes read for all buffers together (each
     /// distinct file read once however many `buffers` entries name it), in bytes (1 GiB by
@@ -166,6 +193,7 @@ impl GltfOptions {
     /// The glTF units as written, a 1 GiB file limit, 20 million triangles, a 4 GiB scene
     /// budget, a headlight for unlit files.
     pub const DEFAULT: Self = Self {
+        light_units: LightUnits::Mixed,
         light_scale: 1.0,
         emission_scale: 1.0,
         max_file_bytes: 1 << 30,

@@ -1,15 +1,16 @@
 //! The area light: any set of triangles emitting constant radiance from their front side
-//! (counter-clockwise winding), cosine-distributed.
+//! (counter-clockwise winding) or from both sides, cosine-distributed.
 
 use super::{EmittedRay, Light, LightSample};
 use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame, pick_cumulative, uniform_triangle};
-use crate::{Ray, Rng};
+use crate::{Ray, Rng, Sides};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
-/// Triangles emitting `radiance` (W/(m²·sr) per channel) on their front side; power
-/// `π · radiance · area`. Photons start at uniform points (triangles chosen by area) with
-/// cosine-distributed directions.
+/// Triangles emitting `radiance` (W/(m²·sr) per channel) on their front side, or on both
+/// sides after [`AreaLight::with_sides`]`(`[`Sides::Double`]`)`; power `π · radiance · area`
+/// per emitting side. Photons start at uniform points (triangles chosen by area) with
+/// cosine-distributed directions (on a side chosen with probability ½ when both emit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
     triangles: Vec<[Vec3; 3]>,
@@ -18,6 +19,8 @@ pub struct AreaLight {
     /// Cumulative areas, last = total.
     cumulative: Vec<f32>,
     radiance: Vec3,
+    /// True when the back side emits too.
+    two_sided: bool,
 }
 
 impl AreaLight {
@@ -35,6 +38,7 @@ impl AreaLight {
             frames: Vec::new(),
             cumulative: Vec::new(),
             radiance,
+            two_sided: false,
         };
         let mut total = 0.0;
         for t in triangles {
@@ -53,7 +57,19 @@ impl AreaLight {
         light
     }
 
-    /// Total emitting area (m²).
+    /// The same light emitting from both sides when `sides` is [`Sides::Double`], from the
+    /// front otherwise (the camera culling of [`Sides::Single`] is the scene's business).
+    pub fn with_sides(mut self, sides: Sides) -> Self {
+        self.two_sided = sides.emits_back();
+        self
+    }
+
+    /// True when both sides emit.
+    pub fn is_two_sided(&self) -> bool {
+        self.two_sided
+    }
+
+    /// Total emitting area (m²), one side.
     pub fn area(&self) -> f32 {
         self.cumulative.last().copied().unwrap_or(0.0)
     }
@@ -96,12 +112,19 @@ impl Light for AreaLight {
     }
 
     fn power(&self) -> Vec3 {
-        self.radiance * (PI * self.area())
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        self.radiance * (PI * sides * self.area())
     }
 
     fn emit(&self, rng: &mut Rng) -> EmittedRay {
         match self.sample_point(rng) {
             Some((p, [t, b, n])) => {
+                // One extra draw, only for two-sided lights: one-sided photons are unchanged.
+                let n = if self.two_sided && rng.next_f32() < 0.5 {
+                    -n
+                } else {
+                    n
+                };
                 let d = cosine_hemisphere_in_frame(t, b, n, Vec2::new(rng.next_f32(), rng.next_f32()));
                 EmittedRay {
                     ray: Ray {
@@ -128,7 +151,11 @@ impl Light for AreaLight {
         let d2 = to.length_squared();
         let distance = d2.sqrt();
         let direction = (to / distance).try_normalize()?;
-        let cos_light = -direction.dot(n);
+        let cos_light = if self.two_sided {
+            direction.dot(n).abs()
+        } else {
+            -direction.dot(n)
+        };
         if cos_light <= 0.0 {
             return None;
         }

@@ -1,15 +1,17 @@
 //! Lights: a trait with photon emission and shadow-ray sampling, and the point, spot,
-//! directional and area lights.
+//! directional, area and textured area lights.
 
 mod area;
 mod directional;
 mod point;
 mod spot;
+mod textured_area;
 
 pub use area::AreaLight;
 pub use directional::DirectionalLight;
 pub use point::PointLight;
 pub use spot::SpotLight;
+pub use textured_area::TexturedAreaLight;
 
 use crate::{Ray, Rng};
 use glam::Vec3;
@@ -20,7 +22,8 @@ use pm_geom::Aabb;
 /// Emission is importance-sampled by the light's own emission distribution, so every photon
 /// of a light carries the same power: with `N` photons emitted from the scene and the light
 /// chosen with probability `p`, each starts with `power() / (N · p)` (times `weight`, which
-/// all built-in lights set to 1).
+/// all built-in lights set to 1 except [`TexturedAreaLight`], whose photons carry the texture
+/// at their starting point).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmittedRay {
     /// Origin on the light and unit direction of travel.

@@ -246,6 +246,7 @@ impl SceneBuilder {
             material: Material::Lambertian { albedo: Vec3::ZERO },
             emission: radiance,
             camera_visible: true,
+            sides: crate::Sides::Front,
         };
         self.mesh(&quad, &[[0u32, 1, 2, 3]], surface)
             .light(AreaLight::quad(corner, edge_u, edge_v, radiance))
@@ -300,6 +301,7 @@ impl SceneBuilder {
         let mut shape_prims = Vec::new();
         let mut meshes = Vec::with_capacity(self.meshes.len());
         let mut has_shading = false;
+        let mut has_emission_textures = false;
         // Each input mesh is dropped once built, so the input and the scene are not held twice.
         for (mi, input) in self.meshes.into_iter().enumerate() {
             if let FaceSurfaces::PerFace(s) = &input.surfaces
@@ -316,6 +318,7 @@ impl SceneBuilder {
                     .validate()
                     .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
                 has_shading = true;
+                has_emission_textures |= shading.has_emission_texture();
             }
             let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), &self.mesh_options)
                 .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
@@ -404,6 +407,7 @@ impl SceneBuilder {
             .validate()
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
         let epsilon = 1e-5 * bounds.size().max_element().max(1.0);
+        let has_culling = surfaces.surfaces.iter().any(|s| s.sides.culls_back());
         Ok(Scene {
             meshes,
             shapes,
@@ -419,6 +423,8 @@ impl SceneBuilder {
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
             split_at_contacts: self.split_at_contacts,
             has_shading,
+            has_emission_textures,
+            has_culling,
         })
     }
 }

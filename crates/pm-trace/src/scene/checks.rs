@@ -32,7 +32,7 @@ pub(super) fn check_lights(lights: &[Box<dyn Light>]) -> Result<(), SceneError> 
 #[derive(Default)]
 pub(super) struct SurfaceTable {
     pub(super) surfaces: Vec<Surface>,
-    ids: std::collections::HashMap<[u32; 8], u32>,
+    ids: std::collections::HashMap<[u32; 9], u32>,
 }
 
 impl SurfaceTable {
@@ -53,6 +53,7 @@ impl SurfaceTable {
             e.y.to_bits(),
             e.z.to_bits(),
             surface.camera_visible as u32,
+            surface.sides as u32,
         ];
         *self.ids.entry(key).or_insert_with(|| {
             self.surfaces.push(surface);

@@ -129,6 +129,10 @@ pub struct Scene {
     split_at_contacts: bool,
     /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
     has_shading: bool,
+    /// True when some mesh has an emission texture (else [`Scene::emission`] skips the lookup).
+    has_emission_textures: bool,
+    /// True when some surface is [`crate::Sides::Single`] (else camera rays cull nothing).
+    has_culling: bool,
 }
 
 /// Triangles from which [`Scene::prefers_ray_pairs`]: random rays cast in pairs were 20–26 %
@@ -150,13 +154,27 @@ impl Scene {
 
     /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
     /// [`Scene::spawn_ray`]'s offset origin.
+    ///
+    /// Camera rays skip surfaces hidden from the camera and the backs of
+    /// [`crate::Sides::Single`] surfaces (back-face culling, as glTF viewers do); other rays
+    /// see every side of every surface.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
+        let hit = self.intersect_beyond(ray, 0.0, t_max, kind)?;
+        if kind == RayKind::Camera && self.has_culling && self.is_culled(&hit) {
+            return self.intersect_past_culled(ray, hit.t, t_max);
+        }
+        Some(hit)
+    }
+
+    /// The closest hit with `t_min < t < t_max`, culling nothing.
+    #[inline]
+    fn intersect_beyond(&self, ray: &Ray, t_min: f32, t_max: f32, kind: RayKind) -> Option<Hit> {
         let (t, index) = match kind {
-            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
+            RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
             RayKind::Camera => self
                 .bvh
-                .closest(ray, 0.0, t_max, |s| self.surfaces[s as usize].camera_visible)?,
+                .closest(ray, t_min, t_max, |s| self.surfaces[s as usize].camera_visible)?,
         };
         Some(self.hit_at(ray, t, index))
     }
@@ -190,6 +208,26 @@ impl Scene {
             front_face,
             part,
             surface,
+        }
+    }
+
+    /// True when `hit` is the back of a [`crate::Sides::Single`] surface.
+    #[inline]
+    fn is_culled(&self, hit: &Hit) -> bool {
+        !hit.front_face && self.surface(hit).sides.culls_back()
+    }
+
+    /// The closest camera hit past a culled back face at `t`: out of line, so scenes without
+    /// single-sided surfaces pay one test per camera ray and nothing more.
+    #[inline(never)]
+    fn intersect_past_culled(&self, ray: &Ray, mut t: f32, t_max: f32) -> Option<Hit> {
+        // Hits are strictly past `t`, so each round moves on along the ray.
+        loop {
+            let hit = self.intersect_beyond(ray, t, t_max, RayKind::Camera)?;
+            if !self.is_culled(&hit) {
+                return Some(hit);
+            }
+            t = hit.t;
         }
     }
 
@@ -350,13 +388,28 @@ impl Scene {
         if n.dot(hit.normal) < 0.0 { -n } else { n }
     }
 
-    /// Radiance emitted towards the ray that made `hit` (zero on the back of emitters).
+    /// Radiance emitted towards the ray that made `hit`: the surface's emission, times its
+    /// mesh's emission texture at the hit where it has one; zero on the back of emitters
+    /// unless their surface is [`crate::Sides::Double`].
     #[inline]
     pub fn emission(&self, hit: &Hit) -> Vec3 {
-        if hit.front_face {
-            self.surface(hit).emission
-        } else {
-            Vec3::ZERO
+        let surface = self.surface(hit);
+        if !(hit.front_face || surface.sides.emits_back()) {
+            return Vec3::ZERO;
+        }
+        if !self.has_emission_textures || hit.part.0 >= self.mesh_part_count || surface.emission == Vec3::ZERO
+        {
+            return surface.emission;
+        }
+        let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
+        let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
+        match mesh
+            .shading
+            .as_ref()
+            .and_then(|s| s.emission_texture_at(face, hit.position))
+        {
+            Some(texture) => surface.emission * texture,
+            None => surface.emission,
         }
     }
 

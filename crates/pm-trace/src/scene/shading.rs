@@ -1,10 +1,12 @@
 //! Per-vertex attributes of a mesh (texture coordinates, colours, normals, a base-colour
-//! texture) and their interpolation at a hit, from barycentrics computed after the hit.
+//! texture, an emission texture) and their interpolation at a hit, from barycentrics
+//! computed after the hit.
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
 
 /// What a mesh's vertices carry besides positions: see [`SceneBuilder::attributed_mesh`].
@@ -23,6 +25,10 @@ pub struct VertexAttributes {
     /// The base-colour texture and how to sample it, read at `uvs` (shared between meshes:
     /// one copy of the image however many meshes use it).
     pub base_color_texture: Option<(Arc<Texture>, Sampler)>,
+    /// A texture multiplying the surface's emission, with its own texture coordinates
+    /// ([`crate::Scene::emission`] reads it at hits; a [`crate::TexturedAreaLight`] over the
+    /// same triangles, texture and factor makes the matching light).
+    pub emission_texture: Option<EmissionTexture>,
 }
 
 /// A mesh's attributes and the triangles (by source face) to interpolate them over. The
@@ -69,6 +75,10 @@ impl MeshShading {
         check("texture coordinates", self.attributes.uvs.as_ref().map(Vec::len))?;
         check("colours", self.attributes.colors.as_ref().map(Vec::len))?;
         check("normals", self.attributes.normals.as_ref().map(Vec::len))?;
+        check(
+            "emission texture coordinates",
+            self.attributes.emission_texture.as_ref().map(|e| e.uvs.len()),
+        )?;
         if let Some(bad) = self.triangles.iter().flatten().find(|&&i| i as usize >= n) {
             return Err(format!("corner {bad} out of range for {n} vertices"));
         }
@@ -97,6 +107,30 @@ impl MeshShading {
                 .normals
                 .as_ref()
                 .map_or(0, |v| v.capacity() * size_of::<Vec3>())
+            + self
+                .attributes
+                .emission_texture
+                .as_ref()
+                .map_or(0, |e| e.uvs.capacity() * size_of::<Vec2>())
+    }
+
+    /// True when the mesh has an emission texture.
+    #[inline]
+    pub(crate) fn has_emission_texture(&self) -> bool {
+        self.attributes.emission_texture.is_some()
+    }
+
+    /// The emission texture's value at point `p` of source triangle `face`, or `None` when
+    /// the mesh has no emission texture.
+    #[inline]
+    pub(crate) fn emission_texture_at(&self, face: usize, p: Vec3) -> Option<Vec3> {
+        let emission = self.attributes.emission_texture.as_ref()?;
+        let &corners = self.triangles.get(face)?;
+        let [a, b, c] = corners.map(|i| self.positions[i as usize]);
+        Some(emission.at(
+            corners.map(|i| emission.uvs[i as usize]),
+            barycentrics(a, b, c, p),
+        ))
     }
 
     /// True when the mesh has per-vertex normals.

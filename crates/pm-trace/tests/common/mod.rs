@@ -79,3 +79,21 @@ pub fn stored_power(traced: &TracedPhotons, kind: Option<PhotonKind>) -> DVec3 {
         .map(|p| p.power.as_dvec3())
         .sum()
 }
+
+/// The unit cube `[0, 1]³` as six quads with inward normals (a closed room).
+pub fn unit_box() -> (Vec<Vec3>, Vec<[u32; 4]>) {
+    let c: Vec<Vec3> = (0..8)
+        .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
+        .collect();
+    (
+        c,
+        vec![
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+            [4, 6, 7, 5],
+            [0, 1, 3, 2],
+        ],
+    )
+}
