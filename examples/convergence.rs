@@ -235,7 +235,13 @@ fn run(args: &Args) -> Result<(), String> {
                 max_seconds: max_budget,
                 clock: args.clock,
             };
-            let run = methods::run(method, &scene, base, progressive, &measure)?;
+            let mut run = methods::run(method, &scene, base, progressive, &measure)?;
+            // The error against the noisy reference, less the reference's own noise in
+            // quadrature: the two are independent, so E[measured²] = error² + noise², and this
+            // is the error against the true image (0 where the difference is not resolved).
+            for s in &mut run.samples {
+                s.rel_rmse = (s.rel_rmse * s.rel_rmse - noise * noise).max(0.0).sqrt();
+            }
             let last = run.samples.last().map_or((0, 0.0), |s| (s.passes, s.rel_rmse));
             let at =
                 [4u64, 16, 64, 256].map(|n| run.after(n).map_or("—".to_owned(), |e| format!("{e:.4}")));

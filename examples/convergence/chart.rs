@@ -83,7 +83,7 @@ pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64, seconds: &str) -
             chart
                 .draw_series(dashes)
                 .map_err(|e| fail(&e))?
-                .label("reference's own noise")
+                .label("reference's own noise (subtracted)")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
         }
         chart

@@ -85,7 +85,7 @@ fn markdown(s: &Study) -> String {
     );
     let _ = writeln!(
         o,
-        "Each method runs once per scene to the largest budget; the accumulated image's relative RMSE (RMSE over the reference's mean) against a path-traced reference is read after every pass, off the clock, {} The error at a budget is that of the last pass that *ended* within it (— : no pass had ended). Path tracing is the renderer's unbiased path tracer (next-event estimation) at one sample per pixel per pass; SPPM is pbrt-v4's algorithm (one global map, α = 2/3, shadow rays for direct light, initial radius the 100-nearest distance at each pixel's first visible point); the progressive renderer uses crease maps (30°) and the fixed-volume estimators with the settings above (k of the pilot's extents, Knaus & Zwicker's α). The reference's own noise is estimated from its two independent halves; errors near it are not resolved. Wall times on a loaded machine are only indicative.\n",
+        "Each method runs once per scene to the largest budget; the accumulated image's relative RMSE (RMSE over the reference's mean) against a path-traced reference is read after every pass, off the clock, {} The error at a budget is that of the last pass that *ended* within it (— : no pass had ended). Path tracing is the renderer's unbiased path tracer (next-event estimation) at one sample per pixel per pass; SPPM is pbrt-v4's algorithm (one global map, α = 2/3, shadow rays for direct light, initial radius the 100-nearest distance at each pixel's first visible point); the progressive renderer uses crease maps (30°) and the fixed-volume estimators with the settings above (k of the pilot's extents, Knaus & Zwicker's α). The reference's own noise σ is estimated from its two independent halves (the RMSE of one half against their mean is the mean's own noise), and every error shown is the measured one less σ in quadrature, √(max(0, RMSE² − σ²)): the method's image and the reference are independent, so the measured square is the method's true squared error plus σ², and the difference estimates the error against the noiseless image (0.0000: not resolved). σ itself comes from one pair of halves, so errors within a few per cent of it are rough. Wall times on a loaded machine are only indicative.\n",
         if s.all_pixels {
             "over every pixel."
         } else {
@@ -103,7 +103,7 @@ fn markdown(s: &Study) -> String {
         }
         let _ = writeln!(
             o,
-            "Reference: {} samples per pixel, its own relative noise {:.4}. Errors over {:.1} % of the pixels (those that see no light).\n",
+            "Reference: {} samples per pixel, its own relative noise {:.4} (subtracted in quadrature from every error below). Errors over {:.1} % of the pixels (those that see no light).\n",
             scene.reference_spp,
             scene.reference_noise,
             100.0 * scene.coverage
