@@ -7,10 +7,12 @@
 //! Each (scene, method) is run once, to the largest budget, and the accumulated image's error
 //! is read after every pass (off the clock): the error at a budget is that of the last pass
 //! that ended within it. So the study takes about scenes × methods × the largest budget, plus
-//! the references (cached in `--reference-dir`, reused by later runs).
+//! the references (cached in `--reference-dir`, reused by later runs). The references are the
+//! `results` example's 500×500 ones box-filtered down to 125×125 where that example has cached
+//! them (4,096–16,384 samples per pixel), or else path traced here for `--reference-seconds`.
 //!
-//! The full study (about 70 minutes on 2 quiet cores, 40 of them the 600 s path-traced
-//! references, which later runs reuse from the cache):
+//! The full study (about 30 minutes on 2 cores with the `results` references cached, 70 when
+//! it path traces its own for 600 s each):
 //! `cargo run --release --example convergence`
 //! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
 
@@ -61,7 +63,7 @@ struct Args {
     /// 0.2 s, 1 s references, pass counts 1, 2, 4 (explicit options still win).
     #[arg(long)]
     quick: bool,
-    /// Image side in pixels (square images) [default: 128; quick: 24].
+    /// Image side in pixels (square images) [default: 125, a quarter of the `results` references' 500; quick: 24].
     #[arg(long)]
     size: Option<u32>,
     /// Photon paths per pass, for SPPM and the progressive renderer [default: 50000; quick: 4000].
@@ -79,6 +81,10 @@ struct Args {
     /// Where references are cached (one EXR per scene and size; delete to re-render).
     #[arg(long, default_value = "target/convergence-reference")]
     reference_dir: PathBuf,
+    /// Where the `results` example caches its (larger) references: one whose size is a whole
+    /// multiple of `--size` (500 for 125) is box-filtered down instead of path tracing anew.
+    #[arg(long, default_value = "target/pm-references")]
+    results_references: PathBuf,
     /// Scenes, comma-separated.
     #[arg(long, default_value = "cornell-box,lit-unlit-rooms,colored-rooms,accordion")]
     scenes: String,
@@ -134,7 +140,7 @@ fn list<T: std::str::FromStr>(text: &str, what: &str) -> Result<Vec<T>, String> 
 
 fn run(args: &Args) -> Result<(), String> {
     let q = args.quick;
-    let size = args.size.unwrap_or(if q { 24 } else { 128 });
+    let size = args.size.unwrap_or(if q { 24 } else { 125 });
     let photons = args.photons.unwrap_or(if q { 4_000 } else { 50_000 });
     let budgets: Vec<f64> = list(
         args.budgets.as_deref().unwrap_or(if q {
@@ -215,7 +221,13 @@ fn run(args: &Args) -> Result<(), String> {
     };
     for name in args.scenes.split(',').map(str::trim) {
         let scene = scenes::build(name).map_err(|e| e.to_string())?;
-        let reference = reference::reference(name, &scene, base, reference_seconds, &args.reference_dir)?;
+        let reference = reference::reference(
+            name,
+            &scene,
+            base,
+            reference_seconds,
+            (&args.reference_dir, &args.results_references),
+        )?;
         let mask = if args.all_pixels {
             mask::Mask::all(size, size)
         } else {
@@ -343,7 +355,7 @@ fn per_pass_tables(
         &accordion,
         base,
         reference_seconds,
-        &args.reference_dir,
+        (&args.reference_dir, &args.results_references),
     )?;
     let creases = per_pass::Creases::new(&accordion, size, size, 0.03)?;
     for method in per_pass::METHODS {

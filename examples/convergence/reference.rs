@@ -1,6 +1,8 @@
 //! The path-traced reference of each scene: two independent halves rendered for a wall-time
 //! budget, their mean the reference and their difference its own noise; cached as EXR files
-//! so that later runs of the study reuse them.
+//! so that later runs of the study reuse them. Where the `results` example has rendered a
+//! reference of the same scene at a whole multiple of the size (500×500 for 125×125), that one
+//! is box-filtered down instead: the same two halves, many more samples per pixel.
 
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::image::write_atomically;
@@ -25,13 +27,15 @@ pub struct Reference {
 }
 
 /// The reference for `scene` (named `name`) at `base`'s size, read from `cache` when a file
-/// for this scene and size is there, otherwise path traced for `seconds` and written there.
+/// for this scene and size is there; otherwise box-filtered down from a `results` reference in
+/// `larger` (files `{name}-{W}x{H}-{spp}-v2.exr` and `…-v2-half.exr`, `W` and `H` the same
+/// whole multiple of the size), or else path traced for `seconds`; written to `cache`.
 pub fn reference(
     name: &str,
     scene: &Scene,
     base: RenderSettings,
     seconds: f64,
-    cache: &Path,
+    (cache, larger): (&Path, &Path),
 ) -> Result<Reference, String> {
     let stem = cache.join(format!("{name}-{}x{}", base.width, base.height));
     let (exr, half, meta) = (
@@ -45,6 +49,18 @@ pub fn reference(
         std::fs::read_to_string(&meta),
     ) && let Some(spp) = text.split_whitespace().next().and_then(|t| t.parse().ok())
     {
+        return Ok(Reference {
+            image,
+            spp,
+            half: first,
+        });
+    }
+    if let Some((image, first, spp)) = downsampled(name, base.width, base.height, larger)? {
+        std::fs::create_dir_all(cache).map_err(|e| format!("{}: {e}", cache.display()))?;
+        image.write_exr(&exr).map_err(|e| e.to_string())?;
+        first.write_exr(&half).map_err(|e| e.to_string())?;
+        write_atomically(&meta, |w| writeln!(w, "{spp} samples per pixel"))
+            .map_err(|e| format!("{}: {e}", meta.display()))?;
         return Ok(Reference {
             image,
             spp,
@@ -92,4 +108,59 @@ pub fn reference(
         spp,
         half: first,
     })
+}
+
+/// A `results` reference of scene `name` in `dir` whose size is a whole multiple `f` ≥ 2 of
+/// `width × height`, with its half, each averaged over `f × f` blocks (a box filter: a pixel
+/// of the small image is the mean of the large pixels that tile it, as a render at the small
+/// size with jittered samples estimates it), and the samples per small pixel (`spp · f²`).
+fn downsampled(
+    name: &str,
+    width: u32,
+    height: u32,
+    dir: &Path,
+) -> Result<Option<(Image, Image, u64)>, String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(None);
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file
+            .strip_prefix(&format!("{name}-"))
+            .and_then(|r| r.strip_suffix("-v2.exr"))
+        else {
+            continue;
+        };
+        // `{W}x{H}-{spp}`
+        let Some((size, spp)) = rest.split_once('-') else {
+            continue;
+        };
+        let Some((w, h)) = size.split_once('x') else {
+            continue;
+        };
+        let (Ok(w), Ok(h), Ok(spp)) = (w.parse::<u32>(), h.parse::<u32>(), spp.parse::<u64>()) else {
+            continue;
+        };
+        let f = w / width;
+        if f < 2 || w != f * width || h != f * height {
+            continue;
+        }
+        let half_path = dir.join(format!("{name}-{size}-{spp}-v2-half.exr"));
+        let read = |p: &Path| Image::read_exr(p).map_err(|e| format!("{}: {e}", p.display()));
+        let (full, half) = (read(&entry.path())?, read(&half_path)?);
+        let down = |large: &Image| {
+            Image::from_fn(width, height, |x, y| {
+                let mut sum = DVec3::ZERO;
+                for j in 0..f {
+                    for i in 0..f {
+                        sum += large.get(x * f + i, y * f + j).unwrap_or_default().as_dvec3();
+                    }
+                }
+                (sum / f64::from(f * f)).as_vec3()
+            })
+            .map_err(|e| e.to_string())
+        };
+        return Ok(Some((down(&full)?, down(&half)?, spp * u64::from(f * f))));
+    }
+    Ok(None)
 }
