@@ -3,15 +3,17 @@
 
 mod builder;
 mod checks;
+mod queries;
 mod shading;
 
 pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
+pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
-use crate::bvh::{HitPrimitive, PartSurface, SceneBvh};
+use crate::bvh::SceneBvh;
 use crate::shape::{RingSide, Shape};
-use crate::{Camera, Light, Material, Ray, SceneError, Surface};
+use crate::{Camera, Light, Material, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
@@ -135,12 +137,6 @@ pub struct Scene {
     has_culling: bool,
 }
 
-/// Triangles from which [`Scene::prefers_ray_pairs`]: random rays cast in pairs were 20–26 %
-/// faster at 240k triangles and 5–8 % slower at 2.4k and 21.6k (one thread, the rooms with
-/// every face split; `benches/raycast.rs`), where everything fits in the cache and there are
-/// no misses to overlap.
-pub const PAIRED_RAYS_MIN_TRIANGLES: usize = 65_536;
-
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
 const SPHERE_PROXY_STACKS: u32 = 16;
 /// Segments of each ring side's proxy (64 quads).
@@ -150,116 +146,6 @@ impl Scene {
     /// A new, empty builder.
     pub fn builder() -> SceneBuilder {
         SceneBuilder::default()
-    }
-
-    /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
-    /// [`Scene::spawn_ray`]'s offset origin.
-    ///
-    /// Camera rays skip surfaces hidden from the camera and the backs of
-    /// [`crate::Sides::Single`] surfaces (back-face culling, as glTF viewers do); other rays
-    /// see every side of every surface.
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let hit = self.intersect_beyond(ray, 0.0, t_max, kind)?;
-        if kind == RayKind::Camera && self.has_culling && self.is_culled(&hit) {
-            return self.intersect_past_culled(ray, hit.t, t_max);
-        }
-        Some(hit)
-    }
-
-    /// The closest hit with `t_min < t < t_max`, culling nothing.
-    #[inline]
-    fn intersect_beyond(&self, ray: &Ray, t_min: f32, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let (t, index) = match kind {
-            RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
-            RayKind::Camera => self
-                .bvh
-                .closest(ray, t_min, t_max, |s| self.surfaces[s as usize].camera_visible)?,
-        };
-        Some(self.hit_at(ray, t, index))
-    }
-
-    /// The closest hits of two rays of [`RayKind::Other`] with `0 < t < t_max`: the same hits
-    /// as two calls of [`Scene::intersect`], found faster where rays are incoherent (photon
-    /// paths), because the two searches are interleaved and their waits for memory overlap.
-    #[inline]
-    pub fn intersect_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<Hit>; 2] {
-        let hits = self.bvh.closest_pair(rays, t_max);
-        [0, 1].map(|k| hits[k].map(|(t, index)| self.hit_at(rays[k], t, index)))
-    }
-
-    /// True when [`Scene::intersect_pair`] beats two calls of [`Scene::intersect`] on
-    /// incoherent rays: scenes of at least [`PAIRED_RAYS_MIN_TRIANGLES`] triangles, whose
-    /// BVH and triangles no longer fit in a core's cache.
-    pub fn prefers_ray_pairs(&self) -> bool {
-        self.bvh.triangle_count() >= PAIRED_RAYS_MIN_TRIANGLES
-    }
-
-    /// The hit of `ray` at distance `t` on primitive `index`.
-    #[inline(always)]
-    fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Hit {
-        let position = ray.at(t);
-        let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
-        let front_face = n.dot(ray.direction) < 0.0;
-        Hit {
-            t,
-            position,
-            normal: if front_face { n } else { -n },
-            front_face,
-            part,
-            surface,
-        }
-    }
-
-    /// True when `hit` is the back of a [`crate::Sides::Single`] surface.
-    #[inline]
-    fn is_culled(&self, hit: &Hit) -> bool {
-        !hit.front_face && self.surface(hit).sides.culls_back()
-    }
-
-    /// The closest camera hit past a culled back face at `t`: out of line, so scenes without
-    /// single-sided surfaces pay one test per camera ray and nothing more.
-    #[inline(never)]
-    fn intersect_past_culled(&self, ray: &Ray, mut t: f32, t_max: f32) -> Option<Hit> {
-        // Hits are strictly past `t`, so each round moves on along the ray.
-        loop {
-            let hit = self.intersect_beyond(ray, t, t_max, RayKind::Camera)?;
-            if !self.is_culled(&hit) {
-                return Some(hit);
-            }
-            t = hit.t;
-        }
-    }
-
-    /// True when a surface lies strictly between `from` and `to` (surfaces within
-    /// [`Scene::epsilon`] of either end do not count, so both may lie on surfaces).
-    #[inline]
-    pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
-        let d = to - from;
-        let dist = d.length();
-        if !dist.is_finite() || dist <= 2.0 * self.epsilon {
-            return false;
-        }
-        let ray = Ray {
-            origin: from,
-            direction: d / dist,
-        };
-        self.bvh.any_hit(&ray, self.epsilon, dist - self.epsilon)
-    }
-
-    /// A ray leaving `hit` along unit `direction`, its origin pushed off the surface to the
-    /// side `direction` goes to (avoids re-hitting the same surface).
-    #[inline]
-    pub fn spawn_ray(&self, hit: &Hit, direction: Vec3) -> Ray {
-        let side = if direction.dot(hit.normal) >= 0.0 {
-            hit.normal
-        } else {
-            -hit.normal
-        };
-        Ray {
-            origin: hit.position + side * self.epsilon,
-            direction,
-        }
     }
 
     /// The ray-query structure (for tests that compare its two kinds of search).
