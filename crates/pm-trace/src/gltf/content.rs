@@ -134,9 +134,19 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
         Checked::Valid(Mode::TriangleStrip | Mode::TriangleFan) => indices.saturating_sub(2),
         _ => 0,
     };
+    // An emissive primitive is also an area light holding its triangles again.
+    let emits = prim
+        .material
+        .and_then(|m| root.materials.get(m.value()))
+        .is_some_and(|m| m.emissive_factor.0.iter().any(|&c| c > 0.0));
+    let per_triangle = if emits {
+        GltfOptions::BYTES_PER_TRIANGLE + GltfOptions::BYTES_PER_EMITTING_TRIANGLE
+    } else {
+        GltfOptions::BYTES_PER_TRIANGLE
+    };
     vertices
         .saturating_mul(GltfOptions::BYTES_PER_VERTEX)
-        .saturating_add(triangles.saturating_mul(GltfOptions::BYTES_PER_TRIANGLE))
+        .saturating_add(triangles.saturating_mul(per_triangle))
 }
 
 use json::accessor::Type;

@@ -213,6 +213,12 @@ impl GltfOptions {
     /// the compressed BVH, measured in `tests/scene_memory.rs`), plus the content's index
     /// triple (12), rounded up. The built scene keeps about 80–90 bytes a triangle.
     pub const BYTES_PER_TRIANGLE: u64 = 450;
+
+    /// Bytes counted, on top of [`Self::BYTES_PER_TRIANGLE`], per triangle of an emissive
+    /// primitive, which is also an area light: its corners (36), a frame (36) and a cumulative
+    /// area (4), and with an emissive texture its corners' texture coordinates (24) and mean
+    /// emission (4), rounded up.
+    pub const BYTES_PER_EMITTING_TRIANGLE: u64 = 112;
 }
 
 impl Default for GltfOptions {
