@@ -29,7 +29,7 @@ mod report;
 #[path = "../tests/support/tracking_allocator.rs"]
 mod tracking_allocator;
 
-use choices::{DirectChoice, EstimatorChoice, MapsChoice, ModeChoice};
+use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
 use files::{check_writable, load_scene, refuse_shared_outputs, say};
 use report::{Record, json_number, json_object, json_string, summary};
 
@@ -92,6 +92,11 @@ struct Args {
     /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
     #[arg(long)]
     time: Option<f64>,
+    /// How a glTF file's emissive strength, candela and lux become watts: `mixed` (emission
+    /// 1:1, lamps ÷ 683), or `photometric` / `viewer`, which keep emitters and lamps at the
+    /// file's ratio. Built-in scenes are in watts already.
+    #[arg(long, value_enum, default_value_t = LightUnitsChoice::Mixed)]
+    light_units: LightUnitsChoice,
     /// Progressive mode: direct light by photons (as `visualize`) or by shadow rays with
     /// photons for the rest (as SPPM has it).
     #[arg(long, value_enum, default_value_t = DirectChoice::Photons)]
@@ -169,7 +174,7 @@ fn run(args: &Args) -> Result<(), String> {
         return progressive::run(args, settings, estimator);
     }
 
-    let (scene, scene_name) = load_scene(&args.scene)?;
+    let (scene, scene_name) = load_scene(&args.scene, args.light_units.into())?;
     let base = args
         .out
         .clone()

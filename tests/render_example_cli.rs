@@ -5,6 +5,10 @@
 //! (`cargo test --test render_example_cli`) the example may be missing, and the test says so
 //! and skips.
 
+#[path = "support/gltf_data_uri.rs"]
+mod gltf_data_uri;
+
+use gltf_data_uri::{Prim, gltf};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -190,5 +194,99 @@ fn compare_picks_an_exposure_that_clips_under_5_percent_and_labels_its_panels() 
             "panel at ({x0}, {y0}): {white} white, {black} black"
         );
     }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The mean RGB the example prints in its summary line.
+fn printed_mean(out: &Output) -> [f64; 3] {
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.contains("mean rgb"))
+        .expect("a summary line");
+    let inside = &line[line.find("mean rgb (").unwrap() + 10..];
+    let values: Vec<f64> = inside[..inside.find(')').unwrap()]
+        .split(',')
+        .map(|v| v.trim().parse().unwrap())
+        .collect();
+    [values[0], values[1], values[2]]
+}
+
+/// `--light-units` reaches the glTF loader: a grey quad lit only by a point lamp of intensity
+/// I renders `viewer` (lamps 1:1, 4πI W) exactly 683 times brighter than `mixed` and
+/// `photometric` (lamps ÷ 683 lm/W), the same photons scaled; built-in scenes ignore it.
+#[test]
+fn light_units_scale_a_gltf_lamp_by_683() {
+    let dir = scratch_dir("units");
+    let quad = Prim {
+        positions: vec![
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
+        uvs: None,
+        indices: vec![0, 1, 2, 0, 2, 3],
+        material: 0,
+    };
+    let grey = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":0}}"#;
+    let json = gltf(
+        &[quad],
+        &[grey.to_owned()],
+        "[]",
+        &[],
+        &[([0.0, 0.0, 1.0], 683.0)],
+    );
+    let file = dir.join("lamp.gltf");
+    std::fs::write(&file, json).unwrap();
+    let mean = |units: &str| {
+        let out = dir.join(format!("{units}.exr"));
+        let args = [
+            "--scene",
+            file.to_str().unwrap(),
+            "--size",
+            "24x24",
+            "--photons",
+            "20000",
+            "--light-units",
+            units,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let output = run(&args)?;
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        Some(printed_mean(&output))
+    };
+    let Some(mixed) = mean("mixed") else { return };
+    println!("mean rgb, mixed units: {mixed:?}");
+    let (viewer, photometric) = (mean("viewer").unwrap(), mean("photometric").unwrap());
+    for c in 0..3 {
+        assert!(mixed[c] > 0.01, "{mixed:?}");
+        assert!(
+            (viewer[c] / mixed[c] / 683.0 - 1.0).abs() < 1e-3,
+            "{viewer:?} vs {mixed:?}"
+        );
+        assert!(
+            (photometric[c] / mixed[c] - 1.0).abs() < 1e-3,
+            "{photometric:?} vs {mixed:?}"
+        );
+    }
+    let builtin = |units: &str| {
+        let out = dir.join(format!("builtin-{units}.exr"));
+        let args = [
+            "--size",
+            "16x16",
+            "--light-units",
+            units,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        printed_mean(&run(&args).unwrap())
+    };
+    assert_eq!(builtin("mixed"), builtin("viewer"));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -3,6 +3,7 @@
 
 use clap::ValueEnum;
 use photon_maps::render::{EstimatorKind, Mode};
+use photon_maps::trace::gltf::LightUnits;
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, SingleMap};
 use std::fmt;
 
@@ -116,5 +117,33 @@ impl DirectChoice {
             DirectChoice::Photons => Mode::Visualize,
             DirectChoice::ShadowRays => Mode::ShadowRays,
         }
+    }
+}
+
+/// `--light-units`: how a glTF file's emissive strength, candela and lux become watts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LightUnitsChoice {
+    /// Emission 1:1 as radiance, lamps divided by 683 lm/W (the loader's default).
+    Mixed,
+    /// Everything photometric, divided by 683 lm/W: physical watts, emitters and lamps at the
+    /// file's ratio.
+    Photometric,
+    /// Everything 1:1, as glTF viewers shade: emitters and lamps at the file's ratio.
+    Viewer,
+}
+
+impl From<LightUnitsChoice> for LightUnits {
+    fn from(choice: LightUnitsChoice) -> Self {
+        match choice {
+            LightUnitsChoice::Mixed => LightUnits::Mixed,
+            LightUnitsChoice::Photometric => LightUnits::Photometric,
+            LightUnitsChoice::Viewer => LightUnits::Viewer,
+        }
+    }
+}
+
+impl fmt::Display for LightUnitsChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_name(self, f)
     }
 }

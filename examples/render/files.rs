@@ -2,13 +2,15 @@
 //! message that names what is wrong) and the outputs it checks before rendering.
 
 use photon_maps::render::image::{check_output_path, write_atomically};
+use photon_maps::trace::gltf::{GltfOptions, LightUnits};
 use photon_maps::trace::{Scene, scenes};
 use std::fs;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-/// A built-in scene by name, or a glTF file by path; also the name used for output files.
-pub fn load_scene(arg: &str) -> Result<(Scene, String), String> {
+/// A built-in scene by name, or a glTF file by path (its lights read in `units`); also the name
+/// used for output files.
+pub fn load_scene(arg: &str, units: LightUnits) -> Result<(Scene, String), String> {
     let path = Path::new(arg);
     let extension = path
         .extension()
@@ -40,7 +42,11 @@ pub fn load_scene(arg: &str) -> Result<(Scene, String), String> {
         .and_then(|s| s.to_str())
         .unwrap_or("scene")
         .to_owned();
-    photon_maps::trace::gltf::load_scene(path)
+    let options = GltfOptions {
+        light_units: units,
+        ..GltfOptions::default()
+    };
+    photon_maps::trace::gltf::load_scene_with(path, &options)
         .map(|s| (s, name))
         .map_err(|e| e.to_string())
 }

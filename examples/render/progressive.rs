@@ -8,6 +8,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
+use photon_maps::trace::gltf::LightUnits;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -55,7 +56,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
     let (image, stats, range, identity) = if sppm {
-        let scene = load_scene(&args.scene)?.0;
+        let scene = load_scene(&args.scene, args.light_units.into())?.0;
         let s = SppmSettings {
             passes,
             time_budget: budget,
@@ -66,12 +67,15 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
         out.image.write_exr(&exr_path).map_err(|e| e.to_string())?;
-        let identity = format!("sppm k={} photons={} seed={}", args.k, args.photons, args.seed);
+        let identity = format!(
+            "sppm k={} photons={} seed={} light_units={}",
+            args.k, args.photons, args.seed, args.light_units
+        );
         (out.image, out.stats.clone(), 0..out.stats.passes, identity)
     } else {
         let partition = args.maps().partitioner();
         let scene = partition
-            .prepare_scene(load_scene(&args.scene)?.0)
+            .prepare_scene(load_scene(&args.scene, args.light_units.into())?.0)
             .map_err(|e| e.to_string())?;
         let s = ProgressiveSettings {
             first_pass: args.first_pass,
@@ -83,7 +87,13 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .render(&scene, &*partition, &bar)
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
-        let identity = format!("{} maps={} estimator={}", s.identity(), args.maps(), estimator);
+        let identity = format!(
+            "{} maps={} estimator={} light_units={}",
+            s.identity(),
+            args.maps(),
+            estimator,
+            args.light_units
+        );
         let a = &out.accumulation;
         let shard = Shard::new(a.mean(), a.pass_range().start, a.passes(), &scene_id, &identity)
             .map_err(|e| e.to_string())?;
@@ -189,7 +199,7 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
 /// The scene's name for output files, and its identity for shards: the name and a 64-bit
 /// FNV-1a hash of the glTF file's bytes (or of the built-in scene's name).
 fn scene_identity(arg: &str) -> Result<(String, String), String> {
-    let (_, name) = load_scene(arg)?;
+    let (_, name) = load_scene(arg, LightUnits::Mixed)?;
     let path = Path::new(arg);
     let fnv = |h: u64, bytes: &[u8]| {
         bytes
