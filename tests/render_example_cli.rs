@@ -235,7 +235,7 @@ fn light_units_scale_a_gltf_lamp_by_683() {
         &[grey.to_owned()],
         "[]",
         &[],
-        &[([0.0, 0.0, 1.0], 683.0)],
+        &[([0.0, 0.0, 1.0], 10_000.0)],
     );
     let file = dir.join("lamp.gltf");
     std::fs::write(&file, json).unwrap();
