@@ -6,10 +6,12 @@ use crate::Ray;
 use crate::bvh::{HitPrimitive, PartSurface};
 use glam::Vec3;
 
-/// Triangles from which [`Scene::prefers_ray_pairs`]: random rays cast in pairs were 20–26 %
-/// faster at 240k triangles and 5–8 % slower at 2.4k and 21.6k (one thread, the rooms with
-/// every face split; `benches/raycast.rs`), where everything fits in the cache and there are
-/// no misses to overlap.
+/// Triangles from which [`Scene::prefers_ray_pairs`] (and [`Scene::intersect_pair`] interleaves
+/// the two searches; below it, it casts the rays one after the other). Random rays cast in
+/// pairs were 5–17 % faster at 240k triangles on a quiet machine and 20–26 % faster with the
+/// other core busy (the misses they overlap are then slower), and 3–9 % slower at 2.4k and 21.6k,
+/// where everything fits in the cache (one thread, the rooms with every face split;
+/// `benches/raycast.rs`).
 pub const PAIRED_RAYS_MIN_TRIANGLES: usize = 65_536;
 
 impl Scene {
@@ -45,6 +47,9 @@ impl Scene {
     /// paths), because the two searches are interleaved and their waits for memory overlap.
     #[inline]
     pub fn intersect_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<Hit>; 2] {
+        if !self.prefers_ray_pairs() {
+            return rays.map(|ray| self.intersect(ray, t_max, RayKind::Other));
+        }
         let hits = self.bvh.closest_pair(rays, t_max);
         [0, 1].map(|k| hits[k].map(|(t, index)| self.hit_at(rays[k], t, index)))
     }
