@@ -6,26 +6,18 @@
 //!
 //! Like the other example tests, it skips when the example was not built beside it.
 
-use std::path::PathBuf;
-use std::process::Command;
+#[path = "support/example.rs"]
+mod example;
 
-fn example() -> Option<PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let path = exe
-        .parent()?
-        .parent()?
-        .join("examples")
-        .join(format!("convergence{}", std::env::consts::EXE_SUFFIX));
-    path.is_file().then_some(path)
-}
+use example::example;
+use std::process::Command;
 
 const SCENES: [&str; 4] = ["cornell-box", "lit-unlit-rooms", "colored-rooms", "accordion"];
 const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 #[test]
 fn quick_study_writes_tables_leak_rows_and_charts() {
-    let Some(exe) = example() else {
-        eprintln!("convergence example not built next to this test; skipping (run `cargo test --workspace`)");
+    let Some(exe) = example("convergence") else {
         return;
     };
     let dir = std::env::temp_dir().join(format!("pm-convergence-{}", std::process::id()));

@@ -5,30 +5,16 @@
 //! (`cargo test --test render_example_cli`) the example may be missing, and the test says so
 //! and skips.
 
+#[path = "support/example.rs"]
+mod example;
+
 #[path = "support/gltf_data_uri.rs"]
 mod gltf_data_uri;
 
+use example::run;
 use gltf_data_uri::{Prim, gltf};
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-/// The built example, `target/<profile>/examples/render`, if it is there.
-fn example() -> Option<PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let profile_dir = exe.parent()?.parent()?;
-    let path = profile_dir
-        .join("examples")
-        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
-    path.is_file().then_some(path)
-}
-
-fn run(args: &[&str]) -> Option<Output> {
-    let Some(exe) = example() else {
-        eprintln!("render example not built next to this test; skipping (run `cargo test --workspace`)");
-        return None;
-    };
-    Some(Command::new(exe).args(args).output().expect("the example starts"))
-}
+use std::process::Output;
 
 fn scratch_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pm-cli-{name}-{}", std::process::id()));

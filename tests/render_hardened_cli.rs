@@ -5,30 +5,12 @@
 //! The example is built next to the test binaries by `cargo test --workspace`; when it is
 //! missing the tests say so and skip.
 
+#[path = "support/example.rs"]
+mod example;
+
+use example::{example, run};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-/// The built example, `target/<profile>/examples/render`, if it is there.
-fn example() -> Option<PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let profile_dir = exe.parent()?.parent()?;
-    let path = profile_dir
-        .join("examples")
-        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
-    path.is_file().then_some(path)
-}
-
-fn skip() {
-    eprintln!("render example not built next to this test; skipping (run `cargo test --workspace`)");
-}
-
-fn run(args: &[&str]) -> Option<Output> {
-    let Some(exe) = example() else {
-        skip();
-        return None;
-    };
-    Some(Command::new(exe).args(args).output().expect("the example starts"))
-}
 
 struct Scratch(PathBuf);
 
@@ -168,10 +150,7 @@ fn stats_json_naming_an_image_output_is_refused_and_the_image_kept() {
 /// fails with EFBIG instead of killing the process).
 #[cfg(unix)]
 fn run_with_small_file_limit(args: &[&str]) -> Option<Output> {
-    let Some(exe) = example() else {
-        skip();
-        return None;
-    };
+    let exe = example("render")?;
     let script = "trap '' XFSZ; ulimit -f 2; exec \"$@\"";
     Some(
         Command::new("sh")

@@ -4,26 +4,12 @@
 //!
 //! Like `render_example_cli`, the test skips when the example was not built beside it.
 
+#[path = "support/example.rs"]
+mod example;
+
+use example::run;
 use photon_maps::render::progressive::Shard;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn example() -> Option<PathBuf> {
-    let exe = std::env::current_exe().ok()?;
-    let profile_dir = exe.parent()?.parent()?;
-    let path = profile_dir
-        .join("examples")
-        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
-    path.is_file().then_some(path)
-}
-
-fn run(args: &[&str]) -> Option<Output> {
-    let Some(exe) = example() else {
-        eprintln!("render example not built next to this test; skipping (run `cargo test --workspace`)");
-        return None;
-    };
-    Some(Command::new(exe).args(args).output().expect("the example starts"))
-}
 
 fn shard(dir: &Path, name: &str, extra: &[&str]) -> Option<PathBuf> {
     let path = dir.join(format!("{name}.exr"));

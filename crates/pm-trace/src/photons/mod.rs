@@ -7,7 +7,7 @@ mod scatter;
 mod trace;
 
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
-pub use scatter::{fresnel_dielectric, reflect, refract};
+pub use scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use trace::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, TraceOptions, TraceStats, TracedPhotons, trace_photons,
 };

@@ -1,5 +1,6 @@
 //! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance,
-//! and the photon tracer's mirror and glass bounces about a shading normal.
+//! and the mirror and glass bounces about a shading normal that the photon tracer and the
+//! render modes share.
 
 use crate::Rng;
 use glam::Vec3;
@@ -10,7 +11,7 @@ use glam::Vec3;
 /// would go into the surface (near a coarse mesh's silhouette), where the geometric normal
 /// is used instead.
 #[inline]
-pub(crate) fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
+pub fn mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
     if shading == geometric {
         reflect(d, geometric)
     } else {
@@ -37,7 +38,7 @@ fn shaded_mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
 /// direction is on the wrong side of the geometric surface (a reflection into it, a
 /// refraction back out), the bounce is made about the geometric normal instead.
 #[inline]
-pub(crate) fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+pub fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
     if shading == geometric {
         glass_about(d, geometric, eta, &mut || rng.next_f32()).0
     } else {

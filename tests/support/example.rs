@@ -1,0 +1,31 @@
+//! Running the built examples from tests: `cargo test` builds the examples next to the test
+//! binaries; a test built alone (`cargo test --test NAME`) may not find them, and then says so
+//! and skips.
+
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The built example `name`, `target/<profile>/examples/<name>`, if it is there; otherwise
+/// prints that the test skips.
+pub fn example(name: &str) -> Option<PathBuf> {
+    let exe = std::env::current_exe().ok()?;
+    let path = exe
+        .parent()?
+        .parent()?
+        .join("examples")
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    if path.is_file() {
+        Some(path)
+    } else {
+        eprintln!("{name} example not built next to this test; skipping (run `cargo test --workspace`)");
+        None
+    }
+}
+
+/// The render example run with `args` (`None`: not built, the test skips).
+pub fn run(args: &[&str]) -> Option<Output> {
+    let exe = example("render")?;
+    Some(Command::new(exe).args(args).output().expect("the example starts"))
+}
