@@ -211,20 +211,20 @@ mod tests {
             ..TraceOptions::default()
         };
         let picker = LightPicker::new(&scene, options.photons).unwrap();
-        let trace = |paired: bool| {
+        let trace = |paired: bool, range: (u32, u32)| {
             let mut out = Vec::new();
-            trace_paths(
-                &scene,
-                &assignment,
-                &options,
-                &picker,
-                (0, options.photons),
-                paired,
-                &mut out,
-            );
+            trace_paths(&scene, &assignment, &options, &picker, range, paired, &mut out);
             out
         };
-        let (one, two) = (trace(false), trace(true));
+        // The smallest chunks too: one path (no pair), two (one pair), three (a pair and a
+        // path left over), and a chunk starting at an odd path.
+        for range in [(0, 1), (0, 2), (0, 3), (7, 10)] {
+            assert_eq!(trace(true, range), trace(false, range), "paths {range:?}");
+        }
+        let (one, two) = (
+            trace(false, (0, options.photons)),
+            trace(true, (0, options.photons)),
+        );
         assert!(one.len() > 5_000, "{}", one.len());
         assert_eq!(one.len(), two.len());
         for (k, ((ma, a), (mb, b))) in one.iter().zip(&two).enumerate() {
@@ -243,4 +243,31 @@ mod tests {
             assert_eq!(a.kind, b.kind, "photon {k}");
         }
     }
+}
+
+/// The whole run on a scene large enough for paired paths gives the same photons on one thread
+/// and on seven (chunks are paired within themselves, so the thread count never shows).
+#[cfg(test)]
+#[test]
+fn paired_tracing_is_the_same_on_one_and_seven_threads() {
+    let scene = crate::scenes::scale::split_rooms(60).unwrap();
+    assert!(scene.prefers_ray_pairs());
+    let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
+    let options = TraceOptions {
+        photons: 3_001,
+        seed: 11,
+        ..TraceOptions::default()
+    };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| super::trace_photons(&scene, &assignment, &options).unwrap())
+            .into_parts()
+            .0
+    };
+    let (one, seven) = (run(1), run(7));
+    assert!(one.iter().map(Vec::len).sum::<usize>() > 5_000);
+    assert_eq!(one, seven);
 }
