@@ -15,9 +15,13 @@ use photon_maps::trace::{
 };
 use std::f32::consts::PI;
 
-#[path = "support/icosphere.rs"]
-mod icosphere;
-use icosphere::icosphere;
+#[path = "../crates/pm-trace/tests/common/mod.rs"]
+mod common;
+
+/// A unit icosphere at the origin: the icosahedron subdivided `levels` times.
+fn icosphere(levels: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    common::icosphere(Vec3::ZERO, 1.0, levels)
+}
 
 /// Sphere radius and index of refraction.
 const RADIUS: f32 = 0.25;

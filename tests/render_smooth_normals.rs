@@ -8,9 +8,13 @@ use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, SceneBuilder, Surface, VertexAttributes};
 use std::f32::consts::PI;
 
-#[path = "support/icosphere.rs"]
-mod icosphere;
-use icosphere::icosphere;
+#[path = "../crates/pm-trace/tests/common/mod.rs"]
+mod common;
+
+/// A unit icosphere at the origin: the icosahedron subdivided `levels` times.
+fn icosphere(levels: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    common::icosphere(Vec3::ZERO, 1.0, levels)
+}
 
 const STACKS: u32 = 10;
 const SLICES: u32 = 20;
