@@ -346,3 +346,54 @@ fn the_bvh_matches_the_flat_scan_through_a_deep_stack_of_layers() {
         );
     }
 }
+
+/// The top of the triangle range: a million triangles (the rooms with every face split
+/// 205 × 205), random rays from inside against the flat scan over all of them (the brute
+/// force), one at a time and in pairs.
+#[test]
+fn the_bvh_matches_the_flat_scan_at_a_million_triangles() {
+    let rooms = crate::scenes::scale::split_rooms(205).unwrap();
+    let (triangles, parts): (Vec<[Vec3; 3]>, Vec<PartSurface>) = rooms
+        .search()
+        .triangles
+        .iter()
+        .map(|r| {
+            (
+                r.v,
+                PartSurface {
+                    part: r.part,
+                    surface: r.surface,
+                },
+            )
+        })
+        .unzip();
+    assert!(triangles.len() > 1_000_000, "{}", triangles.len());
+    let scan = SceneBvh::build_with(triangles, parts, Vec::new(), usize::MAX);
+    let bvh = rooms.search();
+    let mut rng = Rng::new(31, 0);
+    let rays: Vec<Ray> = (0..200)
+        .map(|_| {
+            let mut u = || rng.next_f32();
+            Ray {
+                origin: Vec3::new(u() * 2.02, u(), u()),
+                direction: uniform_sphere(Vec2::new(u(), u())),
+            }
+        })
+        .collect();
+    let part = |b: &SceneBvh, ray: &Ray, hit: Option<(f32, HitPrimitive)>| {
+        hit.map(|(t, h)| (t.to_bits(), b.part_and_normal(h, ray.at(t)).0))
+    };
+    for (k, pair) in rays.chunks_exact(2).enumerate() {
+        let paired = bvh.closest_pair([&pair[0], &pair[1]], f32::INFINITY);
+        for (ray, found) in pair.iter().zip(paired) {
+            let expected = part(&scan, ray, scan.closest(ray, 0.0, f32::INFINITY, |_| true));
+            assert!(expected.is_some(), "rays from inside the rooms hit a wall");
+            assert_eq!(
+                part(bvh, ray, bvh.closest(ray, 0.0, f32::INFINITY, |_| true)),
+                expected,
+                "pair {k}"
+            );
+            assert_eq!(part(bvh, ray, found), expected, "pair {k}, paired");
+        }
+    }
+}
