@@ -63,6 +63,8 @@ fn measure(make: impl FnOnce() -> Scene) -> (f64, f64, f64, usize) {
 fn a_built_scene_holds_at_most_100_bytes_per_triangle() {
     let (sphere_positions, sphere_faces) = sphere_mesh(100);
     let rooms = measure(|| split_rooms(40).expect("scene"));
+    // The top of the range: a million triangles.
+    let million = measure(|| split_rooms(205).expect("scene"));
     let sphere = measure(|| {
         Scene::builder()
             .mesh(
@@ -74,7 +76,11 @@ fn a_built_scene_holds_at_most_100_bytes_per_triangle() {
             .build()
             .expect("scene")
     });
-    for (name, (live, peak, reported, triangles)) in [("split-rooms-40", rooms), ("sphere", sphere)] {
+    for (name, (live, peak, reported, triangles)) in [
+        ("split-rooms-40", rooms),
+        ("split-rooms-205", million),
+        ("sphere", sphere),
+    ] {
         eprintln!(
             "{name}: {triangles} triangles, {live:.1} B/triangle live, {peak:.1} at the peak, reported {reported:.1}"
         );
