@@ -32,7 +32,7 @@ mod report;
 mod tracking_allocator;
 
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
-use files::{NamedFile, check_run_outputs, load_scene, say, scene_input};
+use files::{NamedFile, check_run_outputs, load_scene, say, scene_input, scene_name};
 use report::{Record, json_number, json_object, json_string, summary};
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
@@ -93,7 +93,7 @@ struct Args {
     #[arg(long, default_value_t = 0)]
     first_pass: u64,
     /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// How a glTF file's emissive strength, candela and lux become watts: `mixed` (emission
     /// 1:1, lamps ÷ 683), or `photometric` / `viewer`, which keep emitters and lamps at the
@@ -182,14 +182,15 @@ fn run(args: &Args) -> Result<(), String> {
         return progressive::run(args, settings, estimator);
     }
 
-    let (scene, scene_name) = load_scene(&args.scene, args.light_units.into())?;
+    let scene_name = scene_name(&args.scene);
     let base = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
-    // Fail on an unwritable or clashing output before spending time on the render.
+    // Fail on an unwritable or clashing output before spending time on the scene or render.
     let inputs: Vec<NamedFile<'_>> = scene_input(&args.scene).into_iter().collect();
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
+    let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
 
     let variants: Vec<Variant> = if args.compare {
         compare::VARIANTS

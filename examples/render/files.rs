@@ -37,11 +37,7 @@ pub fn load_scene(arg: &str, units: LightUnits) -> Result<(Scene, String), Strin
     if !path.is_file() {
         return Err(format!("scene file not found: {arg}"));
     }
-    let name = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("scene")
-        .to_owned();
+    let name = scene_name(arg);
     let options = GltfOptions {
         light_units: units,
         ..GltfOptions::default()
@@ -49,6 +45,20 @@ pub fn load_scene(arg: &str, units: LightUnits) -> Result<(Scene, String), Strin
     photon_maps::trace::gltf::load_scene_with(path, &options)
         .map(|s| (s, name))
         .map_err(|e| e.to_string())
+}
+
+/// The name used for output files: a built-in scene's name, or a file's stem. Known without
+/// loading the scene, so outputs are checked before it is read.
+pub fn scene_name(arg: &str) -> String {
+    let path = Path::new(arg);
+    if arg.contains(['/', '\\']) || path.extension().is_some() {
+        path.file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("scene")
+            .to_owned()
+    } else {
+        arg.to_owned()
+    }
 }
 
 /// Prints a line to stdout; a closed pipe (`render | head -1`) is not an error worth a panic.

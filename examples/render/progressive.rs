@@ -10,7 +10,6 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
-use photon_maps::trace::gltf::LightUnits;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -207,7 +206,7 @@ fn count(n: u64, one: &str, many: &str) -> String {
 /// The scene's name for output files, and its identity for shards: the name and a 64-bit
 /// FNV-1a hash of the glTF file's bytes (or of the built-in scene's name).
 fn scene_identity(arg: &str) -> Result<(String, String), String> {
-    let (_, name) = load_scene(arg, LightUnits::Mixed)?;
+    let name = super::files::scene_name(arg);
     let path = Path::new(arg);
     let fnv = |h: u64, bytes: &[u8]| {
         bytes
