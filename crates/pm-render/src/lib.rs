@@ -13,6 +13,8 @@
 //! - [`progressive`]: a consistent progressive renderer (Knaus & Zwicker passes with
 //!   fixed-volume estimates, [`FixedVolumeEstimator`]) that stays leak-free and edge-true at
 //!   every pass, shards of passes that merge exactly, and the SPPM baseline.
+//! - [`prelude`]: the scene, tracing, map and estimator names most programs need, in one
+//!   `use pm_render::prelude::*`.
 //! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`),
 //!   each written atomically ([`image::write_atomically`]: a failed write keeps the old file).
 //!
@@ -66,6 +68,7 @@ pub mod error;
 pub mod estimator;
 pub mod image;
 pub mod mode;
+pub mod prelude;
 pub mod progress;
 pub mod progressive;
 pub mod renderer;
