@@ -264,7 +264,7 @@ fn options_the_mode_would_ignore_are_refused() {
         (&["--mode", "path-trace", "--estimator", "cube"], "--estimator"),
         (&["--mode", "sppm", "--maps", "contact", "--estimator", "ball"], "--maps"),
         (&["--mode", "sppm", "--estimator", "ball"], "--estimator"),
-        (&["--mode", "sppm", "--spp", "4"], "--spp"),
+        (&["--mode", "sppm", "--spp", "4"], "--samples-per-pixel"),
         (&["--mode", "visualize", "--passes", "3"], "--passes"),
         (&["--mode", "shadow-rays", "--time", "1"], "--time"),
         (&["--mode", "sppm", "--first-pass", "2"], "--first-pass"),

@@ -22,7 +22,7 @@ enum Run {
 /// so. Options not listed (`--out`, `--stats-json`, `--exposure`) apply to every run.
 fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
     use ModeChoice::*;
-    let maps_mode = |m: ModeChoice| matches!(m, Visualize | ShadowRays | Progressive);
+    let maps_mode = |m: ModeChoice| matches!(m, PhotonMap | ShadowRays | Progressive);
     let gltf = {
         let ext = Path::new(&args.scene).extension().and_then(|e| e.to_str());
         ext.is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
@@ -42,7 +42,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         return None;
     }
     Some(match option {
-        "maps" | "estimator" => "the photon-map modes (visualize, shadow-rays, progressive)",
+        "maps" | "estimator" => "the photon-map modes (photon-map, shadow-rays, progressive)",
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
         "passes" | "time" => "--mode progressive and --mode sppm",
@@ -61,7 +61,7 @@ const OPTIONS: [(&str, &str); 15] = [
     ("photons", "--photons"),
     ("k", "--k"),
     ("size", "--size"),
-    ("spp", "--spp"),
+    ("spp", "--samples-per-pixel"),
     ("threads", "--threads"),
     ("seed", "--seed"),
     ("passes", "--passes"),
