@@ -154,17 +154,37 @@ fn merged_shards_equal_the_single_run() {
     let merged = Shard::merge(&read).unwrap();
     assert_eq!(merged.pass_range(), 0..5);
     // Bit for bit: the shards carry exact sums, so the grouping of passes does not matter.
-    assert_eq!(bits(&merged.mean()), bits(&single.mean()), "merged shards differ from the single run");
+    assert_eq!(
+        bits(&merged.mean()),
+        bits(&single.mean()),
+        "merged shards differ from the single run"
+    );
     let paths: Vec<_> = [2, 0, 1].map(|i| dir.join(format!("shard{i}.exr"))).to_vec();
     let streamed = Shard::merge_files(&paths).unwrap();
-    assert_eq!(bits(&streamed.mean()), bits(&single.mean()), "merged files differ from the single run");
+    assert_eq!(
+        bits(&streamed.mean()),
+        bits(&single.mean()),
+        "merged files differ from the single run"
+    );
     // The naive merge of rounded means (what shards held before) is not bit-identical here,
     // so the test can tell.
     let rounded: Vec<Shard> = shards
         .iter()
-        .map(|s| Shard::new(s.mean(), s.pass_range().start, s.passes(), s.scene(), s.settings()).unwrap())
+        .map(|s| {
+            Shard::new(
+                s.mean(),
+                s.pass_range().start,
+                s.passes(),
+                s.scene(),
+                s.settings(),
+            )
+            .unwrap()
+        })
         .collect();
-    assert_ne!(bits(&Shard::merge(&rounded).unwrap().mean()), bits(&single.mean()));
+    assert_ne!(
+        bits(&Shard::merge(&rounded).unwrap().mean()),
+        bits(&single.mean())
+    );
 
     // Refusals.
     assert!(matches!(

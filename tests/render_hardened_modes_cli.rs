@@ -43,12 +43,19 @@ fn assert_refused(args: &[&str], output: &Output, needle: &str) {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(!output.status.success(), "{args:?} succeeded");
     assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-    assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: not one line: {stderr}");
+    assert_eq!(
+        stderr.trim().lines().count(),
+        1,
+        "{args:?}: not one line: {stderr}"
+    );
     assert!(
         stderr.to_lowercase().contains(&needle.to_lowercase()),
         "{args:?}: {stderr:?} does not name {needle:?}"
     );
-    assert!(stdout.trim().is_empty(), "{args:?} rendered before refusing: {stdout}");
+    assert!(
+        stdout.trim().is_empty(),
+        "{args:?} rendered before refusing: {stdout}"
+    );
 }
 
 fn assert_ok(args: &[&str], output: &Output) {
@@ -109,14 +116,44 @@ fn a_late_first_pass_costs_what_an_early_one_does_and_the_last_pass_is_kept() {
     let out = scratch.path("x.exr");
     // The radius schedule looped to the pass index: minutes for 10^12, for ever near u64::MAX.
     for first in ["1000000000000", "18446744073709551614"] {
-        let args = with(&SMALL, &["--mode", "progressive", "--passes", "1", "--first-pass", first, "--out", &out]);
-        let Some(output) = run_within(&args, Duration::from_secs(20)) else { return };
+        let args = with(
+            &SMALL,
+            &[
+                "--mode",
+                "progressive",
+                "--passes",
+                "1",
+                "--first-pass",
+                first,
+                "--out",
+                &out,
+            ],
+        );
+        let Some(output) = run_within(&args, Duration::from_secs(20)) else {
+            return;
+        };
         let output = output.unwrap_or_else(|| panic!("--first-pass {first} ran past 20 s"));
         assert_ok(&args, &output);
     }
     // Past the last pass, and wrapping past u64::MAX.
-    for (first, passes) in [("18446744073709551614", "2"), ("18446744073709551615", "1"), ("5", "18446744073709551615")] {
-        let args = with(&SMALL, &["--mode", "progressive", "--passes", passes, "--first-pass", first, "--out", &out]);
+    for (first, passes) in [
+        ("18446744073709551614", "2"),
+        ("18446744073709551615", "1"),
+        ("5", "18446744073709551615"),
+    ] {
+        let args = with(
+            &SMALL,
+            &[
+                "--mode",
+                "progressive",
+                "--passes",
+                passes,
+                "--first-pass",
+                first,
+                "--out",
+                &out,
+            ],
+        );
         let Some(output) = run(&args) else { return };
         assert_refused(&args, &output, "last pass");
     }
@@ -126,7 +163,18 @@ fn a_late_first_pass_costs_what_an_early_one_does_and_the_last_pass_is_kept() {
 fn shard(path: &str, first: &str, passes: &str, threads: &str) -> Option<Output> {
     let args = with(
         &SMALL,
-        &["--mode", "progressive", "--first-pass", first, "--passes", passes, "--threads", threads, "--out", path],
+        &[
+            "--mode",
+            "progressive",
+            "--first-pass",
+            first,
+            "--passes",
+            passes,
+            "--threads",
+            threads,
+            "--out",
+            path,
+        ],
     );
     let output = run(&args)?;
     assert_ok(&args, &output);
@@ -137,7 +185,11 @@ fn shard(path: &str, first: &str, passes: &str, threads: &str) -> Option<Output>
 #[test]
 fn merge_refuses_a_fifo_and_names_a_shard_given_twice() {
     let scratch = Scratch::new("merge");
-    let (a, c, out) = (scratch.path("a.exr"), scratch.path("c.exr"), scratch.path("m.exr"));
+    let (a, c, out) = (
+        scratch.path("a.exr"),
+        scratch.path("c.exr"),
+        scratch.path("m.exr"),
+    );
     if shard(&a, "0", "2", "0").is_none() {
         return;
     }
@@ -148,7 +200,11 @@ fn merge_refuses_a_fifo_and_names_a_shard_given_twice() {
     assert!(String::from_utf8_lossy(&output.stderr).contains("c.exr"));
 
     let fifo = scratch.path("f.exr");
-    if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
         let args = ["--merge", &a, &fifo, "--out", &out];
         let output = run_within(&args, Duration::from_secs(20)).unwrap();
         let output = output.expect("--merge of a FIFO blocked for 20 s");
@@ -198,7 +254,15 @@ fn no_output_may_name_another_or_an_input_in_any_mode() {
         assert_refused(&args, &output, "an output may not replace an input");
     }
     let json = scratch.path("m.json");
-    let args = ["--merge", &a, &b, "--out", &scratch.path("m.exr"), "--stats-json", &b];
+    let args = [
+        "--merge",
+        &a,
+        &b,
+        "--out",
+        &scratch.path("m.exr"),
+        "--stats-json",
+        &b,
+    ];
     let output = run(&args).unwrap();
     assert_refused(&args, &output, "input");
     assert_eq!((keep(&a), keep(&b)), (a_bytes, b_bytes), "a shard was changed");
@@ -211,8 +275,14 @@ fn no_output_may_name_another_or_an_input_in_any_mode() {
     std::fs::copy(source.join("scenes/cycle.gltf"), &scene).unwrap();
     let scene_bytes = keep(&scene);
     let g = scratch.path("g.exr");
-    for mode in [&["--mode", "visualize"][..], &["--mode", "progressive", "--passes", "1"]] {
-        let args = with(&with(&SMALL, mode), &["--scene", &scene, "--out", &g, "--stats-json", &scene]);
+    for mode in [
+        &["--mode", "visualize"][..],
+        &["--mode", "progressive", "--passes", "1"],
+    ] {
+        let args = with(
+            &with(&SMALL, mode),
+            &["--scene", &scene, "--out", &g, "--stats-json", &scene],
+        );
         let output = run(&args).unwrap();
         assert_refused(&args, &output, "input");
         assert_eq!(keep(&scene), scene_bytes);
@@ -262,7 +332,10 @@ fn options_the_mode_would_ignore_are_refused() {
     let out = scratch.path("x.exr");
     let cases: [(&[&str], &str); 10] = [
         (&["--mode", "path-trace", "--estimator", "cube"], "--estimator"),
-        (&["--mode", "sppm", "--maps", "contact", "--estimator", "ball"], "--maps"),
+        (
+            &["--mode", "sppm", "--maps", "contact", "--estimator", "ball"],
+            "--maps",
+        ),
         (&["--mode", "sppm", "--estimator", "ball"], "--estimator"),
         (&["--mode", "sppm", "--spp", "4"], "--samples-per-pixel"),
         (&["--mode", "visualize", "--passes", "3"], "--passes"),
@@ -270,28 +343,48 @@ fn options_the_mode_would_ignore_are_refused() {
         (&["--mode", "sppm", "--first-pass", "2"], "--first-pass"),
         (&["--mode", "path-trace", "--photons", "300"], "--photons"),
         (&["--mode", "path-trace", "--k", "20"], "--k"),
-        (&["--scene", "accordion", "--light-units", "viewer"], "--light-units"),
+        (
+            &["--scene", "accordion", "--light-units", "viewer"],
+            "--light-units",
+        ),
     ];
     for (extra, needle) in cases {
         let args = with(&with(&SMALL_PT, extra), &["--out", &out]);
         let Some(output) = run(&args) else { return };
         assert_refused(&args, &output, needle);
     }
-    let args = ["--merge", &out, "--scene", "accordion", "--out", &scratch.path("m.exr")];
+    let args = [
+        "--merge",
+        &out,
+        "--scene",
+        "accordion",
+        "--out",
+        &scratch.path("m.exr"),
+    ];
     let output = run(&args).unwrap();
     assert_refused(&args, &output, "--scene");
 
     // A path-traced run's figures record no maps, estimator or k.
     let json = scratch.path("x.json");
-    let args = with(&SMALL_PT, &["--mode", "path-trace", "--out", &out, "--stats-json", &json]);
+    let args = with(
+        &SMALL_PT,
+        &["--mode", "path-trace", "--out", &out, "--stats-json", &json],
+    );
     assert_ok(&args, &run(&args).unwrap());
     let text = std::fs::read_to_string(&json).unwrap();
     for key in ["\"maps\"", "\"estimator\"", "\"k\""] {
-        assert!(!text.contains(key), "{key} recorded for a path-traced run: {text}");
+        assert!(
+            !text.contains(key),
+            "{key} recorded for a path-traced run: {text}"
+        );
     }
     let args = with(&SMALL, &["--out", &out, "--stats-json", &json]);
     assert_ok(&args, &run(&args).unwrap());
-    assert!(std::fs::read_to_string(&json).unwrap().contains("\"maps\": \"crease\""));
+    assert!(
+        std::fs::read_to_string(&json)
+            .unwrap()
+            .contains("\"maps\": \"crease\"")
+    );
 }
 
 #[test]
@@ -323,11 +416,17 @@ fn the_same_inputs_give_the_same_bytes_at_any_thread_count() {
     };
     let mut runs: Vec<(&str, Vec<&str>)> = Vec::new();
     for threads in ["1", "2", "3"] {
-        runs.push((threads, vec!["--mode", "progressive", "--passes", "2", "--threads", threads]));
+        runs.push((
+            threads,
+            vec!["--mode", "progressive", "--passes", "2", "--threads", threads],
+        ));
     }
     for (i, threads) in ["1", "3"].into_iter().enumerate() {
         let name = ["sppm1", "sppm3"][i];
-        runs.push((name, vec!["--mode", "sppm", "--passes", "2", "--threads", threads]));
+        runs.push((
+            name,
+            vec!["--mode", "sppm", "--passes", "2", "--threads", threads],
+        ));
     }
     for (name, extra) in &runs {
         let out = scratch.path(&format!("{name}.exr"));
@@ -335,7 +434,10 @@ fn the_same_inputs_give_the_same_bytes_at_any_thread_count() {
         let Some(output) = run(&args) else { return };
         assert_ok(&args, &output);
     }
-    assert!(files("1") == files("2") && files("1") == files("3"), "progressive files differ");
+    assert!(
+        files("1") == files("2") && files("1") == files("3"),
+        "progressive files differ"
+    );
     assert!(files("sppm1") == files("sppm3"), "SPPM files differ");
     // Merges of the same shards, twice.
     let (a, b) = (scratch.path("a.exr"), scratch.path("b.exr"));

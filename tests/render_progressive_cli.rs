@@ -70,7 +70,10 @@ fn cli_shards_merge_into_the_single_run_and_mismatches_are_refused() {
     assert_eq!(merged_shard.pass_range(), 0..5);
     assert_eq!(merged_shard.mean(), full_shard.mean());
     // The same file, byte for byte (mean, sums and header), and the same preview.
-    assert!(std::fs::read(&merged).unwrap() == std::fs::read(&full).unwrap(), "merged EXR differs");
+    assert!(
+        std::fs::read(&merged).unwrap() == std::fs::read(&full).unwrap(),
+        "merged EXR differs"
+    );
     let png = |p: &Path| std::fs::read(p.with_extension("png")).unwrap();
     assert!(png(&merged) == png(&full), "merged PNG differs");
 

@@ -96,9 +96,9 @@ pub fn refuse_inapplicable(args: &Args, matches: &ArgMatches) -> Result<(), Stri
                 Run::Merge => format!(
                     "{name} does not apply to --merge: the shards carry their scene and settings; drop it"
                 ),
-                Run::Single(m) | Run::Passes(m) => format!(
-                    "{name} does not apply to --mode {m}: it is used by {where_} only; drop it"
-                ),
+                Run::Single(m) | Run::Passes(m) => {
+                    format!("{name} does not apply to --mode {m}: it is used by {where_} only; drop it")
+                }
             });
         }
     }

@@ -24,9 +24,10 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     }
     let budget = match args.time {
         // Refuses negative, NaN, infinite and too large (about 1.8e19 s) budgets.
-        Some(t) => Some(Duration::try_from_secs_f64(t).map_err(|_| {
-            format!("--time must be a number of seconds from 0 to 1.8e19, got {t}")
-        })?),
+        Some(t) => Some(
+            Duration::try_from_secs_f64(t)
+                .map_err(|_| format!("--time must be a number of seconds from 0 to 1.8e19, got {t}"))?,
+        ),
         None => None,
     };
     let passes = match (args.passes, budget) {

@@ -29,13 +29,32 @@ fn words(x: f64) -> (u32, u32) {
 
 /// Writes a shard file by hand: header lines `lines`, size `w × h`, every pixel's sums
 /// `sum(x, y)` as (hi, lo).
-fn write_raw(path: &Path, lines: &[&str], w: usize, h: usize, sum: impl Fn(usize, usize) -> (DVec3, DVec3) + Sync) {
+fn write_raw(
+    path: &Path,
+    lines: &[&str],
+    w: usize,
+    h: usize,
+    sum: impl Fn(usize, usize) -> (DVec3, DVec3) + Sync,
+) {
     let pixel = |Vec2(x, y): Vec2<usize>| {
         let (hi, lo) = sum(x, y);
         let (rh, gh, bh) = (words(hi.x), words(hi.y), words(hi.z));
         let (rl, gl, bl) = (words(lo.x), words(lo.y), words(lo.z));
         (
-            hi.x as f32, hi.y as f32, hi.z as f32, rh.0, rh.1, rl.0, rl.1, gh.0, gh.1, gl.0, gl.1, bh.0, bh.1, bl.0,
+            hi.x as f32,
+            hi.y as f32,
+            hi.z as f32,
+            rh.0,
+            rh.1,
+            rl.0,
+            rl.1,
+            gh.0,
+            gh.1,
+            gl.0,
+            gl.1,
+            bh.0,
+            bh.1,
+            bl.0,
             bl.1,
         )
     };
@@ -62,7 +81,10 @@ fn write_raw(path: &Path, lines: &[&str], w: usize, h: usize, sum: impl Fn(usize
         .other
         .insert(Text::from("photonMapsShard"), AttributeValue::Text(text));
     let layer = exr::prelude::Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
-    exr::prelude::Image::from_layer(layer).write().to_file(path).unwrap();
+    exr::prelude::Image::from_layer(layer)
+        .write()
+        .to_file(path)
+        .unwrap();
 }
 
 /// A valid crafted shard of `passes` passes from `first`, every sum `value`.
@@ -156,11 +178,17 @@ fn non_finite_sums_are_refused_naming_the_shard_and_pixel() {
     let path = dir.join("lo.exr");
     let lines = ["photon-maps shard v2", "1", "1", "scene", "settings"];
     write_raw(&path, &lines, 4, 3, |_, _| (DVec3::ONE, DVec3::splat(f64::NAN)));
-    assert!(matches!(Shard::read_exr(&path), Err(ShardError::NonFinite { .. })));
+    assert!(matches!(
+        Shard::read_exr(&path),
+        Err(ShardError::NonFinite { .. })
+    ));
     // And in memory: a mean with an infinite pixel is no shard.
     let mut mean = Image::new(2, 2).unwrap();
     mean.set(1, 0, Vec3::new(f32::INFINITY, 0.0, 0.0));
-    assert!(matches!(Shard::new(mean, 0, 1, "s", "t"), Err(ShardError::NonFinite { x: 1, y: 0, .. })));
+    assert!(matches!(
+        Shard::new(mean, 0, 1, "s", "t"),
+        Err(ShardError::NonFinite { x: 1, y: 0, .. })
+    ));
     std::fs::remove_dir_all(&dir).ok();
 }
 

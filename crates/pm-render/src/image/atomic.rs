@@ -100,10 +100,7 @@ fn resolve_target(path: &Path) -> io::Result<PathBuf> {
             Ok(meta) if meta.is_file() && meta.permissions().readonly() => {
                 return Err(io::Error::new(
                     io::ErrorKind::PermissionDenied,
-                    format!(
-                        "{} is read-only; refusing to replace it",
-                        path.display()
-                    ),
+                    format!("{} is read-only; refusing to replace it", path.display()),
                 ));
             }
             Ok(meta) if meta.is_file() => return Ok(target),

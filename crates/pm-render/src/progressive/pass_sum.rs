@@ -68,7 +68,12 @@ impl PassSums {
                 b_height: 1,
             });
         }
-        Ok(PassSums { width, height, hi, lo })
+        Ok(PassSums {
+            width,
+            height,
+            hi,
+            lo,
+        })
     }
 
     /// Width in pixels.
@@ -175,7 +180,13 @@ mod tests {
         };
         let one = grouped(&values, &[64]);
         let mut naive_differs = false;
-        for groups in [&[1usize; 64][..], &[32, 32], &[1, 2, 61], &[63, 1], &[10, 20, 30, 4]] {
+        for groups in [
+            &[1usize; 64][..],
+            &[32, 32],
+            &[1, 2, 61],
+            &[63, 1],
+            &[10, 20, 30, 4],
+        ] {
             assert_eq!(grouped(&values, groups), one, "{groups:?}");
             naive_differs |= naive(groups) != naive(&[64]);
         }

@@ -97,7 +97,10 @@ mod tests {
             let limit = s * s * (i as f64).powf(1.0 - alpha);
             // The next term of the expansion is (α−1)α/(2i) relative.
             let tolerance = 1e-12 + 0.2 / i as f64;
-            assert!((limit / inverse_gamma - 1.0).abs() < tolerance, "pass {i}: {limit}");
+            assert!(
+                (limit / inverse_gamma - 1.0).abs() < tolerance,
+                "pass {i}: {limit}"
+            );
         }
     }
 

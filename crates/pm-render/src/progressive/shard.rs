@@ -180,7 +180,9 @@ pub fn plan_merge(headers: &[ShardHeader]) -> Result<(Vec<usize>, ShardHeader), 
         let (ra, rb) = (range(pair[0])?, range(pair[1])?);
         if rb.start < ra.end {
             if a.name == b.name {
-                return Err(ShardError::Duplicate { shard: a.name.clone() });
+                return Err(ShardError::Duplicate {
+                    shard: a.name.clone(),
+                });
             }
             return Err(ShardError::Overlap {
                 a_shard: a.name.clone(),
@@ -201,11 +203,13 @@ pub fn plan_merge(headers: &[ShardHeader]) -> Result<(Vec<usize>, ShardHeader), 
     }
     for &i in &order {
         // Contiguous ranges below u64::MAX cannot overflow; checked all the same.
-        passes = passes.checked_add(headers[i].passes).ok_or(ShardError::BadPassRange {
-            shard: headers[i].name.clone(),
-            first_pass: headers[i].first_pass,
-            passes: headers[i].passes,
-        })?;
+        passes = passes
+            .checked_add(headers[i].passes)
+            .ok_or(ShardError::BadPassRange {
+                shard: headers[i].name.clone(),
+                first_pass: headers[i].first_pass,
+                passes: headers[i].passes,
+            })?;
     }
     let merged = ShardHeader {
         name: "the merge".into(),
@@ -251,7 +255,13 @@ pub struct Shard {
 /// written.
 fn latin1(text: &str) -> String {
     text.chars()
-        .map(|c| if (c as u32) < 0x100 && !c.is_control() { c } else { '?' })
+        .map(|c| {
+            if (c as u32) < 0x100 && !c.is_control() {
+                c
+            } else {
+                '?'
+            }
+        })
         .collect()
 }
 
@@ -259,7 +269,11 @@ impl Shard {
     /// The shard of a progressive run's sums, exact: shards made this way merge into the bits
     /// of one run. `scene` and `settings` identify what was rendered (characters outside
     /// Latin-1 become `?`).
-    pub fn from_accumulation(accumulation: &Accumulation, scene: &str, settings: &str) -> Result<Self, ShardError> {
+    pub fn from_accumulation(
+        accumulation: &Accumulation,
+        scene: &str,
+        settings: &str,
+    ) -> Result<Self, ShardError> {
         Self::from_sums(
             accumulation.sums().clone(),
             accumulation.pass_range().start,
@@ -272,7 +286,13 @@ impl Shard {
     /// A shard from the mean of `passes` passes from `first_pass`: its sums are the mean times
     /// the pass count, rounded, so a merge of such shards is within rounding of one run (use
     /// [`Shard::from_accumulation`] for the exact sums).
-    pub fn new(mean: Image, first_pass: u64, passes: u64, scene: &str, settings: &str) -> Result<Self, ShardError> {
+    pub fn new(
+        mean: Image,
+        first_pass: u64,
+        passes: u64,
+        scene: &str,
+        settings: &str,
+    ) -> Result<Self, ShardError> {
         let n = passes as f64;
         let hi: Vec<DVec3> = mean.pixels().iter().map(|p| p.as_dvec3() * n).collect();
         let lo = vec![DVec3::ZERO; hi.len()];
@@ -359,6 +379,12 @@ impl Shard {
         for i in order {
             sums.add_sums(&shards[i].sums)?;
         }
-        Self::from_sums(sums, merged.first_pass, merged.passes, &merged.scene, &merged.settings)
+        Self::from_sums(
+            sums,
+            merged.first_pass,
+            merged.passes,
+            &merged.scene,
+            &merged.settings,
+        )
     }
 }

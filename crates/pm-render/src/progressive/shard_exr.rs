@@ -7,10 +7,12 @@ use super::shard::{ShardHeader, plan_merge};
 use super::{PassSums, Shard, ShardError};
 use crate::RenderError;
 use exr::meta::attribute::{AttributeValue, Text};
-use exr::prelude::{Encoding, LayerAttributes, ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, WritableImage};
+use exr::prelude::{
+    Encoding, LayerAttributes, ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, WritableImage,
+};
 use std::cell::RefCell;
-use std::rc::Rc;
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 /// The header attribute: its first line names the format, then first pass, pass count,
 /// scene and settings, one a line.
@@ -98,8 +100,11 @@ impl Shard {
             self.settings()
         );
         let mut attributes = LayerAttributes::default();
-        let value = Text::new_or_none(text.as_str()).ok_or_else(|| io_error(path, "identity not storable"))?;
-        attributes.other.insert(Text::from(ATTRIBUTE), AttributeValue::Text(value));
+        let value =
+            Text::new_or_none(text.as_str()).ok_or_else(|| io_error(path, "identity not storable"))?;
+        attributes
+            .other
+            .insert(Text::from(ATTRIBUTE), AttributeValue::Text(value));
         let layer = exr::prelude::Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
         let image = exr::prelude::Image::from_layer(layer);
         // Atomically: the exr crate's `to_file` deletes the target when a write fails.
@@ -174,7 +179,13 @@ impl Shard {
         let path = path.as_ref();
         let header = Self::read_header(path)?;
         let sums = add_file_sums(path, &header, PassSums::new(header.width, header.height)?)?;
-        Shard::from_sums(sums, header.first_pass, header.passes, &header.scene, &header.settings)
+        Shard::from_sums(
+            sums,
+            header.first_pass,
+            header.passes,
+            &header.scene,
+            &header.settings,
+        )
     }
 
     /// Merges shard files as [`Shard::merge`] does, holding one running sum and one shard's
@@ -199,7 +210,13 @@ impl Shard {
         for i in order {
             sums = add_file_sums(paths[i].as_ref(), &headers[i], sums)?;
         }
-        Shard::from_sums(sums, merged.first_pass, merged.passes, &merged.scene, &merged.settings)
+        Shard::from_sums(
+            sums,
+            merged.first_pass,
+            merged.passes,
+            &merged.scene,
+            &merged.settings,
+        )
     }
 }
 
