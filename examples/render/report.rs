@@ -30,14 +30,11 @@ pub fn summary(r: &Record<'_>) -> String {
         0 => String::new(),
         n => format!(", {n} power channels below the map's range stored as zero"),
     };
-    // Power that hit a surface within a millimetre of its light: a light facing into a wall.
+    // Power that hit a surface within a millimetre of its light: a light facing into a wall
+    // (the JSON has the figure however small).
     let near = match s.near_light_fraction {
         f if f >= 0.01 => format!(
             ", {:.1} % of the emitted power hit a surface within 1 mm of its light (facing into a wall? an area light faces edge_u × edge_v)",
-            100.0 * f
-        ),
-        f if f > 0.0 => format!(
-            ", {:.2} % of the emitted power hit within 1 mm of its light",
             100.0 * f
         ),
         _ => String::new(),
