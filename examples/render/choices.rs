@@ -63,6 +63,9 @@ pub enum ModeChoice {
     Progressive,
     /// Stochastic progressive photon mapping (one global map, shrinking radii).
     Sppm,
+    /// Final gathering: direct light by shadow rays, caustics from the caustic photons, the
+    /// rest by gather rays into precomputed irradiance.
+    FinalGather,
 }
 
 impl ModeChoice {
@@ -72,6 +75,7 @@ impl ModeChoice {
             ModeChoice::Visualize | ModeChoice::Progressive | ModeChoice::Sppm => Mode::Visualize,
             ModeChoice::ShadowRays => Mode::ShadowRays,
             ModeChoice::PathTrace => Mode::PathTrace,
+            ModeChoice::FinalGather => Mode::FinalGather,
         }
     }
 
