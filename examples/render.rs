@@ -50,7 +50,7 @@ struct Args {
     #[arg(long, value_enum)]
     estimator: Option<EstimatorChoice>,
     /// Render mode.
-    #[arg(long, value_enum, default_value_t = ModeChoice::Visualize)]
+    #[arg(long, value_enum, default_value_t = ModeChoice::PhotonMap)]
     mode: ModeChoice,
     /// Photon paths emitted from the lights.
     #[arg(long, default_value_t = 100_000)]
@@ -61,10 +61,11 @@ struct Args {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "500x500")]
     size: String,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 1)]
+    /// Samples per pixel (`RenderSettings::samples_per_pixel`).
+    #[arg(long = "samples-per-pixel", visible_alias = "spp", default_value_t = 1)]
     spp: u32,
-    /// Worker threads (0 = all cores).
+    /// Worker threads; 0 = rayon's global pool, one thread per core unless RAYON_NUM_THREADS
+    /// says otherwise (`RenderSettings::threads`).
     #[arg(long, default_value_t = 0)]
     threads: usize,
     /// Seed of all random streams.
@@ -82,7 +83,7 @@ struct Args {
     stats_json: Option<PathBuf>,
     /// Render the paper's four variants (basic, multiple maps, geometry area, both) into a
     /// labelled 2×2 grid; sets the maps and estimator itself, and needs a photon-map mode
-    /// (visualize or shadow-rays).
+    /// (photon-map or shadow-rays).
     #[arg(long)]
     compare: bool,
     /// Progressive and SPPM modes: passes to render (default 16 without --time).
@@ -99,7 +100,7 @@ struct Args {
     /// file's ratio. Built-in scenes are in watts already.
     #[arg(long, value_enum, default_value_t = LightUnitsChoice::Mixed)]
     light_units: LightUnitsChoice,
-    /// Progressive mode: direct light by photons (as `visualize`) or by shadow rays with
+    /// Progressive mode: direct light by photons (as `photon-map`) or by shadow rays with
     /// photons for the rest (as SPPM has it).
     #[arg(long, value_enum, default_value_t = DirectChoice::Photons)]
     direct: DirectChoice,
@@ -308,9 +309,9 @@ fn refuse_compare_conflicts(args: &Args) -> Result<(), String> {
         );
     }
     match args.mode {
-        ModeChoice::Visualize | ModeChoice::ShadowRays => Ok(()),
+        ModeChoice::PhotonMap | ModeChoice::ShadowRays => Ok(()),
         mode => Err(format!(
-            "--compare needs a photon-map mode (visualize or shadow-rays): in {mode} mode its four panels would not differ as the paper's do"
+            "--compare needs a photon-map mode (photon-map or shadow-rays): in {mode} mode its four panels would not differ as the paper's do"
         )),
     }
 }

@@ -23,7 +23,7 @@ fn render_settings(photons: u32, threads: usize) -> RenderSettings {
         width: W,
         height: H,
         photons,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
         seed: 5,
         threads,
         tile_size: 7,

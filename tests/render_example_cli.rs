@@ -105,7 +105,7 @@ fn help_lists_the_values_of_maps_estimator_and_mode_and_typos_get_suggestions() 
         "disc",
         "cube",
         "ball",
-        "visualize",
+        "photon-map",
         "shadow-rays",
         "path-trace",
         "progressive",

@@ -13,13 +13,13 @@ pub fn options(args: &Args) -> Result<FinalGatherOptions, String> {
         ("--cache-every", args.cache_every.is_some()),
         ("--corner-distance", args.corner_distance.is_some()),
     ];
-    if args.mode != ModeChoice::FinalGather {
-        if let Some((name, _)) = given.iter().find(|(_, set)| *set) {
-            return Err(format!(
-                "{name} applies to --mode final-gather only, not {}",
-                args.mode
-            ));
-        }
+    if args.mode != ModeChoice::FinalGather
+        && let Some((name, _)) = given.iter().find(|(_, set)| *set)
+    {
+        return Err(format!(
+            "{name} applies to --mode final-gather only, not {}",
+            args.mode
+        ));
     }
     let defaults = FinalGatherOptions::default();
     Ok(FinalGatherOptions {

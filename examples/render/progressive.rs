@@ -38,7 +38,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     if sppm && args.first_pass != 0 {
         return Err("--first-pass: SPPM runs are not shardable".into());
     }
-    // Each progressive pass renders like `visualize` (photons for all light) or
+    // Each progressive pass renders like `photon-map` (photons for all light) or
     // `shadow-rays`, as --direct says; SPPM always has shadow rays for direct light.
     settings.mode = args.direct.mode();
     let (scene_name, scene_id) = scene_identity(&args.scene)?;

@@ -43,8 +43,20 @@ pub fn summary(r: &Record<'_>) -> String {
             s.gather_rays_per_second() / 1e6
         )
     };
+    // Power that hit a surface within a millimetre of its light: a light facing into a wall.
+    let near = match s.near_light_fraction {
+        f if f >= 0.01 => format!(
+            ", {:.1} % of the emitted power hit a surface within 1 mm of its light (facing into a wall? an area light faces edge_u × edge_v)",
+            100.0 * f
+        ),
+        f if f > 0.0 => format!(
+            ", {:.2} % of the emitted power hit within 1 mm of its light",
+            100.0 * f
+        ),
+        _ => String::new(),
+    };
     format!(
-        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored{below}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.settings.mode,
@@ -76,7 +88,7 @@ pub fn json_object(r: &Record<'_>) -> String {
     );
     let _ = write!(
         o,
-        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
+        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
         r.settings.width,
         r.settings.height,
         r.settings.samples_per_pixel,
@@ -84,6 +96,7 @@ pub fn json_object(r: &Record<'_>) -> String {
         s.photons_emitted,
         s.photons_stored,
         s.photon_channels_below_range,
+        json_number(s.near_light_fraction),
         s.map_count,
         s.threads,
         r.args.seed,

@@ -111,6 +111,7 @@ impl<E: Estimator> Renderer<E> {
         let traced = trace_photons(scene, assignment, &options)?;
         stats.photons_emitted = traced.stats().emitted;
         stats.photons_stored = traced.stats().total_stored();
+        stats.near_light_fraction = traced.stats().near_light_fraction;
         stats.map_count = assignment.map_count();
         stats.trace = start.elapsed();
         progress.phase("build");

@@ -27,7 +27,9 @@ pub struct RenderSettings {
     pub mode: Mode,
     /// Seed of every random stream (photon paths and pixel samples).
     pub seed: u64,
-    /// Worker threads; 0 uses rayon's current pool.
+    /// Worker threads; 0 uses rayon's current pool, which outside any `ThreadPool::install` is
+    /// the global pool: one thread per core unless `RAYON_NUM_THREADS` says otherwise. The
+    /// render example's `--threads` means the same.
     pub threads: usize,
     /// Side of the square tiles handed to workers, in pixels.
     pub tile_size: u32,
@@ -46,7 +48,7 @@ impl Default for RenderSettings {
             k: EstimatorOptions::DEFAULT_K,
             max_distance: None,
             reject_behind: false,
-            mode: Mode::Visualize,
+            mode: Mode::PhotonMap,
             seed: 0,
             threads: 0,
             tile_size: 16,

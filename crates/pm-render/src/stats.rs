@@ -13,6 +13,11 @@ pub struct RenderStats {
     /// times smaller than their map's brightest channel ([`pm_trace::PhotonMaps::channels_below_range`]);
     /// zero in any ordinary scene.
     pub photon_channels_below_range: u64,
+    /// The share of the emitted power whose first hit lay within 1 mm of its light
+    /// ([`pm_trace::TraceStats::near_light_fraction`]): near 1 when a light faces into the
+    /// wall or ceiling it sits on (an area light emits towards `edge_u × edge_v`), which
+    /// otherwise shows only as a dark image; 0 when the mode traces no photons.
+    pub near_light_fraction: f64,
     /// Number of photon maps.
     pub map_count: u32,
     /// Worker threads used.

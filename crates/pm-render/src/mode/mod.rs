@@ -1,5 +1,5 @@
-//! Render modes: what radiance a camera ray carries. `Visualize` shows the
-//! photon maps directly, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
+//! Render modes: what radiance a camera ray carries. `PhotonMap` reads the photon maps at
+//! the first diffuse hit, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
 //! unbiased reference, `FinalGather` reads the maps through one gathered bounce.
 
 mod direct;
@@ -24,7 +24,9 @@ use std::str::FromStr;
 pub enum Mode {
     /// Follow specular bounces from the eye, then at the first diffuse hit return emission +
     /// `albedo/π · E` from that surface's photon map (the main results of Ball & Stejko's report).
-    Visualize,
+    /// The default. Called `Visualize` before (the deprecated [`Mode::Visualize`] and the name
+    /// `visualize` still parse to it).
+    PhotonMap,
     /// Direct light by shadow rays to every light, plus the photon map without direct photons
     /// for the rest (Image 1 of Ball & Stejko's report).
     ShadowRays,
@@ -42,16 +44,21 @@ pub enum Mode {
 impl Mode {
     /// All modes, in command-line order.
     pub const ALL: [Mode; 4] = [
-        Mode::Visualize,
+        Mode::PhotonMap,
         Mode::ShadowRays,
         Mode::PathTrace,
         Mode::FinalGather,
     ];
 
-    /// The command-line name: `visualize`, `shadow-rays`, `path-trace` or `final-gather`.
+    /// The old name of [`Mode::PhotonMap`].
+    #[deprecated(since = "0.1.0", note = "renamed `Mode::PhotonMap`")]
+    #[allow(non_upper_case_globals)]
+    pub const Visualize: Mode = Mode::PhotonMap;
+
+    /// The command-line name: `photon-map`, `shadow-rays`, `path-trace` or `final-gather`.
     pub const fn name(self) -> &'static str {
         match self {
-            Mode::Visualize => "visualize",
+            Mode::PhotonMap => "photon-map",
             Mode::ShadowRays => "shadow-rays",
             Mode::PathTrace => "path-trace",
             Mode::FinalGather => "final-gather",
@@ -72,14 +79,18 @@ impl fmt::Display for Mode {
 
 impl FromStr for Mode {
     type Err = RenderError;
+    /// Parses a [`Mode::name`]; `visualize`, the old name of `photon-map`, is accepted too.
     fn from_str(s: &str) -> Result<Self, RenderError> {
+        if s == "visualize" {
+            return Ok(Mode::PhotonMap);
+        }
         Self::ALL
             .into_iter()
             .find(|m| m.name() == s)
             .ok_or_else(|| RenderError::UnknownName {
                 what: "mode",
                 name: s.to_owned(),
-                expected: "visualize|shadow-rays|path-trace|final-gather",
+                expected: "photon-map|shadow-rays|path-trace|final-gather",
             })
     }
 }
@@ -95,7 +106,7 @@ pub struct Lighting<'a, E> {
     pub estimator: &'a E,
     /// Its options.
     pub options: &'a EstimatorOptions,
-    /// The angle a pixel spans ([`pm_trace::Camera::pixel_angle`]): Visualize and ShadowRays
+    /// The angle a pixel spans ([`pm_trace::Camera::pixel_angle`]): PhotonMap and ShadowRays
     /// average textures over the pixel's footprint at the diffuse hit (distance travelled
     /// from the eye times this, over the square root of the cosine there). Zero point-samples
     /// textures, as PathTrace always does (it averages them by its samples, unbiased).
@@ -131,7 +142,7 @@ impl<E: Estimator> Lighting<'_, E> {
     #[inline]
     pub fn radiance(&self, mode: Mode, ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
         match mode {
-            Mode::Visualize => visualize::radiance(self, ray, rng, scratch, false),
+            Mode::PhotonMap => visualize::radiance(self, ray, rng, scratch, false),
             Mode::ShadowRays => visualize::radiance(self, ray, rng, scratch, true),
             Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
             Mode::FinalGather => match self.cache {

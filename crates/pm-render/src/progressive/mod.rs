@@ -75,7 +75,7 @@ pub const PROGRESSIVE_VERSION: &str = "v2";
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProgressiveSettings {
     /// Image, photons *per pass*, k (for the pilot's extents), maximum distance, seed,
-    /// threads. `mode` must be [`Mode::Visualize`] (photons for all light) or
+    /// threads. `mode` must be [`Mode::PhotonMap`] (photons for all light) or
     /// [`Mode::ShadowRays`] (direct light by shadow rays, photons for the rest).
     pub render: RenderSettings,
     /// Knaus & Zwicker's α in (0, 1): the share of the previous pass's volume kept (default 2/3).
@@ -106,7 +106,7 @@ impl ProgressiveSettings {
     /// Checks the render settings, the mode, α, and that the run will stop.
     pub fn validate(&self) -> Result<(), RenderError> {
         self.render.validate()?;
-        if !matches!(self.render.mode, Mode::Visualize | Mode::ShadowRays) {
+        if !matches!(self.render.mode, Mode::PhotonMap | Mode::ShadowRays) {
             return Err(RenderError::UnsupportedMode(self.render.mode));
         }
         if !(self.alpha > 0.0 && self.alpha < 1.0) {
