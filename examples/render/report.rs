@@ -43,14 +43,11 @@ pub fn summary(r: &Record<'_>) -> String {
             s.gather_rays_per_second() / 1e6
         )
     };
-    // Power that hit a surface within a millimetre of its light: a light facing into a wall.
+    // Power that hit a surface within a millimetre of its light: a light facing into a wall
+    // (the JSON has the figure however small).
     let near = match s.near_light_fraction {
         f if f >= 0.01 => format!(
             ", {:.1} % of the emitted power hit a surface within 1 mm of its light (facing into a wall? an area light faces edge_u × edge_v)",
-            100.0 * f
-        ),
-        f if f > 0.0 => format!(
-            ", {:.2} % of the emitted power hit within 1 mm of its light",
             100.0 * f
         ),
         _ => String::new(),
@@ -79,20 +76,35 @@ pub fn json_object(r: &Record<'_>) -> String {
     let mut o = String::from("{");
     let _ = write!(
         o,
-        "\"scene\": {}, \"variant\": {}, \"maps\": {}, \"estimator\": {}, \"mode\": {}, ",
+        "\"scene\": {}, \"variant\": {}, ",
         json_string(r.scene),
         json_string(r.variant.label),
-        json_string(&r.variant.maps.to_string()),
-        json_string(r.variant.estimator.name()),
-        json_string(r.settings.mode.name()),
     );
+    // Only what applied: a path-traced render reads no photon maps, so it has no maps,
+    // estimator or k to record.
+    let photon_maps = r.settings.mode.uses_photons();
+    if photon_maps {
+        let _ = write!(
+            o,
+            "\"maps\": {}, \"estimator\": {}, ",
+            json_string(&r.variant.maps.to_string()),
+            json_string(r.variant.estimator.name()),
+        );
+    }
     let _ = write!(
         o,
-        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
+        "\"mode\": {}, \"width\": {}, \"height\": {}, \"spp\": {}, ",
+        json_string(r.settings.mode.name()),
         r.settings.width,
         r.settings.height,
         r.settings.samples_per_pixel,
-        r.settings.k,
+    );
+    if photon_maps {
+        let _ = write!(o, "\"k\": {}, ", r.settings.k);
+    }
+    let _ = write!(
+        o,
+        "\"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
         s.photons_emitted,
         s.photons_stored,
         s.photon_channels_below_range,

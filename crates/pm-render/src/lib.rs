@@ -13,7 +13,7 @@
 //!   times each phase.
 //! - [`progressive`]: a consistent progressive renderer (Knaus & Zwicker passes with
 //!   fixed-volume estimates, [`FixedVolumeEstimator`]) that stays leak-free and edge-true at
-//!   every pass, shards of passes that merge exactly, and the SPPM baseline.
+//!   every pass, shards of passes that merge into the bits of one run, and the SPPM baseline.
 //! - [`prelude`]: the scene, tracing, map and estimator names most programs need, in one
 //!   `use pm_render::prelude::*`.
 //! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`),

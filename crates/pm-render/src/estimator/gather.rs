@@ -73,7 +73,8 @@ pub fn gather_found(
     scratch.photons.clear();
     for n in scratch.neighbours.as_slice() {
         let photon = GatheredPhoton::decode(&tree.get(n.index), scale, at.position);
-        if options.accepts(at, photon.kind, photon.direction) {
+        // The query has applied the kind filter already.
+        if !(options.reject_behind && at.arrives_from_behind(photon.direction)) {
             scratch.photons.push(photon);
         }
     }
