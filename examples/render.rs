@@ -22,6 +22,8 @@ mod choices;
 mod compare;
 #[path = "render/files.rs"]
 mod files;
+#[path = "render/gather.rs"]
+mod gather;
 #[path = "render/progressive.rs"]
 mod progressive;
 #[path = "render/report.rs"]
@@ -108,6 +110,16 @@ struct Args {
     /// Merge progressive shards (EXR files) into --out.
     #[arg(long, num_args = 1..)]
     merge: Vec<PathBuf>,
+    /// Final-gather mode: gather rays per camera sample [default: 64].
+    #[arg(long)]
+    gather_rays: Option<u32>,
+    /// Final-gather mode: irradiance is precomputed at every n-th photon [default: 4].
+    #[arg(long)]
+    cache_every: Option<u32>,
+    /// Final-gather mode: gather hits closer than this (metres) take one more bounce
+    /// instead of reading the cache (Jensen's corner rule) [default: 0, never].
+    #[arg(long)]
+    corner_distance: Option<f32>,
 }
 
 impl Args {
@@ -169,6 +181,7 @@ fn run(args: &Args) -> Result<(), String> {
         mode,
         seed: args.seed,
         threads: args.threads,
+        final_gather: gather::options(args)?,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;

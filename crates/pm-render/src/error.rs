@@ -112,6 +112,9 @@ pub enum RenderError {
     /// A progressive render in a mode other than photon-map or shadow-rays.
     #[error("mode {0} cannot render progressively (expected photon-map or shadow-rays)")]
     UnsupportedMode(crate::Mode),
+    /// A final-gather parameter is out of range (the message names it).
+    #[error("final gather: {0}")]
+    BadFinalGather(String),
     /// Knaus & Zwicker's α outside (0, 1).
     #[error("alpha must lie strictly between 0 and 1, got {0}")]
     BadAlpha(f32),
