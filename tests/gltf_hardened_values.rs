@@ -31,7 +31,14 @@ fn room(offset: [f32; 3], colours: Option<&Colours>, material: &str) -> String {
         })
         .flat_map(f32::to_le_bytes)
         .collect();
-    let quads = [[0u32, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3], [4, 6, 7, 5], [0, 1, 3, 2]];
+    let quads = [
+        [0u32, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+        [4, 6, 7, 5],
+        [0, 1, 3, 2],
+    ];
     let indices: Vec<u8> = quads
         .iter()
         .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
@@ -40,21 +47,34 @@ fn room(offset: [f32; 3], colours: Option<&Colours>, material: &str) -> String {
     let mut bin = positions.clone();
     bin.extend(&indices);
     let mut views = vec![
-        format!(r#"{{"buffer":0,"byteOffset":0,"byteLength":{}}}"#, positions.len()),
-        format!(r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#, positions.len(), indices.len()),
+        format!(
+            r#"{{"buffer":0,"byteOffset":0,"byteLength":{}}}"#,
+            positions.len()
+        ),
+        format!(
+            r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+            positions.len(),
+            indices.len()
+        ),
     ];
     let (lo, hi) = (offset, offset.map(|o| o + 1.0));
     let mut accessors = vec![
-        format!(r#"{{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#),
+        format!(
+            r#"{{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3","min":{lo:?},"max":{hi:?}}}"#
+        ),
         r#"{"bufferView":1,"componentType":5125,"count":36,"type":"SCALAR"}"#.to_owned(),
     ];
     let mut attributes = r#""POSITION":0"#.to_owned();
     if let Some(c) = colours {
         // Aligned to 4 bytes, as accessors need.
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
-        views.push(format!(r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#, bin.len(), c.bytes.len()));
+        views.push(format!(
+            r#"{{"buffer":0,"byteOffset":{},"byteLength":{}}}"#,
+            bin.len(),
+            c.bytes.len()
+        ));
         bin.extend(&c.bytes);
         accessors.push(format!(
             r#"{{"bufferView":2,"componentType":{},"normalized":{},"count":8,"type":"{}"}}"#,
@@ -114,11 +134,20 @@ fn float_colours(values: [f32; 3]) -> Colours {
 #[test]
 fn non_finite_vertex_colours_are_refused_naming_the_accessor() {
     let scratch = Scratch::new("colours");
-    assert!(scratch.load("plain.gltf", &room([0.0; 3], Some(&float_colours([0.5; 3])), GREY)).is_ok());
+    assert!(
+        scratch
+            .load(
+                "plain.gltf",
+                &room([0.0; 3], Some(&float_colours([0.5; 3])), GREY)
+            )
+            .is_ok()
+    );
     for bad in [f32::INFINITY, f32::NAN, f32::NEG_INFINITY] {
         let json = room([0.0; 3], Some(&float_colours([0.5, bad, 0.5])), GREY);
         match scratch.load("bad.gltf", &json) {
-            Err(GltfError::Accessor { accessor: 2, reason, .. }) => {
+            Err(GltfError::Accessor {
+                accessor: 2, reason, ..
+            }) => {
                 assert!(reason.contains("not finite"), "{reason}")
             }
             other => panic!("{bad}: {:?}", other.map(|_| ())),
@@ -142,7 +171,12 @@ fn floor_albedo(scene: &pm_trace::Scene) -> Vec3 {
 fn vertex_colours_multiply_within_zero_to_one() {
     let scratch = Scratch::new("clamped");
     // 3e38 used to give infinite SPPM pixels and path-traced means of 1e38.
-    let huge = scratch.load("huge.gltf", &room([0.0; 3], Some(&float_colours([3e38, 0.25, -1.0])), GREY)).unwrap();
+    let huge = scratch
+        .load(
+            "huge.gltf",
+            &room([0.0; 3], Some(&float_colours([3e38, 0.25, -1.0])), GREY),
+        )
+        .unwrap();
     assert_eq!(floor_albedo(&huge), Vec3::new(0.5, 0.125, 0.0));
     // Normalized unsigned bytes read as code / 255.
     let bytes = Colours {
@@ -151,9 +185,14 @@ fn vertex_colours_multiply_within_zero_to_one() {
         ty: "VEC4",
         bytes: (0..8).flat_map(|_| [255u8, 51, 0, 255]).collect(),
     };
-    let scene = scratch.load("bytes.gltf", &room([0.0; 3], Some(&bytes), GREY)).unwrap();
+    let scene = scratch
+        .load("bytes.gltf", &room([0.0; 3], Some(&bytes), GREY))
+        .unwrap();
     let albedo = floor_albedo(&scene);
-    assert!((albedo - Vec3::new(0.5, 0.1, 0.0)).abs().max_element() < 1e-6, "{albedo}");
+    assert!(
+        (albedo - Vec3::new(0.5, 0.1, 0.0)).abs().max_element() < 1e-6,
+        "{albedo}"
+    );
 }
 
 #[test]
@@ -162,8 +201,17 @@ fn integer_colours_not_marked_normalized_are_refused() {
     // A plain UNSIGNED_BYTE colour of 252 rendered 504 times too bright (252 × the albedo
     // where 252/255 was meant).
     for (component, bytes) in [
-        (5121u32, (0..8).flat_map(|_| [252u8, 252, 252, 255]).collect::<Vec<u8>>()),
-        (5123, (0..8).flat_map(|_| [1000u16, 1000, 1000, 1000]).flat_map(u16::to_le_bytes).collect()),
+        (
+            5121u32,
+            (0..8).flat_map(|_| [252u8, 252, 252, 255]).collect::<Vec<u8>>(),
+        ),
+        (
+            5123,
+            (0..8)
+                .flat_map(|_| [1000u16, 1000, 1000, 1000])
+                .flat_map(u16::to_le_bytes)
+                .collect(),
+        ),
     ] {
         let colours = Colours {
             component,
@@ -172,7 +220,9 @@ fn integer_colours_not_marked_normalized_are_refused() {
             bytes,
         };
         match scratch.load("int.gltf", &room([0.0; 3], Some(&colours), GREY)) {
-            Err(GltfError::Accessor { accessor: 2, reason, .. }) => {
+            Err(GltfError::Accessor {
+                accessor: 2, reason, ..
+            }) => {
                 assert!(reason.contains("normalized"), "{reason}")
             }
             other => panic!("{component}: {:?}", other.map(|_| ())),
@@ -195,12 +245,19 @@ fn emitters_with_infinite_or_negative_emission_are_refused_naming_the_material()
     ] {
         match scratch.load("emitter.gltf", &room([0.0; 3], None, &material)) {
             Err(GltfError::Primitive { reason, .. }) => {
-                assert!(reason.contains("material 0") && reason.contains(needle), "{reason}")
+                assert!(
+                    reason.contains("material 0") && reason.contains(needle),
+                    "{reason}"
+                )
             }
             other => panic!("{material}: {:?}", other.map(|_| ())),
         }
     }
-    assert!(scratch.load("ok.gltf", &room([0.0; 3], None, &strength("40"))).is_ok());
+    assert!(
+        scratch
+            .load("ok.gltf", &room([0.0; 3], None, &strength("40")))
+            .is_ok()
+    );
 }
 
 #[test]
@@ -208,8 +265,15 @@ fn an_emitter_far_out_is_refused() {
     let scratch = Scratch::new("far");
     let emitter = r#"{"emissiveFactor":[1,1,1]}"#;
     for x in [1e18f32, -1e18] {
-        let err = scratch.load("far.gltf", &room([x, 0.0, 0.0], None, emitter)).map(|_| ()).unwrap_err();
+        let err = scratch
+            .load("far.gltf", &room([x, 0.0, 0.0], None, emitter))
+            .map(|_| ())
+            .unwrap_err();
         assert!(err.to_string().contains("1e18"), "{x}: {err}");
     }
-    assert!(scratch.load("near.gltf", &room([1e3, 0.0, 0.0], None, emitter)).is_ok());
+    assert!(
+        scratch
+            .load("near.gltf", &room([1e3, 0.0, 0.0], None, emitter))
+            .is_ok()
+    );
 }

@@ -37,7 +37,13 @@ fn a_light_without_a_direction_is_refused_not_pointed_down() {
         assert!(err.to_string().contains("direction"), "{err}");
     }
     // A tiny but non-zero direction is a direction.
-    assert!(lit(Box::new(DirectionalLight::new(Vec3::new(0.0, -1e-10, 0.0), Vec3::ONE))).is_ok());
+    assert!(
+        lit(Box::new(DirectionalLight::new(
+            Vec3::new(0.0, -1e-10, 0.0),
+            Vec3::ONE
+        )))
+        .is_ok()
+    );
 }
 
 #[test]
@@ -46,13 +52,28 @@ fn a_field_of_view_outside_zero_to_pi_is_refused() {
         Scene::builder()
             .mesh(&floor(Vec3::ZERO), &[[0u32, 1, 2, 3]], grey())
             .light(PointLight::new(Vec3::Y, Vec3::ONE))
-            .camera(Camera::new(Vec3::new(0.5, 1.0, -1.0), Vec3::new(0.5, 0.0, 0.5), Vec3::Y, fov))
+            .camera(Camera::new(
+                Vec3::new(0.5, 1.0, -1.0),
+                Vec3::new(0.5, 0.0, 0.5),
+                Vec3::Y,
+                fov,
+            ))
             .build()
     };
     // tan(fov/2) of 2π comes out a tiny positive number: it used to pass as a narrow view.
-    for fov in [std::f32::consts::TAU, std::f32::consts::PI, 0.0, -0.5, 4.0, f32::NAN, f32::INFINITY] {
+    for fov in [
+        std::f32::consts::TAU,
+        std::f32::consts::PI,
+        0.0,
+        -0.5,
+        4.0,
+        f32::NAN,
+        f32::INFINITY,
+    ] {
         match with_fov(fov) {
-            Err(SceneError::InvalidCamera { reason }) => assert!(reason.contains("field of view"), "{reason}"),
+            Err(SceneError::InvalidCamera { reason }) => {
+                assert!(reason.contains("field of view"), "{reason}")
+            }
             other => panic!("fov {fov}: {:?}", other.map(|_| ())),
         }
     }

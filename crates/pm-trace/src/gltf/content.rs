@@ -226,15 +226,16 @@ fn flatten(
                                 ),
                             });
                         }
-                        let material = map_material(material, options).map_err(|reason| GltfError::Primitive {
-                            file: file.to_path_buf(),
-                            mesh: mesh_index,
-                            primitive,
-                            reason: match material_index {
-                                Some(i) => format!("material {i}: {reason}"),
-                                None => reason,
-                            },
-                        })?;
+                        let material =
+                            map_material(material, options).map_err(|reason| GltfError::Primitive {
+                                file: file.to_path_buf(),
+                                mesh: mesh_index,
+                                primitive,
+                                reason: match material_index {
+                                    Some(i) => format!("material {i}: {reason}"),
+                                    None => reason,
+                                },
+                            })?;
                         let attribute = |semantic: Semantic| {
                             prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value())
                         };

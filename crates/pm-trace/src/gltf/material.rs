@@ -57,7 +57,10 @@ fn clamp01(v: Vec3) -> Vec3 {
 }
 
 /// Maps a glTF material (or the spec's default material for `None`).
-pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOptions) -> Result<GltfMaterial, String> {
+pub(super) fn map_material(
+    material: Option<&json::Material>,
+    options: &GltfOptions,
+) -> Result<GltfMaterial, String> {
     let Some(m) = material else {
         // The glTF default material: white base colour, metallic 1, roughness 1.
         return Ok(GltfMaterial {
@@ -88,11 +91,15 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
         .map_or(1.0, |s| s.emissive_strength.0);
     // An infinite or negative emission is a broken file, not a black emitter: refused.
     if !(strength.is_finite() && strength >= 0.0) {
-        return Err(format!("emissive strength {strength} must be finite and not negative"));
+        return Err(format!(
+            "emissive strength {strength} must be finite and not negative"
+        ));
     }
     let factor = Vec3::from(m.emissive_factor.0);
     if !(factor.is_finite() && factor.min_element() >= 0.0) {
-        return Err(format!("emissive factor {factor} must be finite and not negative"));
+        return Err(format!(
+            "emissive factor {factor} must be finite and not negative"
+        ));
     }
     let emission = factor * strength * options.light_units.emission_factor() * options.emission_scale;
     if !(emission.is_finite() && emission.min_element() >= 0.0) {

@@ -434,7 +434,8 @@ impl SceneBuilder {
             .fold(Aabb::EMPTY, |b, &p| b.grow(p));
         let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
         let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
-        if !(reach < pm_kdtree::MAX_COORDINATE) {
+        // NaN bounds cannot occur (positions are checked finite), but are refused all the same.
+        if reach.is_nan() || reach >= pm_kdtree::MAX_COORDINATE {
             return Err(SceneError::GeometryOutOfRange {
                 min: bounds.min.to_array(),
                 max: bounds.max.to_array(),
