@@ -61,7 +61,7 @@ fn run(case: &Case) -> (f32, f32, f32) {
     };
     let rmse_few = few.mean().relative_rmse(&reference).unwrap();
     let rmse_many = many.mean().relative_rmse(&reference).unwrap();
-    let mean_error = (mean(many.mean()) - mean(&reference)).abs() / mean(&reference);
+    let mean_error = (mean(&many.mean()) - mean(&reference)).abs() / mean(&reference);
     println!(
         "{0}x{0}, {1} photons/pass: relative RMSE {2:.4} at {3} passes, {4:.4} at {5} ({6:.2}x), mean error {7:.4}",
         case.size,

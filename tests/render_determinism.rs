@@ -11,6 +11,7 @@ fn one_to_sixty_four_threads_give_bit_identical_images() {
     for (mode, kind, spp) in [
         (Mode::PhotonMap, EstimatorKind::GeometryCube, 1),
         (Mode::ShadowRays, EstimatorKind::Disc, 2),
+        (Mode::FinalGather, EstimatorKind::GeometryBall, 1),
     ] {
         let render = |threads| {
             let s = RenderSettings {

@@ -64,6 +64,9 @@ pub enum ModeChoice {
     Progressive,
     /// Stochastic progressive photon mapping (one global map, shrinking radii).
     Sppm,
+    /// Final gathering: direct light by shadow rays, caustics from the caustic photons, the
+    /// rest by gather rays into precomputed irradiance.
+    FinalGather,
 }
 
 impl ModeChoice {
@@ -73,6 +76,7 @@ impl ModeChoice {
             ModeChoice::PhotonMap | ModeChoice::Progressive | ModeChoice::Sppm => Mode::PhotonMap,
             ModeChoice::ShadowRays => Mode::ShadowRays,
             ModeChoice::PathTrace => Mode::PathTrace,
+            ModeChoice::FinalGather => Mode::FinalGather,
         }
     }
 

@@ -1,7 +1,7 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
 //! the report's defaults (Ball & Stejko).
 
-use crate::{EstimatorOptions, Mode, RenderError};
+use crate::{EstimatorOptions, FinalGatherOptions, Mode, RenderError};
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 
@@ -33,6 +33,9 @@ pub struct RenderSettings {
     pub threads: usize,
     /// Side of the square tiles handed to workers, in pixels.
     pub tile_size: u32,
+    /// Gather rays, cache density and corner rule of [`Mode::FinalGather`] (checked only in
+    /// that mode).
+    pub final_gather: FinalGatherOptions,
 }
 
 impl Default for RenderSettings {
@@ -49,6 +52,7 @@ impl Default for RenderSettings {
             seed: 0,
             threads: 0,
             tile_size: 16,
+            final_gather: FinalGatherOptions::default(),
         }
     }
 }
@@ -88,6 +92,9 @@ impl RenderSettings {
         }
         if self.tile_size == 0 {
             return Err(RenderError::ZeroTileSize);
+        }
+        if self.mode == Mode::FinalGather {
+            self.final_gather.validate()?;
         }
         self.estimator_options(&Aabb::cube(glam::Vec3::ZERO, 1.0))
             .validate()

@@ -28,11 +28,30 @@ pub struct RenderStats {
     pub build: Duration,
     /// Rendering the image.
     pub render: Duration,
+    /// Precomputing the final gather's irradiance cache (zero in the other modes).
+    pub precompute: Duration,
+    /// Points in the final gather's irradiance cache.
+    pub cache_points: u64,
+    /// Bytes held by the final gather's irradiance cache.
+    pub cache_bytes: u64,
+    /// Gather rays cast by the final gather (first rays of each gather, not counting the
+    /// specular bounces they follow).
+    pub gather_rays: u64,
 }
 
 impl RenderStats {
-    /// Sum of the three phases.
+    /// Sum of the phases.
     pub fn total(&self) -> Duration {
-        self.trace + self.build + self.render
+        self.trace + self.build + self.precompute + self.render
+    }
+
+    /// Gather rays per second of the render phase (zero when none were cast).
+    pub fn gather_rays_per_second(&self) -> f64 {
+        let seconds = self.render.as_secs_f64();
+        if self.gather_rays == 0 || seconds <= 0.0 {
+            0.0
+        } else {
+            self.gather_rays as f64 / seconds
+        }
     }
 }

@@ -136,6 +136,8 @@ pub struct EstimatorScratch {
     /// Candidate faces that overlap the volume: (area inside, unit normal).
     pub(crate) faces: Vec<(f32, Vec3)>,
     pub(crate) candidates: Vec<u32>,
+    /// Gather rays cast by the final gather on this worker since the renderer last read it.
+    pub(crate) gather_rays: u64,
     /// An outside estimator's own buffers (see [`EstimatorScratch::slot`]).
     slot: Option<Box<dyn Any + Send>>,
 }
@@ -150,6 +152,7 @@ impl Clone for EstimatorScratch {
             photons: self.photons.clone(),
             faces: self.faces.clone(),
             candidates: self.candidates.clone(),
+            gather_rays: 0,
             slot: None,
         }
     }

@@ -1,15 +1,19 @@
-//! Render modes: what radiance a camera ray carries. `PhotonMap` reads the
-//! photon maps at the first diffuse hit, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
-//! unbiased reference.
+//! Render modes: what radiance a camera ray carries. `PhotonMap` reads the photon maps at
+//! the first diffuse hit, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
+//! unbiased reference, `FinalGather` reads the maps through one gathered bounce.
 
 mod direct;
+mod final_gather;
 mod path_trace;
 pub(crate) mod scatter;
 mod visualize;
 
 pub use direct::direct_irradiance;
+pub use final_gather::FinalGatherOptions;
 
-use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RenderError, SurfacePoint};
+use crate::{
+    Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
+};
 use glam::Vec3;
 use pm_trace::{Hit, PhotonMaps, Ray, Rng, Scene};
 use std::fmt;
@@ -28,23 +32,36 @@ pub enum Mode {
     ShadowRays,
     /// An unbiased path tracer with next-event estimation and Russian roulette (the reference).
     PathTrace,
+    /// Final gathering (Jensen 1996, with Christensen's precomputed irradiance): specular
+    /// bounces from the eye to the first diffuse hit x; there direct light by shadow rays,
+    /// caustics from the photons of kind caustic in x's map, and the rest by
+    /// [`FinalGatherOptions::gather_rays`] cosine-weighted rays whose diffuse hits read the
+    /// [`RadianceCache`] in their own map. Clean images at a fraction of a path tracer's time;
+    /// the cache's blur is hidden behind the gathered hemisphere.
+    FinalGather,
 }
 
 impl Mode {
     /// All modes, in command-line order.
-    pub const ALL: [Mode; 3] = [Mode::PhotonMap, Mode::ShadowRays, Mode::PathTrace];
+    pub const ALL: [Mode; 4] = [
+        Mode::PhotonMap,
+        Mode::ShadowRays,
+        Mode::PathTrace,
+        Mode::FinalGather,
+    ];
 
     /// The old name of [`Mode::PhotonMap`].
     #[deprecated(since = "0.1.0", note = "renamed `Mode::PhotonMap`")]
     #[allow(non_upper_case_globals)]
     pub const Visualize: Mode = Mode::PhotonMap;
 
-    /// The command-line name: `photon-map`, `shadow-rays` or `path-trace`.
+    /// The command-line name: `photon-map`, `shadow-rays`, `path-trace` or `final-gather`.
     pub const fn name(self) -> &'static str {
         match self {
             Mode::PhotonMap => "photon-map",
             Mode::ShadowRays => "shadow-rays",
             Mode::PathTrace => "path-trace",
+            Mode::FinalGather => "final-gather",
         }
     }
 
@@ -73,7 +90,7 @@ impl FromStr for Mode {
             .ok_or_else(|| RenderError::UnknownName {
                 what: "mode",
                 name: s.to_owned(),
-                expected: "photon-map|shadow-rays|path-trace",
+                expected: "photon-map|shadow-rays|path-trace|final-gather",
             })
     }
 }
@@ -94,6 +111,11 @@ pub struct Lighting<'a, E> {
     /// from the eye times this, over the square root of the cosine there). Zero point-samples
     /// textures, as PathTrace always does (it averages them by its samples, unbiased).
     pub pixel_angle: f32,
+    /// The precomputed irradiance read by [`Mode::FinalGather`]'s gather rays (`None` for the
+    /// other modes; the final gather then sees no indirect light).
+    pub cache: Option<&'a RadianceCache>,
+    /// The final gather's parameters.
+    pub final_gather: FinalGatherOptions,
 }
 
 impl<E: Estimator> Lighting<'_, E> {
@@ -123,6 +145,16 @@ impl<E: Estimator> Lighting<'_, E> {
             Mode::PhotonMap => visualize::radiance(self, ray, rng, scratch, false),
             Mode::ShadowRays => visualize::radiance(self, ray, rng, scratch, true),
             Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
+            Mode::FinalGather => match self.cache {
+                Some(cache) => {
+                    let inputs = final_gather::GatherInputs {
+                        cache,
+                        options: self.final_gather,
+                    };
+                    final_gather::radiance(self, &inputs, ray, rng, scratch)
+                }
+                None => Vec3::ZERO,
+            },
         }
     }
 }
