@@ -63,6 +63,9 @@ pub struct RadianceCache {
     /// direction is the surface normal on the side the photons arrived from.
     maps: Vec<PhotonTree>,
     map_of_part: Vec<u32>,
+    /// Per photon map: its photons of kind caustic alone (Jensen's caustic map, split as the
+    /// photon maps are), so that a caustic estimate does not wade through the others.
+    caustics: Vec<PhotonTree>,
     max_distance: f32,
 }
 
@@ -137,9 +140,24 @@ impl RadianceCache {
                 PhotonTree::build(points).map_err(|e| RenderError::BadFinalGather(e.to_string()))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let caustics = maps
+            .maps()
+            .iter()
+            .map(|m| {
+                let tree = m.tree();
+                let scale = tree.power_scale();
+                let photons: Vec<Photon> = tree
+                    .iter()
+                    .filter(|p| p.kind() == PhotonKind::Caustic)
+                    .map(|p| p.decode(scale))
+                    .collect();
+                PhotonTree::build(photons).map_err(|e| RenderError::BadFinalGather(e.to_string()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(RadianceCache {
             maps: trees,
             map_of_part,
+            caustics,
             max_distance: options.max_distance,
         })
     }
@@ -161,13 +179,21 @@ impl RadianceCache {
             return None;
         }
         let neighbours = &mut scratch.neighbours;
+        // The nearest point first (almost always the answer), then more candidates.
+        tree.nearest_k::<Euclidean>(position, 1, self.max_distance, KindMask::ALL, neighbours);
+        let agrees = |p: &pm_kdtree::CompactPhoton| p.direction().dot(normal) >= NORMAL_AGREEMENT;
+        match neighbours.as_slice().first().map(|n| tree.get(n.index)) {
+            None => return None,
+            Some(p) if agrees(&p) => return Some(p.power(tree.power_scale())),
+            Some(_) => {}
+        }
         tree.nearest_k::<Euclidean>(position, CANDIDATES, self.max_distance, KindMask::ALL, neighbours);
         neighbours.sort_by_distance();
         neighbours
             .as_slice()
             .iter()
             .map(|n| tree.get(n.index))
-            .find(|p| p.direction().dot(normal) >= NORMAL_AGREEMENT)
+            .find(agrees)
             .map(|p| p.power(tree.power_scale()))
     }
 
@@ -184,6 +210,13 @@ impl RadianceCache {
         }
     }
 
+    /// The photons of kind caustic of photon map `map` alone, as a tree of their own (Jensen's
+    /// caustic map, one per photon map); `None` for a map without any. Their powers are
+    /// re-encoded relative to the tree's own scale (unbiased, like every photon's).
+    pub fn caustic_tree(&self, map: u32) -> Option<&PhotonTree> {
+        self.caustics.get(map as usize).filter(|t| !t.is_empty())
+    }
+
     /// Cache points over all maps.
     pub fn len(&self) -> usize {
         self.maps.iter().map(PhotonTree::len).sum()
@@ -198,6 +231,7 @@ impl RadianceCache {
     pub fn memory_bytes(&self) -> usize {
         self.maps.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + self.map_of_part.len() * size_of::<u32>()
+            + self.caustics.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
 }

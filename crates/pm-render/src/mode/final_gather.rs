@@ -8,7 +8,7 @@ use crate::{
     Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
 };
 use glam::{Vec2, Vec3};
-use pm_kdtree::{KindMask, PhotonKind};
+use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
 use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
@@ -74,25 +74,27 @@ pub(crate) struct GatherInputs<'a> {
     pub options: FinalGatherOptions,
 }
 
-/// Caustic irradiance at `hit`: the photons of kind caustic in the hit's map, with the mode's
-/// estimator and partition.
+/// Caustic irradiance at `hit`: the photons of kind caustic in the hit's map (its caustic
+/// tree, kept by the cache), with the mode's estimator and partition.
 fn caustic_irradiance<E: Estimator>(
     lighting: &Lighting<'_, E>,
+    inputs: &GatherInputs<'_>,
     hit: &Hit,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
     let Some(maps) = lighting.maps else {
         return Vec3::ZERO;
     };
-    let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
+    let map_id = maps.map_of(hit.part);
+    let (Some(tree), Some(map)) = (inputs.cache.caustic_tree(map_id), maps.maps().get(map_id as usize)) else {
         return Vec3::ZERO;
     };
     let options = EstimatorOptions {
-        kinds: KindMask::only(PhotonKind::Caustic),
+        kinds: KindMask::ALL,
         ..*lighting.options
     };
     let view = MapView {
-        tree: map.tree(),
+        tree,
         polygons: map.geometry(),
     };
     let at = SurfacePoint {
@@ -166,7 +168,7 @@ fn diffuse_bounce<E: Estimator>(
     let scene = lighting.scene;
     let albedo = scene.albedo_at(hit);
     let shading = scene.shading_normal_at(hit);
-    let e = direct_irradiance_shaded(scene, hit, shading, rng) + caustic_irradiance(lighting, hit, scratch);
+    let e = direct_irradiance_shaded(scene, hit, shading, rng) + caustic_irradiance(lighting, inputs, hit, scratch);
     let mut indirect = Vec3::ZERO;
     let offset = (rng.next_f32() * rays as f32) as u32;
     for i in 0..rays {
