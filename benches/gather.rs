@@ -14,7 +14,8 @@ use photon_maps::render::{
 };
 use photon_maps::trace::sampling::cosine_hemisphere;
 use photon_maps::trace::{
-    CreaseAngle, Hit, Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, TraceOptions, scenes, trace_photons,
+    CreaseAngle, Hit, Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, TraceOptions, scenes,
+    trace_photons,
 };
 use std::hint::black_box;
 use std::time::Duration;
@@ -105,7 +106,16 @@ fn gather(c: &mut Criterion) {
         })
     });
     group.bench_function("k-nearest cube k=100", |b| {
-        b.iter(|| estimate(&GeometryCube, &scene, &maps, black_box(&hits), &options, &mut scratch))
+        b.iter(|| {
+            estimate(
+                &GeometryCube,
+                &scene,
+                &maps,
+                black_box(&hits),
+                &options,
+                &mut scratch,
+            )
+        })
     });
     group.bench_function("k-nearest disc k=100", |b| {
         b.iter(|| estimate(&Disc, &scene, &maps, black_box(&hits), &options, &mut scratch))
