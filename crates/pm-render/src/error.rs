@@ -122,8 +122,8 @@ pub enum RenderError {
         /// What failed.
         message: String,
     },
-    /// A progressive render in a mode other than photon-map or shadow-rays.
-    #[error("mode {0} cannot render progressively (expected photon-map or shadow-rays)")]
+    /// A progressive render in a mode other than photon-map, shadow-rays or final-gather.
+    #[error("mode {0} cannot render progressively (expected photon-map, shadow-rays or final-gather)")]
     UnsupportedMode(crate::Mode),
     /// A final-gather parameter is out of range (the message names it).
     #[error("final gather: {0}")]
