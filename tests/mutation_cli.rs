@@ -201,8 +201,12 @@ fn crc32(bytes: &[u8]) -> u32 {
     !crc
 }
 
-/// Rewrites IHDR bytes `at..at+value.len()` of a PNG and its CRC.
+/// Rewrites IHDR bytes `at..at+value.len()` of a PNG and its CRC (nothing for an image cut
+/// before the end of its IHDR, or a JPEG).
 fn patch_ihdr(png: &mut [u8], at: usize, value: &[u8]) {
+    if png.len() < 33 || !png.starts_with(b"\x89PNG") {
+        return;
+    }
     png[at..at + value.len()].copy_from_slice(value);
     let crc = crc32(&png[12..29]);
     png[29..33].copy_from_slice(&crc.to_be_bytes());
