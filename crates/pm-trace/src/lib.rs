@@ -124,7 +124,9 @@ pub use light::{
     TexturedAreaLight,
 };
 pub use material::{Material, Surface};
-pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
+pub use partition::{
+    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap,
+};
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, PhotonMap, PhotonMaps, TraceOptions, TraceStats,
     TracedPhotons, trace_photons,
