@@ -7,7 +7,8 @@ use glam::vec3;
 
 /// The arrangement with a 10 µm tolerance and no gap.
 fn split<P: AsRef<[Vec3]>>(polygons: &[P]) -> Arrangement {
-    split_polygons_at_intersections(polygons, &[], &ArrangementOptions::new(1e-5, 1e-5)).expect("within bounds")
+    split_polygons_at_intersections(polygons, &[], &ArrangementOptions::new(1e-5, 1e-5))
+        .expect("within bounds")
 }
 
 fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> Vec<Vec3> {

@@ -25,7 +25,7 @@ use crate::bounds_bvh::BoundsBvh;
 use crate::{Aabb, polygon_vector_area};
 use cut::{Cut, add_cut, apply_cut, insert_points_on_edges};
 use glam::Vec3;
-use pair::{Face, Meeting, PairOutcome, PairScratch, meet};
+use pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
 
 /// Tolerances and bounds of [`split_polygons_at_intersections`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -162,7 +162,10 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
         .flat_map(|p| p.as_ref().iter())
         .filter(|p| p.is_finite())
         .fold(0.0f32, |m, p| m.max(p.abs().max_element()));
-    let tolerance = options.tolerance.max(largest * 8.0 * f32::EPSILON).max(f32::MIN_POSITIVE);
+    let tolerance = options
+        .tolerance
+        .max(largest * 8.0 * f32::EPSILON)
+        .max(f32::MIN_POSITIVE);
     let gap = options.gap.max(tolerance);
     let duplicate = exact_duplicates(polygons);
     let faces: Vec<Option<Face>> = polygons
@@ -210,7 +213,13 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
             hidden_by.push(if first_hidden { (i, j) } else { (j, i) });
         }
         for (face, list) in [(i, &outcome.on_first), (j, &outcome.on_second)] {
-            for c in list {
+            let Some(target) = &faces[face] else { continue };
+            for &c in list {
+                let c = if c.barrier {
+                    close_barrier_ends(c, target, tolerance, gap)
+                } else {
+                    c
+                };
                 cut_count += 1;
                 if cut_count > options.max_pieces {
                     failure = Some(ArrangementError::TooManyPieces {

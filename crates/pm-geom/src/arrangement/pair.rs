@@ -113,8 +113,24 @@ pub(super) fn meet(
     section(b.vertices, &scratch.db, a, tolerance, &mut scratch.section_b);
     match (scratch.section_a.is_empty(), scratch.section_b.is_empty()) {
         (false, false) => meet_across(a, b, tolerance, scratch, out),
-        (true, _) => near_contact(a, &scratch.da, b, tolerance, gap, &mut out.on_second, &mut out.meeting),
-        (false, true) => near_contact(b, &scratch.db, a, tolerance, gap, &mut out.on_first, &mut out.meeting),
+        (true, _) => near_contact(
+            a,
+            &scratch.da,
+            b,
+            tolerance,
+            gap,
+            &mut out.on_second,
+            &mut out.meeting,
+        ),
+        (false, true) => near_contact(
+            b,
+            &scratch.db,
+            a,
+            tolerance,
+            gap,
+            &mut out.on_first,
+            &mut out.meeting,
+        ),
     }
 }
 
@@ -228,7 +244,11 @@ fn meet_in_plane(
     if !barrier {
         // The face behind the other hides its overlapped part; in one plane, the later face's.
         let ahead = a.normal.dot(a.vertices[0]) - b.normal.dot(b.vertices[0]) * cos.signum();
-        out.first_hidden = Some(if separation <= tolerance { false } else { ahead < 0.0 });
+        out.first_hidden = Some(if separation <= tolerance {
+            false
+        } else {
+            ahead < 0.0
+        });
     }
 }
 
@@ -341,4 +361,22 @@ pub(super) fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
         0.0
     };
     p.distance(a + ab * t)
+}
+
+/// A barrier that stops within the gap of `face`'s border (along its own line) runs on to the
+/// border: a slit narrower than the gap counts as closed, so no map joins around its end (the
+/// strip of a back wall under a dividing wall that stops just short of the floor).
+pub(super) fn close_barrier_ends(c: Constraint, face: &Face, tolerance: f32, gap: f32) -> Constraint {
+    let Some(direction) = (c.b - c.a).try_normalize() else {
+        return c;
+    };
+    let reach = face.bounds.diagonal();
+    let Some((start, end)) =
+        segment_inside(c.a - direction * reach, c.b + direction * reach, face, tolerance)
+    else {
+        return c;
+    };
+    let a = if c.a.distance(start) <= gap { start } else { c.a };
+    let b = if c.b.distance(end) <= gap { end } else { c.b };
+    Constraint { a, b, ..c }
 }

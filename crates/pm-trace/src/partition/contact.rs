@@ -34,7 +34,7 @@ use pm_geom::{
 ///
 /// Tolerances scale with the scene's bounding-box diagonal: a point lies on a plane, a line or
 /// another point within `relative_tolerance × diagonal` (default `1e-5`: 10 µm in a 1 m room),
-/// and faces closer than `relative_gap × diagonal` (default `1e-3`: 1.7 mm in the 1 m Cornell
+/// and faces closer than `relative_gap × diagonal` (default `2e-3`: 2 mm in the 0.55 m Cornell
 /// box) count as touching. The gap is what it costs: light that really passes through a slit
 /// that narrow reaches the far side's surfaces, but their maps are cut off from the near side,
 /// so the estimate there sees only the few photons that came through (measured on a wall 0.1 %
@@ -51,12 +51,12 @@ pub struct Contact {
 }
 
 impl Default for Contact {
-    /// 30°, a tolerance of `1e-5` and a gap of `1e-3` of the diagonal.
+    /// 30°, a tolerance of `1e-5` and a gap of `2e-3` of the diagonal.
     fn default() -> Self {
         Contact {
             max_angle: 30f32.to_radians(),
             relative_tolerance: 1e-5,
-            relative_gap: 1e-3,
+            relative_gap: 2e-3,
         }
     }
 }
@@ -161,7 +161,8 @@ impl Contact {
         let mut built_meshes = Vec::new();
         for (m, shading) in shading.into_iter().enumerate() {
             if !polygons[m].is_empty() {
-                builder = builder.mesh_per_face_shaded(&positions[m], &polygons[m], &face_surfaces[m], shading);
+                builder =
+                    builder.mesh_per_face_shaded(&positions[m], &polygons[m], &face_surfaces[m], shading);
                 built_meshes.push(m);
             }
         }
