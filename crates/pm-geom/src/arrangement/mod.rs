@@ -141,7 +141,9 @@ pub enum ArrangementError {
 /// another face's edge lies in (a wall standing on a floor) is cut along that edge; faces in
 /// one plane that overlap are cut along each other's outline, and where they face the same way
 /// only the first keeps the overlapped part (the later copies' pieces are dropped); a face that
-/// another face's edge comes within `gap` of is cut along that edge's projection. Cuts run as
+/// another face's edge comes within `gap` of is cut along that edge's projection, and so is a
+/// face that a parallel face facing it comes within `gap` of. A parallel face facing the same
+/// way a little in front of another (a lamp mounted under a ceiling) is left alone. Cuts run as
 /// full lines across a face, so the pieces stay convex; the meeting segments themselves are
 /// returned as [`Arrangement::barriers`]. Vertices a cut makes are then inserted into every
 /// edge they lie on, so that welding the output links pieces on both sides of a cut.

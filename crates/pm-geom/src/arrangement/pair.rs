@@ -195,6 +195,11 @@ fn meet_in_plane(
     scratch: &mut PairScratch,
     out: &mut PairOutcome,
 ) {
+    if cos > 0.0 && separation > tolerance {
+        // A panel or a lamp mounted a little in front of a wall, facing the same way: the
+        // slit behind it is left alone (light barely enters it, and nothing shows it).
+        return;
+    }
     // A projected into B's plane, clipped to B's inward half-planes.
     scratch.clip.clear();
     scratch.clip.extend(a.vertices.iter().map(|&p| b.project(p)));
@@ -242,13 +247,8 @@ fn meet_in_plane(
         Meeting::NearContact
     });
     if !barrier {
-        // The face behind the other hides its overlapped part; in one plane, the later face's.
-        let ahead = a.normal.dot(a.vertices[0]) - b.normal.dot(b.vertices[0]) * cos.signum();
-        out.first_hidden = Some(if separation <= tolerance {
-            false
-        } else {
-            ahead < 0.0
-        });
+        // Copies in one plane facing the same way: the later one's overlapped part is hidden.
+        out.first_hidden = Some(false);
     }
 }
 
