@@ -360,21 +360,39 @@ impl Budget {
 }
 
 /// For each polygon, whether an earlier one has the same vertices in the same cyclic order
-/// (an exact copy, facing the same way).
+/// (an exact copy, facing the same way). Polygons are sorted by a hash of their vertices
+/// (starting at the smallest), and only those with equal hashes are compared.
 fn exact_duplicates<P: AsRef<[Vec3]>>(polygons: &[P]) -> Vec<bool> {
-    let mut seen = std::collections::HashSet::new();
-    polygons
-        .iter()
-        .map(|p| {
-            let p = p.as_ref();
-            let bits: Vec<[u32; 3]> = p.iter().map(|v| v.to_array().map(f32::to_bits)).collect();
-            let Some(start) = (0..bits.len()).min_by_key(|&i| bits[i]) else {
-                return false;
-            };
-            let key: Vec<[u32; 3]> = bits[start..].iter().chain(&bits[..start]).copied().collect();
-            !seen.insert(key)
+    let hash = |p: &[Vec3]| {
+        rotated(p).flatten().fold(0xcbf2_9ce4_8422_2325u64, |h, bits| {
+            (h ^ bits as u64).wrapping_mul(0x0100_0000_01b3)
         })
-        .collect()
+    };
+    let mut order: Vec<(u64, usize)> = polygons
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (hash(p.as_ref()), i))
+        .collect();
+    order.sort_unstable();
+    let mut duplicate = vec![false; polygons.len()];
+    for run in order.chunk_by(|a, b| a.0 == b.0).filter(|run| run.len() > 1) {
+        for (k, &(_, i)) in run.iter().enumerate() {
+            let p = polygons[i].as_ref();
+            duplicate[i] = run.iter().enumerate().any(|(m, &(_, j))| {
+                let q = polygons[j].as_ref();
+                m != k && j < i && q.len() == p.len() && rotated(q).eq(rotated(p))
+            });
+        }
+    }
+    duplicate
+}
+
+/// The vertices of `p` as bits, starting at the smallest, in order.
+fn rotated(p: &[Vec3]) -> impl Iterator<Item = [u32; 3]> + '_ {
+    let start = (0..p.len())
+        .min_by_key(|&i| p[i].to_array().map(f32::to_bits))
+        .unwrap_or(0);
+    (0..p.len()).map(move |k| p[(start + k) % p.len()].to_array().map(f32::to_bits))
 }
 
 /// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.

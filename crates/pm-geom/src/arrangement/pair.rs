@@ -200,6 +200,9 @@ fn meet_in_plane(
         // slit behind it is left alone (light barely enters it, and nothing shows it).
         return;
     }
+    if separated(a, b, tolerance) || separated(b, a, tolerance) {
+        return; // side by side in one plane (neighbours across a shared edge, most often)
+    }
     // A projected into B's plane, clipped to B's inward half-planes.
     scratch.clip.clear();
     scratch.clip.extend(a.vertices.iter().map(|&p| b.project(p)));
@@ -250,6 +253,17 @@ fn meet_in_plane(
         // Copies in one plane facing the same way: the later one's overlapped part is hidden.
         out.first_hidden = Some(false);
     }
+}
+
+/// Whether some edge of `b` has all of `a`'s vertices on its outer side (in `b`'s plane): then
+/// the two do not overlap.
+fn separated(a: &Face, b: &Face, tolerance: f32) -> bool {
+    let n = b.vertices.len();
+    (0..n).any(|i| {
+        let (p, q) = (b.vertices[i], b.vertices[(i + 1) % n]);
+        let inward = b.normal.cross(q - p).normalize_or_zero();
+        a.vertices.iter().all(|&v| inward.dot(v - p) <= tolerance)
+    })
 }
 
 /// Face `far` does not reach `near`'s plane: each of its edges within the gap of that plane is

@@ -206,67 +206,133 @@ impl Partitioner for Contact {
     }
 
     fn partition(&self, scene: &Scene) -> MapAssignment {
-        const UNSET: u32 = u32::MAX;
-        let faces = mesh_faces(scene);
         let record = scene.contact_record();
         let no_barriers = BarrierSet::default();
         let barriers = record.map_or(&no_barriers, |r| r.barriers());
         let sealed = |part: PartId| record.is_some_and(|r| r.is_sealed(part));
-        let mut part_of_input = Vec::with_capacity(faces.polygons.len());
-        for mesh in scene.meshes() {
-            part_of_input.extend(mesh.half_edge_mesh().faces().map(|f| mesh.part_of_face(f)));
+        let mut groups = UnionFind::new(scene.part_count());
+        // Within each mesh: its own twins (as the crease-angle maps), but never across a
+        // segment where faces meet nor into a sealed piece.
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            let positions = mesh.positions();
+            for face in mesh.faces() {
+                let part = m.part_of_face(face);
+                if sealed(part) {
+                    continue;
+                }
+                for (he, other) in mesh.neighbours(face) {
+                    let other_part = m.part_of_face(other);
+                    if other_part.0 > part.0
+                        && !sealed(other_part)
+                        && mesh.crease_angle(he).is_some_and(|a| a < self.max_angle)
+                        && !barriers.covers_edge(
+                            positions[mesh.origin(he).0 as usize],
+                            positions[mesh.target(he).0 as usize],
+                        )
+                    {
+                        groups.union(part.0, other_part.0);
+                    }
+                }
+            }
         }
+        // Across meshes: the faces with an open edge, welded together, join across flat edges
+        // they share.
         let mut positions = Vec::new();
-        let mut polygons = Vec::with_capacity(faces.polygons.len());
-        for polygon in &faces.polygons {
-            let start = positions.len() as u32;
-            positions.extend_from_slice(polygon);
-            polygons.push((start..start + polygon.len() as u32).collect::<Vec<u32>>());
+        let mut polygons = Vec::new();
+        let mut parts = Vec::new();
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            for face in mesh.faces() {
+                if mesh.face_half_edges(face).all(|he| mesh.twin(he).is_some()) {
+                    continue;
+                }
+                let start = positions.len() as u32;
+                positions.extend(mesh.face_polygon(face));
+                polygons.push((start..positions.len() as u32).collect::<Vec<u32>>());
+                parts.push(m.part_of_face(face));
+            }
         }
         let options = MeshOptions {
             weld_tolerance: self.tolerance(scene),
         };
-        let mut map_of_part = vec![UNSET; scene.part_count()];
-        let mut next = 0u32;
-        // The scene's meshes were built from the same polygons, so welding them again cannot
-        // fail; if it ever did, every face would fall through to a map of its own below.
-        if let Ok(welded) = HalfEdgeMesh::build(&positions, &polygons, &options) {
-            let part = |f: FaceId| part_of_input[welded.source_face(f)];
-            let joins = |he| {
-                welded.crease_angle(he).is_some_and(|a| a < self.max_angle) && {
-                    let (p, q) = (welded.origin(he), welded.target(he));
-                    let positions = welded.positions();
-                    !barriers.covers_edge(positions[p.0 as usize], positions[q.0 as usize])
-                }
-            };
-            let mut stack: Vec<FaceId> = Vec::new();
-            for seed in welded.faces() {
-                if map_of_part[part(seed).0 as usize] != UNSET {
-                    continue;
-                }
-                map_of_part[part(seed).0 as usize] = next;
-                if !sealed(part(seed)) {
-                    stack.push(seed);
-                }
-                while let Some(face) = stack.pop() {
-                    for (he, other) in welded.neighbours(face) {
-                        let slot = &mut map_of_part[part(other).0 as usize];
-                        if *slot == UNSET && !sealed(part(other)) && joins(he) {
-                            *slot = next;
-                            stack.push(other);
-                        }
+        // The faces were welded once already, so welding them again cannot fail; if it ever did,
+        // meshes would only not join each other.
+        if let (false, Ok(welded)) = (
+            polygons.is_empty(),
+            HalfEdgeMesh::build(&positions, &polygons, &options),
+        ) {
+            let welded_positions = welded.positions();
+            for face in welded.faces() {
+                let part = parts[welded.source_face(face)];
+                for (he, other) in welded.neighbours(face) {
+                    let other_part = parts[welded.source_face(other)];
+                    if !sealed(part)
+                        && !sealed(other_part)
+                        && welded.crease_angle(he).is_some_and(|a| a < self.max_angle)
+                        && !barriers.covers_edge(
+                            welded_positions[welded.origin(he).0 as usize],
+                            welded_positions[welded.target(he).0 as usize],
+                        )
+                    {
+                        groups.union(part.0, other_part.0);
                     }
                 }
-                next += 1;
             }
         }
-        for slot in map_of_part.iter_mut().filter(|s| **s == UNSET) {
-            *slot = next;
-            next += 1;
+        // Maps numbered in order of each group's first part, as the crease-angle maps are; every
+        // analytic part is a map of its own.
+        let mesh_parts = scene
+            .meshes()
+            .iter()
+            .map(|m| m.half_edge_mesh().face_count())
+            .sum::<usize>();
+        let mut map_of_root = vec![u32::MAX; scene.part_count()];
+        let mut map_of_part = vec![0; scene.part_count()];
+        let mut next = 0u32;
+        for (p, slot) in map_of_part.iter_mut().enumerate() {
+            let root = if p < mesh_parts {
+                groups.find(p as u32) as usize
+            } else {
+                p
+            };
+            if map_of_root[root] == u32::MAX {
+                map_of_root[root] = next;
+                next += 1;
+            }
+            *slot = map_of_root[root];
         }
         MapAssignment {
             map_of_part,
-            map_count: next,
+            map_count: next.max(1),
+        }
+    }
+}
+
+/// Disjoint sets of parts, with path halving.
+struct UnionFind(Vec<u32>);
+
+impl UnionFind {
+    fn new(n: usize) -> Self {
+        UnionFind((0..n as u32).collect())
+    }
+
+    fn find(&mut self, mut i: u32) -> u32 {
+        while self.0[i as usize] != i {
+            let parent = self.0[i as usize];
+            self.0[i as usize] = self.0[parent as usize];
+            i = parent;
+        }
+        i
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (a, b) = (self.find(a), self.find(b));
+        // The smaller root wins, so a group's root is its first part.
+        match a.cmp(&b) {
+            std::cmp::Ordering::Less => self.0[b as usize] = a,
+            std::cmp::Ordering::Greater => self.0[a as usize] = b,
+            std::cmp::Ordering::Equal => {}
         }
     }
 }
