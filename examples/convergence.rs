@@ -167,7 +167,7 @@ fn run(args: &Args) -> Result<(), String> {
     let progressive = Progressive {
         direct: match args.direct {
             Direct::ShadowRays => Mode::ShadowRays,
-            Direct::Photons => Mode::Visualize,
+            Direct::Photons => Mode::PhotonMap,
         },
         k: args.progressive_k,
         alpha: args.alpha,
@@ -294,7 +294,7 @@ fn run(args: &Args) -> Result<(), String> {
         eprintln!("memory measured");
         // Photons for all light: the leak and the crease error are the photon estimate's.
         let photons_only = Progressive {
-            direct: Mode::Visualize,
+            direct: Mode::PhotonMap,
             ..progressive
         };
         per_pass_tables(args, base, photons_only, &counts, reference_seconds, &mut study)?;

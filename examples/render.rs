@@ -1,10 +1,10 @@
 //! Renders a built-in scene or a glTF file with a chosen photon-map partition, estimator and
 //! mode, and writes an EXR, an sRGB PNG preview and optionally the figures as JSON.
-//! `--compare` renders the paper's four variants into one 2×2 grid.
+//! `--compare` renders the report's four variants into one 2×2 grid.
 //!
 //! `cargo run --release --example render -- --scene cornell-box --maps crease --estimator cube`
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches, Parser};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::{check_image_size, write_atomically};
 use photon_maps::render::{
@@ -14,12 +14,16 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+#[path = "render/applies.rs"]
+mod applies;
 #[path = "render/choices.rs"]
 mod choices;
 #[path = "render/compare.rs"]
 mod compare;
 #[path = "render/files.rs"]
 mod files;
+#[path = "render/gather.rs"]
+mod gather;
 #[path = "render/progressive.rs"]
 mod progressive;
 #[path = "render/report.rs"]
@@ -30,7 +34,7 @@ mod report;
 mod tracking_allocator;
 
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
-use files::{check_writable, load_scene, refuse_shared_outputs, say};
+use files::{NamedFile, check_run_outputs, load_scene, say, scene_input, scene_name};
 use report::{Record, contacts_json, contacts_summary, json_number, json_object, json_string, summary};
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
@@ -38,7 +42,8 @@ use report::{Record, contacts_json, contacts_summary, json_number, json_object, 
 #[command(version, about)]
 struct Args {
     /// A built-in scene (cornell-box, lit-unlit-rooms, colored-rooms, accordion,
-    /// touching-rooms) or a .gltf/.glb file.
+    /// touching-rooms), a scale scene (split-rooms-N: lit-unlit-rooms with every face split
+    /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,
     /// Photon-map partition [default: contact].
@@ -48,7 +53,7 @@ struct Args {
     #[arg(long, value_enum)]
     estimator: Option<EstimatorChoice>,
     /// Render mode.
-    #[arg(long, value_enum, default_value_t = ModeChoice::Visualize)]
+    #[arg(long, value_enum, default_value_t = ModeChoice::PhotonMap)]
     mode: ModeChoice,
     /// Photon paths emitted from the lights.
     #[arg(long, default_value_t = 100_000)]
@@ -59,10 +64,11 @@ struct Args {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "500x500")]
     size: String,
-    /// Samples per pixel.
-    #[arg(long, default_value_t = 1)]
+    /// Samples per pixel (`RenderSettings::samples_per_pixel`).
+    #[arg(long = "samples-per-pixel", visible_alias = "spp", default_value_t = 1)]
     spp: u32,
-    /// Worker threads (0 = all cores).
+    /// Worker threads; 0 = rayon's global pool, one thread per core unless RAYON_NUM_THREADS
+    /// says otherwise (`RenderSettings::threads`).
     #[arg(long, default_value_t = 0)]
     threads: usize,
     /// Seed of all random streams.
@@ -78,9 +84,9 @@ struct Args {
     /// Write the figures of the render(s) as JSON here.
     #[arg(long)]
     stats_json: Option<PathBuf>,
-    /// Render the paper's four variants (basic, multiple maps, geometry area, both) into a
+    /// Render the report's four variants (basic, multiple maps, geometry area, both) into a
     /// labelled 2×2 grid; sets the maps and estimator itself, and needs a photon-map mode
-    /// (visualize or shadow-rays).
+    /// (photon-map or shadow-rays).
     #[arg(long)]
     compare: bool,
     /// Progressive and SPPM modes: passes to render (default 16 without --time).
@@ -90,20 +96,30 @@ struct Args {
     #[arg(long, default_value_t = 0)]
     first_pass: u64,
     /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// How a glTF file's emissive strength, candela and lux become watts: `mixed` (emission
     /// 1:1, lamps ÷ 683), or `photometric` / `viewer`, which keep emitters and lamps at the
     /// file's ratio. Built-in scenes are in watts already.
     #[arg(long, value_enum, default_value_t = LightUnitsChoice::Mixed)]
     light_units: LightUnitsChoice,
-    /// Progressive mode: direct light by photons (as `visualize`) or by shadow rays with
+    /// Progressive mode: direct light by photons (as `photon-map`) or by shadow rays with
     /// photons for the rest (as SPPM has it).
     #[arg(long, value_enum, default_value_t = DirectChoice::Photons)]
     direct: DirectChoice,
     /// Merge progressive shards (EXR files) into --out.
     #[arg(long, num_args = 1..)]
     merge: Vec<PathBuf>,
+    /// Final-gather mode: gather rays per camera sample [default: 64].
+    #[arg(long)]
+    gather_rays: Option<u32>,
+    /// Final-gather mode: irradiance is precomputed at every n-th photon [default: 4].
+    #[arg(long)]
+    cache_every: Option<u32>,
+    /// Final-gather mode: gather hits closer than this (metres) take one more bounce
+    /// instead of reading the cache (Jensen's corner rule) [default: 0, never].
+    #[arg(long)]
+    corner_distance: Option<f32>,
 }
 
 impl Args {
@@ -131,8 +147,13 @@ struct Variant {
 }
 
 fn main() -> ExitCode {
-    let args = Args::parse();
-    match run(&args) {
+    let matches = Args::command().get_matches();
+    let args = match Args::from_arg_matches(&matches) {
+        Ok(args) => args,
+        Err(e) => e.exit(),
+    };
+    let result = applies::refuse_inapplicable(&args, &matches).and_then(|()| run(&args));
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("render: {message}");
@@ -160,6 +181,7 @@ fn run(args: &Args) -> Result<(), String> {
         mode,
         seed: args.seed,
         threads: args.threads,
+        final_gather: gather::options(args)?,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
@@ -174,28 +196,15 @@ fn run(args: &Args) -> Result<(), String> {
         return progressive::run(args, settings, estimator);
     }
 
-    let (scene, scene_name) = load_scene(&args.scene, args.light_units.into())?;
+    let scene_name = scene_name(&args.scene);
     let base = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
-    if base.is_dir() {
-        return Err(format!(
-            "--out {} is a folder; name a file (its .exr and .png siblings are written)",
-            base.display()
-        ));
-    }
-    let (exr_path, png_path) = (base.with_extension("exr"), base.with_extension("png"));
-    // Fail on an unwritable output before spending time on the render.
-    let outputs: Vec<&Path> = [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
-        .into_iter()
-        .flatten()
-        .map(PathBuf::as_path)
-        .collect();
-    for path in &outputs {
-        check_writable(path)?;
-    }
-    refuse_shared_outputs(&outputs)?;
+    // Fail on an unwritable or clashing output before spending time on the scene or render.
+    let inputs: Vec<NamedFile<'_>> = scene_input(&args.scene).into_iter().collect();
+    let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
+    let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
 
     let variants: Vec<Variant> = if args.compare {
         compare::VARIANTS
@@ -296,9 +305,9 @@ fn refuse_compare_conflicts(args: &Args) -> Result<(), String> {
         );
     }
     match args.mode {
-        ModeChoice::Visualize | ModeChoice::ShadowRays => Ok(()),
+        ModeChoice::PhotonMap | ModeChoice::ShadowRays => Ok(()),
         mode => Err(format!(
-            "--compare needs a photon-map mode (visualize or shadow-rays): in {mode} mode its four panels would not differ as the paper's do"
+            "--compare needs a photon-map mode (photon-map or shadow-rays): in {mode} mode its four panels would not differ as the report's do"
         )),
     }
 }

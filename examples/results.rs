@@ -35,7 +35,7 @@ struct Args {
     /// target/results-quick unless --out-dir is given.
     #[arg(long)]
     quick: bool,
-    /// Worker threads (0 = all cores).
+    /// Worker threads (0 = rayon's global pool: a thread per core unless RAYON_NUM_THREADS says otherwise).
     #[arg(long, default_value_t = 0)]
     threads: usize,
     /// Where results.md and the results/ PNG folder go (default: docs).
@@ -300,7 +300,7 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
     let mut cases = Vec::new();
     for case in &CASES {
         let partition = partitioner(case.maps);
-        let renderer = Renderer::new(case.estimator, settings(config, Mode::Visualize, 1, 0));
+        let renderer = Renderer::new(case.estimator, settings(config, Mode::PhotonMap, 1, 0));
         let mut best: Option<(RenderStats, Image)> = None;
         for _ in 0..config.repeats {
             let out = renderer
@@ -312,7 +312,7 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
         }
         let (stats, image) = best.ok_or("no render")?;
         // The same pixel samples over photon maps of another seed: the photons' own noise.
-        let other_maps = Renderer::new(case.estimator, settings(config, Mode::Visualize, 1, 1))
+        let other_maps = Renderer::new(case.estimator, settings(config, Mode::PhotonMap, 1, 1))
             .build_maps(
                 &scene,
                 &partition.partition(&scene),

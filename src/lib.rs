@@ -52,13 +52,12 @@ pub use pm_kdtree as kdtree;
 pub use pm_render as render;
 pub use pm_trace as trace;
 
-/// The types most programs need.
+/// The names a renderer author reaches for first: scenes and lights, map partitions
+/// ([`trace::CreaseAngle`], [`trace::Contact`], [`trace::MapAssignment`]), photon tracing and
+/// maps ([`trace::trace_photons`], [`trace::PhotonMaps`]), the estimators
+/// ([`render::GeometryCube`], …) with the building blocks of new ones
+/// ([`render::find_nearest`], [`render::gather_found`]), and the one-shot and progressive
+/// renderers. The same set as [`render::prelude`].
 pub mod prelude {
-    pub use glam::{Vec3, vec3};
-    pub use pm_geom::{Aabb, Ball, HalfEdgeMesh};
-    pub use pm_kdtree::{Photon, PhotonKind, PhotonTree};
-    pub use pm_render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
-    pub use pm_trace::{
-        Camera, Contact, CreaseAngle, Partitioner, PointLight, Scene, SingleMap, Surface, scenes,
-    };
+    pub use pm_render::prelude::*;
 }

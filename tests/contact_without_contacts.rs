@@ -11,7 +11,7 @@ fn scenes_where_nothing_meets_render_exactly_the_crease_maps_image() {
         width: 40,
         height: 30,
         photons: 10_000,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
         seed: 2,
         ..RenderSettings::default()
     };

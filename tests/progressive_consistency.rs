@@ -71,7 +71,7 @@ fn settings(first_pass: u64, passes: u64) -> ProgressiveSettings {
                 height: W,
                 photons: 4_000,
                 k: 30,
-                mode: Mode::Visualize,
+                mode: Mode::PhotonMap,
                 seed: 11,
                 ..RenderSettings::default()
             },

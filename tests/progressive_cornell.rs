@@ -61,7 +61,7 @@ fn run(case: &Case) -> (f32, f32, f32) {
     };
     let rmse_few = few.mean().relative_rmse(&reference).unwrap();
     let rmse_many = many.mean().relative_rmse(&reference).unwrap();
-    let mean_error = (mean(many.mean()) - mean(&reference)).abs() / mean(&reference);
+    let mean_error = (mean(&many.mean()) - mean(&reference)).abs() / mean(&reference);
     println!(
         "{0}x{0}, {1} photons/pass: relative RMSE {2:.4} at {3} passes, {4:.4} at {5} ({6:.2}x), mean error {7:.4}",
         case.size,
@@ -84,7 +84,7 @@ fn cornell_box_rmse_falls_with_passes() {
         reference_spp: 1024,
         few: 2,
         many: 16,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
     });
     assert!(few / many >= 1.4, "RMSE {few} -> {many}");
     assert!(mean_error < 0.03, "mean error {mean_error}");
@@ -114,7 +114,7 @@ fn cornell_box_128_rmse_falls_from_4_to_32_passes() {
         reference_spp: 4096,
         few: 4,
         many: 32,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
     });
     assert!(few / many >= 1.6, "RMSE {few} -> {many}");
     assert!(mean_error < 0.02, "mean error {mean_error}");

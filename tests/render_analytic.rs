@@ -1,7 +1,7 @@
 //! pbrt's analytic scene: inside a closed diffuse sphere of albedo 0.5 with a point light of
 //! intensity π (power 4π² W) at its centre, radiance is exactly 1 everywhere
 //! (direct irradiance π, total π / (1 − 0.5) = 2π, radiance 0.5/π · 2π). Every estimator in
-//! Visualize mode and the path tracer must give an image mean within 3 % of 1.
+//! PhotonMap mode and the path tracer must give an image mean within 3 % of 1.
 
 use glam::Vec3;
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
@@ -46,7 +46,7 @@ fn assert_mean_is_one(label: &str, mean: Vec3) {
 fn every_estimator_sees_radiance_one_inside_the_sphere() {
     let scene = furnace_sphere();
     for kind in EstimatorKind::ALL {
-        let out = Renderer::new(kind, settings(Mode::Visualize))
+        let out = Renderer::new(kind, settings(Mode::PhotonMap))
             .render(&scene, &CreaseAngle::default(), &())
             .unwrap();
         assert_mean_is_one(kind.name(), out.image.mean());

@@ -11,7 +11,7 @@
 //!   colour are tested).
 //! - **rendering**: a large textured floor under a directional light of irradiance E₀ seen
 //!   straight down, the view spanning exactly one texture period. The path tracer's image mean
-//!   is `ρ̄ E₀ / π`; the photon map's (Visualize, Jensen's disc with k photons) is that times
+//!   is `ρ̄ E₀ / π`; the photon map's (PhotonMap mode, Jensen's disc with k photons) is that times
 //!   `k / (k − 1)`, the k-nearest estimate's bias on uniformly scattered photons
 //!   (`π r_k² λ` is Gamma(k)-distributed, so `E[k / (π r_k²)] = λ k / (k − 1)`).
 
@@ -236,7 +236,7 @@ fn rendered_mean_is_the_mean_albedo_over_pi_times_the_irradiance() {
             photons: 200_000,
             k,
             seed,
-            mode: Mode::Visualize,
+            mode: Mode::PhotonMap,
             ..RenderSettings::default()
         };
         let render = |settings: RenderSettings| {

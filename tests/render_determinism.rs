@@ -9,8 +9,9 @@ use photon_maps::trace::{CreaseAngle, scenes};
 fn one_to_sixty_four_threads_give_bit_identical_images() {
     let scene = scenes::build("cornell-box").unwrap();
     for (mode, kind, spp) in [
-        (Mode::Visualize, EstimatorKind::GeometryCube, 1),
+        (Mode::PhotonMap, EstimatorKind::GeometryCube, 1),
         (Mode::ShadowRays, EstimatorKind::Disc, 2),
+        (Mode::FinalGather, EstimatorKind::GeometryBall, 1),
     ] {
         let render = |threads| {
             let s = RenderSettings {
@@ -52,7 +53,7 @@ fn bits(image: &photon_maps::render::Image) -> Vec<u32> {
 #[test]
 fn a_one_pixel_image_renders_the_same_on_one_and_sixty_four_threads() {
     let scene = scenes::build("cornell-box").unwrap();
-    for mode in [Mode::Visualize, Mode::PathTrace] {
+    for mode in [Mode::PhotonMap, Mode::PathTrace] {
         let render = |threads| {
             let s = RenderSettings {
                 width: 1,

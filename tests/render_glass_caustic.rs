@@ -143,7 +143,7 @@ fn smooth_glass_sphere_focuses_a_caustic_far_brighter_than_the_open_floor() {
     assert!(smooth > 2.0 * faceted, "smooth {smooth} vs faceted {faceted}");
 }
 
-/// The ball and the floor seen obliquely through it, photon-mapped (Visualize: specular bounces
+/// The ball and the floor seen obliquely through it, photon-mapped (PhotonMap mode: specular bounces
 /// from the eye, then the floor's photon estimate, caustic included).
 fn view(ball: Ball) -> Image {
     let centre = Vec3::new(0.0, IOR * RADIUS / (2.0 * (IOR - 1.0)), 0.0);
@@ -154,7 +154,7 @@ fn view(ball: Ball) -> Image {
         width: 64,
         height: 64,
         photons: 200_000,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
         seed: 2,
         ..RenderSettings::default()
     };

@@ -22,7 +22,7 @@ fn settings() -> RenderSettings {
         width: W,
         height: H,
         photons: 20_000,
-        mode: Mode::Visualize,
+        mode: Mode::PhotonMap,
         seed: 3,
         ..RenderSettings::default()
     }

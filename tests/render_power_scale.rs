@@ -50,7 +50,7 @@ fn cornell_box_matches_the_path_tracer_from_ten_thousand_to_three_million_photon
     // 16 samples per pixel average out the pixels on the light's edges (the light is 400
     // times brighter than the walls).
     for photons in [10_000, 100_000, 1_000_000, 3_000_000] {
-        let out = render(&scene, Mode::Visualize, photons, 16, 1);
+        let out = render(&scene, Mode::PhotonMap, photons, 16, 1);
         assert_eq!(out.stats.photon_channels_below_range, 0);
         let m = mean(&out.image);
         eprintln!("{photons} photons: mean {m:?}, path traced {reference:?}");
@@ -68,7 +68,7 @@ fn cornell_box_matches_the_path_tracer_from_ten_thousand_to_three_million_photon
     // At 10⁶ photons: independent replicates (seeds) give the standard error of the
     // photon-mapped mean; it must agree with the reference within 4 combined standard errors.
     let replicates: Vec<[f64; 3]> = (10..15)
-        .map(|seed| mean(&render(&scene, Mode::Visualize, 1_000_000, 16, seed).image))
+        .map(|seed| mean(&render(&scene, Mode::PhotonMap, 1_000_000, 16, seed).image))
         .collect();
     let r = replicates.len() as f64;
     for c in 0..3 {
@@ -108,7 +108,7 @@ fn furnace(power: Vec3) -> Scene {
 #[test]
 fn light_power_from_a_microwatt_to_a_terawatt_scales_the_image_and_nothing_else() {
     let colour = Vec3::new(1.0, 0.5, 0.25) * 4.0 * PI * PI;
-    let unit = render(&furnace(colour), Mode::Visualize, 60_000, 1, 3);
+    let unit = render(&furnace(colour), Mode::PhotonMap, 60_000, 1, 3);
     let m = unit.image.mean();
     // A sanity check of the scene (tests/render_analytic.rs checks the estimators' accuracy).
     assert!(
@@ -119,7 +119,7 @@ fn light_power_from_a_microwatt_to_a_terawatt_scales_the_image_and_nothing_else(
         "the furnace's radiance is its power / 4π²: {m}"
     );
     for factor in [1e-6f32, 1e12] {
-        let out = render(&furnace(colour * factor), Mode::Visualize, 60_000, 1, 3);
+        let out = render(&furnace(colour * factor), Mode::PhotonMap, 60_000, 1, 3);
         assert_eq!(out.stats.photon_channels_below_range, 0);
         let mut worst = 0.0f32;
         for (scaled, one) in out.image.pixels().iter().zip(unit.image.pixels()) {

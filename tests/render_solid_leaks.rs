@@ -41,7 +41,7 @@ fn dark_mean(image: &Image, dark: &[usize]) -> f64 {
 fn images(scene: &Scene, partitioner: &dyn Partitioner) -> Vec<(String, Image)> {
     let mut out = Vec::new();
     for kind in EstimatorKind::ALL {
-        for mode in [Mode::Visualize, Mode::ShadowRays] {
+        for mode in [Mode::PhotonMap, Mode::ShadowRays] {
             let image = Renderer::new(kind, settings(mode))
                 .render(scene, partitioner, &())
                 .unwrap()
@@ -51,7 +51,7 @@ fn images(scene: &Scene, partitioner: &dyn Partitioner) -> Vec<(String, Image)> 
         for pass in [0, 5] {
             let progressive = ProgressiveSettings {
                 first_pass: pass,
-                ..ProgressiveSettings::new(settings(Mode::Visualize), 1)
+                ..ProgressiveSettings::new(settings(Mode::PhotonMap), 1)
             };
             let image = ProgressiveRenderer::new(kind, progressive)
                 .render(scene, partitioner, &())
@@ -116,7 +116,7 @@ fn crease_maps_leak_through_the_floor_slab() {
     for name in ["solid-rooms-stand", "solid-rooms-pierce"] {
         let scene = scenes::build(name).unwrap();
         let dark = dark_room::dark_room_pixels(&scene, W, H);
-        let image = Renderer::new(EstimatorKind::Disc, settings(Mode::Visualize))
+        let image = Renderer::new(EstimatorKind::Disc, settings(Mode::PhotonMap))
             .render(&scene, &CreaseAngle::default(), &())
             .unwrap()
             .image;
@@ -139,7 +139,7 @@ fn gap_lets_through_no_more_than_three_times_the_path_traced_light() {
     .unwrap()
     .image;
     let truth = dark_mean(&truth, &dark);
-    let crease = Renderer::new(EstimatorKind::Disc, settings(Mode::Visualize))
+    let crease = Renderer::new(EstimatorKind::Disc, settings(Mode::PhotonMap))
         .render(&scene, &CreaseAngle::default(), &())
         .unwrap()
         .image;

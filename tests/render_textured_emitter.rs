@@ -184,7 +184,7 @@ fn path_tracer_and_photon_map_light_the_floor_by_the_texture() {
     let estimated = Renderer::new(
         EstimatorKind::GeometryCube,
         RenderSettings {
-            mode: Mode::Visualize,
+            mode: Mode::PhotonMap,
             photons: 2_000_000,
             k: 4000,
             ..settings
@@ -231,7 +231,7 @@ fn textured_two_sided_light_renders_bit_identically_on_one_and_three_threads() {
         1.2,
     ));
     let scene = scene.unwrap();
-    for mode in [Mode::Visualize, Mode::PathTrace] {
+    for mode in [Mode::PhotonMap, Mode::PathTrace] {
         let render = |threads| {
             let out = Renderer::new(
                 EstimatorKind::GeometryCube,

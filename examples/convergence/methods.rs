@@ -58,7 +58,7 @@ impl Method {
 /// The progressive renderer's own settings (SPPM keeps pbrt-v4's).
 #[derive(Clone, Copy, Debug)]
 pub struct Progressive {
-    /// [`Mode::Visualize`] (photons for all light) or [`Mode::ShadowRays`] (shadow rays for
+    /// [`Mode::PhotonMap`] (photons for all light) or [`Mode::ShadowRays`] (shadow rays for
     /// direct light, as SPPM has it).
     pub direct: Mode,
     /// k of the pilot's extents (the first pass's gather volume holds about k photons).

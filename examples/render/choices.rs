@@ -55,8 +55,9 @@ impl From<EstimatorChoice> for EstimatorKind {
 /// `--mode`: how the image is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ModeChoice {
-    /// The photon maps seen directly at the first diffuse hit.
-    Visualize,
+    /// The photon maps read at the first diffuse hit (formerly `visualize`, still accepted).
+    #[value(alias = "visualize")]
+    PhotonMap,
     /// Direct light by shadow rays, the rest from the photon maps.
     ShadowRays,
     /// An unbiased path tracer (the reference; reads no photon maps).
@@ -65,15 +66,19 @@ pub enum ModeChoice {
     Progressive,
     /// Stochastic progressive photon mapping (one global map, shrinking radii).
     Sppm,
+    /// Final gathering: direct light by shadow rays, caustics from the caustic photons, the
+    /// rest by gather rays into precomputed irradiance.
+    FinalGather,
 }
 
 impl ModeChoice {
-    /// The renderer's mode; the progressive modes render their passes like `visualize`.
+    /// The renderer's mode; the progressive modes render their passes like `photon-map`.
     pub fn render_mode(self) -> Mode {
         match self {
-            ModeChoice::Visualize | ModeChoice::Progressive | ModeChoice::Sppm => Mode::Visualize,
+            ModeChoice::PhotonMap | ModeChoice::Progressive | ModeChoice::Sppm => Mode::PhotonMap,
             ModeChoice::ShadowRays => Mode::ShadowRays,
             ModeChoice::PathTrace => Mode::PathTrace,
+            ModeChoice::FinalGather => Mode::FinalGather,
         }
     }
 
@@ -106,7 +111,7 @@ impl fmt::Display for ModeChoice {
 /// `--direct`: how a progressive pass lights the first diffuse hit directly.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum DirectChoice {
-    /// Photons for all light (the `visualize` mode per pass).
+    /// Photons for all light (the `photon-map` mode per pass).
     Photons,
     /// Shadow rays for direct light, photons for the rest (the `shadow-rays` mode per pass).
     ShadowRays,
@@ -116,7 +121,7 @@ impl DirectChoice {
     /// The render mode of each progressive pass.
     pub fn mode(self) -> Mode {
         match self {
-            DirectChoice::Photons => Mode::Visualize,
+            DirectChoice::Photons => Mode::PhotonMap,
             DirectChoice::ShadowRays => Mode::ShadowRays,
         }
     }

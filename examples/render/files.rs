@@ -1,7 +1,7 @@
 //! The render example's files: the scene it reads (a built-in name or a glTF path, with a
 //! message that names what is wrong) and the outputs it checks before rendering.
 
-use photon_maps::render::image::{check_output_path, write_atomically};
+use photon_maps::render::image::{check_output_path, output_target, write_atomically};
 use photon_maps::trace::gltf::{GltfOptions, LightUnits};
 use photon_maps::trace::{Scene, scenes};
 use std::fs;
@@ -37,11 +37,7 @@ pub fn load_scene(arg: &str, units: LightUnits) -> Result<(Scene, String), Strin
     if !path.is_file() {
         return Err(format!("scene file not found: {arg}"));
     }
-    let name = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("scene")
-        .to_owned();
+    let name = scene_name(arg);
     let options = GltfOptions {
         light_units: units,
         ..GltfOptions::default()
@@ -51,20 +47,92 @@ pub fn load_scene(arg: &str, units: LightUnits) -> Result<(Scene, String), Strin
         .map_err(|e| e.to_string())
 }
 
+/// The name used for output files: a built-in scene's name, or a file's stem. Known without
+/// loading the scene, so outputs are checked before it is read.
+pub fn scene_name(arg: &str) -> String {
+    let path = Path::new(arg);
+    if arg.contains(['/', '\\']) || path.extension().is_some() {
+        path.file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("scene")
+            .to_owned()
+    } else {
+        arg.to_owned()
+    }
+}
+
 /// Prints a line to stdout; a closed pipe (`render | head -1`) is not an error worth a panic.
 pub fn say(line: &str) {
     let _ = writeln!(std::io::stdout().lock(), "{line}");
 }
 
+/// A file a run reads or writes, with the option that names it in messages.
+pub struct NamedFile<'a> {
+    /// How the user named it (`--out`, `--out's PNG sibling`, `--scene`, `shard`).
+    pub option: &'static str,
+    /// The path as given.
+    pub path: &'a Path,
+}
+
+/// The one check of a run's outputs, made before anything is rendered, the same in every
+/// mode: each output can be written (its folder is created; a folder, device, FIFO or
+/// read-only file is refused), no two outputs are one file, and no output is an input (the
+/// scene file, a shard). Files are compared by what a write would replace: links followed
+/// (a dangling link to the file it would create), folders canonicalised, so `x.exr`,
+/// `./x.exr` and a link to it are one file whether or not it exists yet.
+pub fn check_outputs(outputs: &[NamedFile<'_>], inputs: &[NamedFile<'_>]) -> Result<(), String> {
+    let mut seen: Vec<(PathBuf, &NamedFile<'_>)> = Vec::new();
+    for output in outputs {
+        check_writable(output.path)?;
+        let identity = file_identity(output.path)?;
+        if let Some((_, other)) = seen.iter().find(|(id, _)| *id == identity) {
+            return Err(format!(
+                "{} {} and {} {} are the same file; give each output its own path",
+                other.option,
+                other.path.display(),
+                output.option,
+                output.path.display()
+            ));
+        }
+        for input in inputs {
+            if file_identity(input.path).is_ok_and(|id| id == identity) {
+                return Err(format!(
+                    "{} {} is the same file as the {} {} it reads; an output may not replace an input",
+                    output.option,
+                    output.path.display(),
+                    input.option,
+                    input.path.display()
+                ));
+            }
+        }
+        seen.push((identity, output));
+    }
+    Ok(())
+}
+
+/// What a write to `path` replaces, as a canonical path: the link target followed, its
+/// folder canonicalised and its name kept.
+fn file_identity(path: &Path) -> Result<PathBuf, String> {
+    let fail = |e: std::io::Error| format!("{}: {e}", path.display());
+    let target = output_target(path).map_err(fail)?;
+    let folder = target.parent().filter(|p| !p.as_os_str().is_empty());
+    let folder = folder.map_or_else(|| fs::canonicalize("."), fs::canonicalize);
+    match (folder, target.file_name()) {
+        (Ok(folder), Some(name)) => Ok(folder.join(name)),
+        (Err(e), _) => Err(fail(e)),
+        (_, None) => Err(format!("{}: not a file name", path.display())),
+    }
+}
+
 /// Creates the parent folder, refuses a target that is not a regular file (a folder, a
-/// device, a FIFO) and checks a file can be made beside it, so a bad path fails before the
-/// render; the target itself is not opened or touched.
-pub fn check_writable(path: &Path) -> Result<(), String> {
+/// device, a FIFO) or is read-only, and checks a file can be made beside it, so a bad path
+/// fails before the render; the target itself is not opened or touched.
+fn check_writable(path: &Path) -> Result<(), String> {
     let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         fs::create_dir_all(parent).map_err(fail)?;
     }
-    check_output_path(path).map_err(|e| e.to_string())?;
+    check_output_path(path).map_err(fail)?;
     // An empty atomic write to a file that is then removed: the target is never named.
     let probe = path.with_file_name(format!(
         ".{}.probe-{}",
@@ -76,31 +144,46 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Refuses two outputs that are one file (`--stats-json` naming the image, or a link to it).
-pub fn refuse_shared_outputs(outputs: &[&Path]) -> Result<(), String> {
-    let identity = |path: &Path| -> PathBuf {
-        // Existing files (and links to them) by their canonical path; new ones by their
-        // canonical folder and name.
-        if let Ok(p) = fs::canonicalize(path) {
-            return p;
-        }
-        let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
-        let folder = folder.map_or_else(|| fs::canonicalize("."), fs::canonicalize);
-        match (folder, path.file_name()) {
-            (Ok(folder), Some(name)) => folder.join(name),
-            _ => path.to_path_buf(),
-        }
-    };
-    for (i, a) in outputs.iter().enumerate() {
-        for b in &outputs[i + 1..] {
-            if identity(a) == identity(b) {
-                return Err(format!(
-                    "outputs {} and {} are the same file; give each output its own path",
-                    a.display(),
-                    b.display()
-                ));
-            }
-        }
+/// The outputs of a run in any mode: the .exr and .png siblings of `base` and the figures'
+/// JSON, checked by [`check_outputs`] against each other and `inputs`; returns the image
+/// paths.
+pub fn check_run_outputs(
+    base: &Path,
+    stats_json: Option<&Path>,
+    inputs: &[NamedFile<'_>],
+) -> Result<(PathBuf, PathBuf), String> {
+    if base.is_dir() {
+        return Err(format!(
+            "--out {} is a folder; name a file (its .exr and .png siblings are written)",
+            base.display()
+        ));
     }
-    Ok(())
+    let (exr, png) = (base.with_extension("exr"), base.with_extension("png"));
+    let mut outputs = vec![
+        NamedFile {
+            option: "--out's EXR",
+            path: &exr,
+        },
+        NamedFile {
+            option: "--out's PNG",
+            path: &png,
+        },
+    ];
+    if let Some(path) = stats_json {
+        outputs.push(NamedFile {
+            option: "--stats-json",
+            path,
+        });
+    }
+    check_outputs(&outputs, inputs)?;
+    Ok((exr, png))
+}
+
+/// The scene file as an input, when `--scene` names a file rather than a built-in scene.
+pub fn scene_input(scene: &str) -> Option<NamedFile<'_>> {
+    let path = Path::new(scene);
+    path.is_file().then_some(NamedFile {
+        option: "--scene",
+        path,
+    })
 }

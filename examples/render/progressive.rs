@@ -1,14 +1,15 @@
-//! `--mode progressive|sppm` and `--merge`: progressive renders in shards of passes that merge
-//! exactly, and the SPPM baseline. Kept apart from the single-pass command line.
+//! `--mode progressive|sppm` and `--merge`: progressive renders in shards of passes whose
+//! merge has the bits of one run of all their passes, and the SPPM baseline. Kept apart from
+//! the single-pass command line.
 
-use super::{Args, ModeChoice, check_writable, json_number, json_string, load_scene, say};
+use super::files::{NamedFile, check_run_outputs, scene_input};
+use super::{Args, ModeChoice, json_number, json_string, load_scene, say};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
-use photon_maps::trace::gltf::LightUnits;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -22,12 +23,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         );
     }
     let budget = match args.time {
-        Some(t) if t.is_finite() && t >= 0.0 => Some(Duration::from_secs_f64(t)),
-        Some(t) => {
-            return Err(format!(
-                "--time must be a non-negative number of seconds, got {t}"
-            ));
-        }
+        // Refuses negative, NaN, infinite and too large (about 1.8e19 s) budgets.
+        Some(t) => Some(
+            Duration::try_from_secs_f64(t)
+                .map_err(|_| format!("--time must be a number of seconds from 0 to 1.8e19, got {t}"))?,
+        ),
         None => None,
     };
     let passes = match (args.passes, budget) {
@@ -38,21 +38,33 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     if sppm && args.first_pass != 0 {
         return Err("--first-pass: SPPM runs are not shardable".into());
     }
-    // Each progressive pass renders like `visualize` (photons for all light) or
+    // Each progressive pass renders like `photon-map` (photons for all light) or
     // `shadow-rays`, as --direct says; SPPM always has shadow rays for direct light.
     settings.mode = args.direct.mode();
+    let progressive_settings = ProgressiveSettings {
+        first_pass: args.first_pass,
+        passes,
+        time_budget: budget,
+        ..ProgressiveSettings::new(settings, 1)
+    };
+    if sppm {
+        SppmSettings {
+            passes,
+            time_budget: budget,
+            ..SppmSettings::new(settings, 1)
+        }
+        .validate()
+    } else {
+        progressive_settings.validate()
+    }
+    .map_err(|e| e.to_string())?;
     let (scene_name, scene_id) = scene_identity(&args.scene)?;
     let base = args
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
-    let (exr_path, png_path) = (base.with_extension("exr"), base.with_extension("png"));
-    for path in [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
-        .into_iter()
-        .flatten()
-    {
-        check_writable(path)?;
-    }
+    let inputs: Vec<NamedFile<'_>> = scene_input(&args.scene).into_iter().collect();
+    let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
     let (image, stats, range, identity) = if sppm {
@@ -77,12 +89,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         let scene = partition
             .prepare_scene(load_scene(&args.scene, args.light_units.into())?.0)
             .map_err(|e| e.to_string())?;
-        let s = ProgressiveSettings {
-            first_pass: args.first_pass,
-            passes,
-            time_budget: budget,
-            ..ProgressiveSettings::new(settings, 1)
-        };
+        let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
             .render(&scene, &*partition, &bar)
             .map_err(|e| e.to_string())?;
@@ -95,8 +102,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             args.light_units
         );
         let a = &out.accumulation;
-        let shard = Shard::new(a.mean(), a.pass_range().start, a.passes(), &scene_id, &identity)
-            .map_err(|e| e.to_string())?;
+        let shard = Shard::from_accumulation(a, &scene_id, &identity).map_err(|e| e.to_string())?;
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
         (a.mean(), out.stats, a.pass_range(), identity)
     };
@@ -106,11 +112,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         .map_err(|e| e.to_string())?;
     let m = image.mean();
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({} passes), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
-        stats.passes,
+        count(stats.passes, "pass", "passes"),
         stats.photons_emitted,
         stats.pilot.as_secs_f64(),
         stats.trace.as_secs_f64(),
@@ -143,31 +149,28 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     Ok(())
 }
 
-/// `--merge SHARD.exr … --out OUT.exr`: the image one run of all the shards' passes gives.
+/// `--merge SHARD.exr … --out OUT.exr`: the image one run of all the shards' passes gives,
+/// bit for bit; the shards are read one at a time into one running sum.
 pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
     let out = args.out.clone().ok_or("--merge needs --out OUT.exr")?;
-    let (exr_path, png_path) = (out.with_extension("exr"), out.with_extension("png"));
-    for path in [Some(&exr_path), Some(&png_path), args.stats_json.as_ref()]
-        .into_iter()
-        .flatten()
-    {
-        check_writable(path)?;
-    }
-    let read = shards
+    let inputs: Vec<NamedFile<'_>> = shards
         .iter()
-        .map(|p| Shard::read_exr(p).map_err(|e| e.to_string()))
-        .collect::<Result<Vec<_>, _>>()?;
-    let merged = Shard::merge(&read).map_err(|e| e.to_string())?;
+        .map(|path| NamedFile {
+            option: "shard",
+            path,
+        })
+        .collect();
+    let (exr_path, png_path) = check_run_outputs(&out, args.stats_json.as_deref(), &inputs)?;
+    let merged = Shard::merge_files(shards).map_err(|e| e.to_string())?;
     merged.write_exr(&exr_path).map_err(|e| e.to_string())?;
-    merged
-        .mean()
-        .write_png(&png_path, args.exposure())
+    let mean = merged.mean();
+    mean.write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let range = merged.pass_range();
-    let m = merged.mean().mean();
+    let m = mean.mean();
     say(&format!(
-        "merged {} shards: passes {}..{} of {}, mean rgb ({:.4}, {:.4}, {:.4})",
-        read.len(),
+        "merged {}: passes {}..{} of {}, mean rgb ({:.4}, {:.4}, {:.4})",
+        count(shards.len() as u64, "shard", "shards"),
         range.start,
         range.end,
         merged.scene(),
@@ -196,10 +199,15 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
     Ok(())
 }
 
+/// `n` and the noun in the number it takes: "1 pass", "2 passes".
+fn count(n: u64, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// The scene's name for output files, and its identity for shards: the name and a 64-bit
 /// FNV-1a hash of the glTF file's bytes (or of the built-in scene's name).
 fn scene_identity(arg: &str) -> Result<(String, String), String> {
-    let (_, name) = load_scene(arg, LightUnits::Mixed)?;
+    let name = super::files::scene_name(arg);
     let path = Path::new(arg);
     let fnv = |h: u64, bytes: &[u8]| {
         bytes

@@ -70,8 +70,30 @@ pub fn summary(r: &Record<'_>) -> String {
         0 => String::new(),
         n => format!(", {n} power channels below the map's range stored as zero"),
     };
+    // The final gather's costs: its precomputation, its cache and its gather rays.
+    let gather = if s.cache_points == 0 {
+        String::new()
+    } else {
+        format!(
+            ", precompute {:.3} s ({} cache points, {:.1} MB), {} gather rays ({:.2} M/s)",
+            s.precompute.as_secs_f64(),
+            s.cache_points,
+            s.cache_bytes as f64 / 1e6,
+            s.gather_rays,
+            s.gather_rays_per_second() / 1e6
+        )
+    };
+    // Power that hit a surface within a millimetre of its light: a light facing into a wall
+    // (the JSON has the figure however small).
+    let near = match s.near_light_fraction {
+        f if f >= 0.01 => format!(
+            ", {:.1} % of the emitted power hit a surface within 1 mm of its light (facing into a wall? an area light faces edge_u × edge_v)",
+            100.0 * f
+        ),
+        _ => String::new(),
+    };
     format!(
-        "{} [{}]: {lighting}{}, mode {}, {}x{}, {} photons ({} stored{below}): trace {:.3} s, build {:.3} s, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.contacts.0,
@@ -95,33 +117,62 @@ pub fn json_object(r: &Record<'_>) -> String {
     let mut o = String::from("{");
     let _ = write!(
         o,
-        "\"scene\": {}, \"variant\": {}, \"maps\": {}, \"estimator\": {}, \"mode\": {}, ",
+        "\"scene\": {}, \"variant\": {}, ",
         json_string(r.scene),
         json_string(r.variant.label),
-        json_string(&r.variant.maps.to_string()),
-        json_string(r.variant.estimator.name()),
-        json_string(r.settings.mode.name()),
     );
+    // Only what applied: a path-traced render reads no photon maps, so it has no maps,
+    // estimator or k to record.
+    let photon_maps = r.settings.mode.uses_photons();
+    if photon_maps {
+        let _ = write!(
+            o,
+            "\"maps\": {}, \"estimator\": {}, ",
+            json_string(&r.variant.maps.to_string()),
+            json_string(r.variant.estimator.name()),
+        );
+    }
     let _ = write!(
         o,
-        "\"width\": {}, \"height\": {}, \"spp\": {}, \"k\": {}, \"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
+        "\"mode\": {}, \"width\": {}, \"height\": {}, \"spp\": {}, ",
+        json_string(r.settings.mode.name()),
         r.settings.width,
         r.settings.height,
         r.settings.samples_per_pixel,
-        r.settings.k,
+    );
+    if photon_maps {
+        let _ = write!(o, "\"k\": {}, ", r.settings.k);
+    }
+    let _ = write!(
+        o,
+        "\"photons_emitted\": {}, \"photons_stored\": {}, \"photon_channels_below_range\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seed\": {}, ",
         s.photons_emitted,
         s.photons_stored,
         s.photon_channels_below_range,
+        json_number(s.near_light_fraction),
         s.map_count,
         s.threads,
         r.args.seed,
     );
+    if r.settings.mode == photon_maps::render::Mode::FinalGather {
+        let _ = write!(
+            o,
+            "\"gather_rays\": {}, \"gather_rays_per_sample\": {}, \"cache_every\": {}, \"cache_points\": {}, \"cache_bytes\": {}, \"gather_rays_per_second\": {}, ",
+            s.gather_rays,
+            r.settings.final_gather.gather_rays,
+            r.settings.final_gather.cache_every,
+            s.cache_points,
+            s.cache_bytes,
+            json_number(s.gather_rays_per_second()),
+        );
+    }
     let _ = write!(
         o,
-        "\"contacts\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
+        "\"contacts\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
         r.contacts.1,
         json_number(s.trace.as_secs_f64()),
         json_number(s.build.as_secs_f64()),
+        json_number(s.precompute.as_secs_f64()),
         json_number(s.render.as_secs_f64()),
         json_number(s.total().as_secs_f64()),
         json_number(r.mean[0] as f64),

@@ -87,7 +87,7 @@ pub fn report(results: &[SceneResult], config: &Config, args: &Args, wall: f64) 
     );
     let _ = writeln!(
         w,
-        "Machine: {cpu}, {cores} logical cores (`nproc`), {threads} rendering threads. Every case: {}×{}, {} photons emitted, k = {}, one sample per pixel, `Visualize` mode, seed 0; times are the fastest of {} runs of the whole case (trace + build + render). The machine is shared, so times vary by ±20 %.{}\n",
+        "Machine: {cpu}, {cores} logical cores (`nproc`), {threads} rendering threads. Every case: {}×{}, {} photons emitted, k = {}, one sample per pixel, `PhotonMap` mode, seed 0; times are the fastest of {} runs of the whole case (trace + build + render). The machine is shared, so times vary by ±20 %.{}\n",
         config.width,
         config.height,
         config.photons,

@@ -160,7 +160,7 @@ pub fn accordion_classes(scene: &Scene, config: &Config) -> Result<Vec<Facet>, S
             "accordion is {width} m wide, expected {expected} m: update ACCORDION_STEP"
         ));
     }
-    let s = settings(config, Mode::Visualize, 1, 0);
+    let s = settings(config, Mode::PhotonMap, 1, 0);
     let renderer = Renderer::new(EstimatorKind::Disc, s);
     let assignment = SingleMap.partition(scene);
     let maps = renderer

@@ -2,8 +2,9 @@
 //! (Euclidean) or a cube (Chebyshev, L∞), for photon-mapping renderers.
 //!
 //! - [`CompactPhoton`] packs a [`Photon`] (position, RGB power, travel direction, kind) into
-//!   20 bytes: power within ±0.35 % per channel relative to a [`PowerScale`] that the tree
-//!   keeps (its brightest channel, so any absolute power works), direction within 0.05°.
+//!   20 bytes: power within 0.7 % per channel and unbiased (stochastic rounding), relative to
+//!   a [`PowerScale`] that the tree keeps (its brightest channel, so any absolute power
+//!   works), direction within 0.05°.
 //! - [`PhotonTree`] stores photons in tree order with no per-node pointers (20 bytes per
 //!   photon plus about 0.2 bytes of split nodes), built in parallel by median selection.
 //! - [`PhotonTree::nearest_k`] finds the k nearest photons within a maximum distance under a

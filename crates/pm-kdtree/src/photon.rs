@@ -13,9 +13,19 @@
 //! bounces routinely differ by 10–100× between channels. The codes are relative to a
 //! [`PowerScale`] that the photon map keeps (its brightest channel), not absolute: code 4095
 //! is the scale and each code below it is 2^(1/100) smaller, down to about 2⁻⁴¹ (5·10⁻¹³)
-//! times the scale; code 0 is zero. So every channel keeps ±0.35 % at any absolute power in
-//! f32's normal range, whether a scene emits 10⁻⁶ W or 10¹² W and whether it is traced with a
-//! thousand photons or a billion, and photons of one map may differ by up to 2⁴⁰ (10¹²).
+//! times the scale; code 0 is zero. So every channel stays within one step (0.7 %) at any
+//! absolute power in f32's normal range, whether a scene emits 10⁻⁶ W or 10¹² W and whether it
+//! is traced with a thousand photons or a billion, and photons of one map may differ by up to
+//! 2⁴⁰ (10¹²).
+//!
+//! The rounding is *stochastic* and unbiased: a channel between two codes takes the upper one
+//! with the probability that makes the decoded power's expectation the exact power (linear
+//! interpolation between the two decoded values). Rounding to the nearest code would put the
+//! same error, up to ±0.35 %, on every photon of a light of one colour, and sums of photons
+//! would keep that bias however many photons are traced. The uniform number comes from a hash
+//! of the photon itself (position, direction, kind and channel), so encoding stays
+//! deterministic: the same photon always gets the same code, whatever order or thread encodes
+//! it.
 //! Decoding is a lookup in a 4096-entry table computed at compile time and one multiply by the
 //! scale (which an estimator does once per query, after summing): no `exp` in the hot loop.
 
@@ -71,8 +81,8 @@ pub struct Photon {
 
 /// A photon in 20 bytes: position as 3×f32 and 8 bytes of encoded power, direction and kind.
 ///
-/// See the [module docs](self) for the layout and precision: power within ±0.35 % per
-/// channel relative to a [`PowerScale`] (from the scale down to about 2⁻⁴¹ times it), direction
+/// See the [module docs](self) for the layout and precision: power within one step of
+/// 2^(1/100) (0.7 %) per channel, unbiased (stochastic rounding), relative to a [`PowerScale`] (from the scale down to about 2⁻⁴¹ times it), direction
 /// within 0.05°. The scale is not stored in the photon: a [`crate::PhotonTree`] keeps one for
 /// all its photons.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -82,7 +92,7 @@ pub struct CompactPhoton {
     packed: [u32; 2],
 }
 
-/// Power codes per octave (factor 2): a step of 2^(1/100), so rounding errs by ≤ 0.347 %.
+/// Power codes per octave (factor 2): a step of 2^(1/100), so rounding errs by < 0.7 %.
 const CODES_PER_OCTAVE: i32 = 100;
 const POWER_BITS: u32 = 12;
 /// The top code: exactly the map's [`PowerScale`]. Code `c ≥ 1` decodes to
@@ -128,7 +138,7 @@ static POWER_TABLE: [f32; 1 << POWER_BITS] = POWER_TABLE_VALUES;
 /// it, so the codes keep their precision at any absolute power.
 ///
 /// A channel is stored as one of 4095 logarithmic steps of 2^(1/100) below the scale (within
-/// ±0.35 %), from the scale itself down to [`PowerScale::SMALLEST_RELATIVE`] (about 2⁻⁴¹)
+/// one step, 0.7 %, rounded stochastically so that the decoded power is unbiased), from the scale itself down to [`PowerScale::SMALLEST_RELATIVE`] (about 2⁻⁴¹)
 /// times it, or as zero. [`PowerScale::for_photons`] picks the largest channel of the map's
 /// photons, so nothing is clamped and every channel within 2⁻⁴⁰ of the map's brightest keeps
 /// its precision; [`PhotonTree::build`](crate::PhotonTree::build) counts the positive channels
@@ -193,7 +203,7 @@ impl PowerScale {
         power
             .to_array()
             .into_iter()
-            .filter(|&w| encode_channel(w, self) == (0, true))
+            .filter(|&w| below_smallest_code(w, self))
             .count() as u32
     }
 }
@@ -209,18 +219,71 @@ pub(crate) fn largest_channel(power: Vec3) -> f32 {
 
 /// The code of one channel relative to `scale`, and whether a finite positive channel fell
 /// below the smallest code (and is stored as zero). Above the scale (or +∞) clamps to the top.
+///
+/// Between two codes it takes the upper one with probability `(v − lo) / (hi − lo)` for a
+/// uniform `u` in [0, 1) (`u < p` rounds up), so that the decoded value's expectation over `u`
+/// is exactly the channel's relative power `v`. Exactly representable channels keep their code.
 #[inline]
-fn encode_channel(watts: f32, scale: PowerScale) -> (u64, bool) {
+fn encode_channel(watts: f32, scale: PowerScale, u: f64) -> (u64, bool) {
     if watts.is_nan() || watts <= 0.0 {
         return (0, false);
     }
     // Logarithms, not the ratio: watts / scale could underflow or overflow in f32.
-    let code = ((watts.log2() - scale.log2) * CODES_PER_OCTAVE as f32).round() + POWER_MAX_CODE as f32;
-    if code >= 1.0 {
-        (code.min(POWER_MAX_CODE as f32) as u64, false)
-    } else {
-        (0, watts.is_finite())
+    let code = ((watts.log2() - scale.log2) * CODES_PER_OCTAVE as f32).floor() + POWER_MAX_CODE as f32;
+    if code >= POWER_MAX_CODE as f32 {
+        return (POWER_MAX_CODE as u64, false);
     }
+    if code < 0.0 {
+        return (0, watts.is_finite());
+    }
+    // In f64 the ratio of two f32 powers neither underflows nor overflows.
+    let relative = watts as f64 / scale.watts as f64;
+    // The f32 logarithm may be one code off at a boundary: step until lo ≤ v < hi.
+    let mut lo = code as usize;
+    while lo > 0 && (POWER_TABLE[lo] as f64) > relative {
+        lo -= 1;
+    }
+    while lo < POWER_MAX_CODE as usize && (POWER_TABLE[lo + 1] as f64) <= relative {
+        lo += 1;
+    }
+    if lo == POWER_MAX_CODE as usize {
+        return (lo as u64, false);
+    }
+    if lo == 0 {
+        // Below the smallest code: stored as zero, and counted.
+        return (0, true);
+    }
+    let (low, high) = (POWER_TABLE[lo] as f64, POWER_TABLE[lo + 1] as f64);
+    let up = u * (high - low) < relative - low;
+    (lo as u64 + u64::from(up), false)
+}
+
+/// Whether a channel is finite, positive and below the smallest code (see
+/// [`PowerScale::channels_below`]).
+fn below_smallest_code(watts: f32, scale: PowerScale) -> bool {
+    watts > 0.0 && watts.is_finite() && (watts as f64 / scale.watts as f64) < POWER_TABLE[1] as f64
+}
+
+/// The three uniform numbers in [0, 1) that round a photon's power channels: a hash of the
+/// photon's position, direction and kind (SplitMix64 finalisers), so the same photon always
+/// encodes the same way and different photons round independently.
+fn rounding_uniforms(position: [f32; 3], direction_and_kind: u64) -> [f64; 3] {
+    fn mix(mut z: u64) -> u64 {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    let mut h = mix(direction_and_kind ^ 0x9e37_79b9_7f4a_7c15);
+    for x in position {
+        h = mix(h ^ u64::from(x.to_bits()).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    }
+    let mut out = [0.0; 3];
+    for (c, o) in out.iter_mut().enumerate() {
+        h = mix(h.wrapping_add(0x9e37_79b9_7f4a_7c15 ^ c as u64));
+        // 53 bits: a uniform in [0, 1) with f64's full resolution.
+        *o = (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+    }
+    out
 }
 
 fn decode_direction(u: u32, v: u32) -> Vec3 {
@@ -296,16 +359,15 @@ impl CompactPhoton {
     /// [`CompactPhoton::encode`], and how many channels fell below the smallest code.
     pub(crate) fn encode_counting(photon: &Photon, scale: PowerScale) -> (Self, u32) {
         let power = photon.power;
-        let (r, r_low) = encode_channel(power.x, scale);
-        let (g, g_low) = encode_channel(power.y, scale);
-        let (b, b_low) = encode_channel(power.z, scale);
         let (u, v) = encode_direction(photon.direction);
-        let bits = r
-            | g << POWER_BITS
-            | b << (2 * POWER_BITS)
-            | (u as u64) << DIRECTION_SHIFT
+        let direction_and_kind = (u as u64) << DIRECTION_SHIFT
             | (v as u64) << (DIRECTION_SHIFT + DIRECTION_BITS)
             | (photon.kind as u64) << KIND_SHIFT;
+        let [ur, ug, ub] = rounding_uniforms(photon.position.to_array(), direction_and_kind);
+        let (r, r_low) = encode_channel(power.x, scale, ur);
+        let (g, g_low) = encode_channel(power.y, scale, ug);
+        let (b, b_low) = encode_channel(power.z, scale, ub);
+        let bits = r | g << POWER_BITS | b << (2 * POWER_BITS) | direction_and_kind;
         let low = u32::from(r_low) + u32::from(g_low) + u32::from(b_low);
         (Self::from_parts(photon.position.to_array(), bits), low)
     }

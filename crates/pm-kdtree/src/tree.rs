@@ -90,7 +90,7 @@ impl PhotonTree {
     /// positions and on coordinates beyond [`MAX_COORDINATE`].
     ///
     /// The power scale is the largest finite power channel of any photon
-    /// ([`PowerScale::for_photons`]), so every channel within 2⁻⁴⁰ of it keeps ±0.35 %;
+    /// ([`PowerScale::for_photons`]), so every channel within 2⁻⁴⁰ of it keeps 0.7 % (unbiased);
     /// positive channels further below are stored as zero and counted
     /// ([`PhotonTree::channels_below_range`]). The photons are encoded into 20 bytes each and
     /// dropped before the tree is built. Median selection per node, O(n log n); subtrees

@@ -109,15 +109,31 @@ pub enum RenderError {
         /// What failed.
         message: String,
     },
-    /// A progressive render in a mode other than visualize or shadow-rays.
-    #[error("mode {0} cannot render progressively (expected visualize or shadow-rays)")]
+    /// A progressive render in a mode other than photon-map or shadow-rays.
+    #[error("mode {0} cannot render progressively (expected photon-map or shadow-rays)")]
     UnsupportedMode(crate::Mode),
+    /// A final-gather parameter is out of range (the message names it).
+    #[error("final gather: {0}")]
+    BadFinalGather(String),
     /// Knaus & Zwicker's α outside (0, 1).
     #[error("alpha must lie strictly between 0 and 1, got {0}")]
     BadAlpha(f32),
     /// A progressive render with zero passes, or with neither passes nor a time budget.
     #[error("a progressive render needs at least one pass or a time budget")]
     ZeroPasses,
+    /// Passes that would run past the last pass index,
+    /// [`crate::progressive::MAX_PASS`].
+    #[error(
+        "passes from {first_pass} ({passes}) run past the last pass, {max}",
+        passes = passes.map_or_else(|| "on a time budget".to_owned(), |n| format!("{n} of them")),
+        max = crate::progressive::MAX_PASS
+    )]
+    PassRange {
+        /// The first pass.
+        first_pass: u64,
+        /// The passes asked for (`None`: until a time budget is spent).
+        passes: Option<u64>,
+    },
     /// Photon tracing refused the scene or the options (no lights, zero power, …).
     #[error("photon tracing: {0}")]
     Trace(#[from] pm_trace::TraceError),

@@ -5,14 +5,17 @@
 //! - [`estimator`]: irradiance from the photons of one map, by Jensen's [`Disc`], Hey &
 //!   Purgathofer's geometry-based [`GeometryCube`], or the [`GeometryBall`] variant; all
 //!   generic in the hot loop and allocation-free once their [`EstimatorScratch`] is warm.
-//! - [`Mode`]: `Visualize` (photon maps seen directly), `ShadowRays` (direct light by shadow
-//!   rays) and `PathTrace` (the unbiased reference).
+//! - [`Mode`]: `PhotonMap` (the photon maps read at the first diffuse hit), `ShadowRays`
+//!   (direct light by shadow rays), `PathTrace` (the unbiased reference) and `FinalGather`
+//!   (one gathered bounce into the [`RadianceCache`], precomputed irradiance in each map).
 //! - [`Renderer`]: photon tracing, map building and the image in tiles on rayon workers; the
 //!   image is bit-identical for any thread count. [`Progress`] observes it; [`RenderStats`]
 //!   times each phase.
 //! - [`progressive`]: a consistent progressive renderer (Knaus & Zwicker passes with
 //!   fixed-volume estimates, [`FixedVolumeEstimator`]) that stays leak-free and edge-true at
-//!   every pass, shards of passes that merge exactly, and the SPPM baseline.
+//!   every pass, shards of passes that merge into the bits of one run, and the SPPM baseline.
+//! - [`prelude`]: the scene, tracing, map and estimator names most programs need, in one
+//!   `use pm_render::prelude::*`.
 //! - [`Image`]: linear RGB film, metrics, EXR (feature `exr`) and sRGB PNG (feature `png`),
 //!   each written atomically ([`image::write_atomically`]: a failed write keeps the old file).
 //!
@@ -38,7 +41,7 @@
 //!     .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
 //!     .camera(Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z, Vec3::Y, 1.2))
 //!     .build()?;
-//! let settings = RenderSettings { width: 32, height: 32, photons: 20_000, mode: Mode::Visualize, ..Default::default() };
+//! let settings = RenderSettings { width: 32, height: 32, photons: 20_000, mode: Mode::PhotonMap, ..Default::default() };
 //! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&scene, &CreaseAngle::default(), &())?;
 //! assert!((out.image.mean().x - 1.0).abs() < 0.05);
 //! println!("{:.3} s in total", out.stats.total().as_secs_f64());
@@ -62,16 +65,19 @@
 //!   report" in these docs is that report. The reproduction is in the repository's
 //!   `docs/results.md`.
 
+pub mod cache;
 pub mod error;
 pub mod estimator;
 pub mod image;
 pub mod mode;
+pub mod prelude;
 pub mod progress;
 pub mod progressive;
 pub mod renderer;
 pub mod settings;
 pub mod stats;
 
+pub use cache::RadianceCache;
 pub use error::RenderError;
 pub use estimator::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
@@ -81,7 +87,7 @@ pub use estimator::{
 /// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
 pub use glam;
 pub use image::Image;
-pub use mode::{Lighting, Mode};
+pub use mode::{FinalGatherOptions, Lighting, Mode};
 pub use progress::Progress;
 pub use renderer::{Rendered, Renderer};
 pub use settings::{RenderSettings, parse_image_size};

@@ -3,13 +3,14 @@
 //! bit-identical for any number of threads.
 
 use crate::{
-    Estimator, EstimatorScratch, Image, Lighting, Progress, RenderError, RenderSettings, RenderStats,
+    Estimator, EstimatorScratch, Image, Lighting, Mode, Progress, RadianceCache, RenderError, RenderSettings,
+    RenderStats,
 };
 use glam::Vec3;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// Keeps the pixel streams apart from the photon-path streams of the same seed.
@@ -78,10 +79,15 @@ impl<E: Estimator> Renderer<E> {
                 None => None,
             };
             stats.trace += partition_time;
+            let cache = match (&maps, self.settings.mode) {
+                (Some(maps), Mode::FinalGather) => Some(self.build_cache(scene, maps, progress, &mut stats)?),
+                _ => None,
+            };
             progress.phase("render");
             let start = Instant::now();
-            let image = self.render_image(scene, maps.as_ref(), progress)?;
+            let (image, gather_rays) = self.render_counted(scene, maps.as_ref(), cache.as_ref(), progress)?;
             stats.render = start.elapsed();
+            stats.gather_rays = gather_rays;
             Ok(Rendered { image, stats })
         })?
     }
@@ -105,6 +111,7 @@ impl<E: Estimator> Renderer<E> {
         let traced = trace_photons(scene, assignment, &options)?;
         stats.photons_emitted = traced.stats().emitted;
         stats.photons_stored = traced.stats().total_stored();
+        stats.near_light_fraction = traced.stats().near_light_fraction;
         stats.map_count = assignment.map_count();
         stats.trace = start.elapsed();
         progress.phase("build");
@@ -115,14 +122,70 @@ impl<E: Estimator> Renderer<E> {
         Ok(maps)
     }
 
+    /// The final gather's irradiance cache for `maps` (the "precompute" phase, timed into
+    /// `stats`), with this renderer's estimator and options; runs in the current rayon pool.
+    pub fn build_cache(
+        &self,
+        scene: &Scene,
+        maps: &PhotonMaps,
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<RadianceCache, RenderError> {
+        progress.phase("precompute");
+        let start = Instant::now();
+        let options = self.settings.estimator_options(&scene.bounds());
+        let cache = RadianceCache::build(
+            scene,
+            maps,
+            &self.estimator,
+            &options,
+            self.settings.final_gather.cache_every,
+        )?;
+        stats.precompute = start.elapsed();
+        stats.cache_points = cache.len() as u64;
+        stats.cache_bytes = cache.memory_bytes() as u64;
+        Ok(cache)
+    }
+
     /// Renders the image from already built maps (`None` is fine for path tracing) in the
-    /// current rayon pool. Maps built for another scene are an error.
+    /// current rayon pool. Maps built for another scene are an error. For
+    /// [`Mode::FinalGather`] this builds the irradiance cache first
+    /// ([`Renderer::build_cache`]); [`Renderer::render_image_with`] takes one already built.
     pub fn render_image(
         &self,
         scene: &Scene,
         maps: Option<&PhotonMaps>,
         progress: &dyn Progress,
     ) -> Result<Image, RenderError> {
+        let cache = match (maps, self.settings.mode) {
+            (Some(maps), Mode::FinalGather) => {
+                Some(self.build_cache(scene, maps, progress, &mut RenderStats::default())?)
+            }
+            _ => None,
+        };
+        self.render_image_with(scene, maps, cache.as_ref(), progress)
+    }
+
+    /// [`Renderer::render_image`] with the final gather's cache given (ignored in the other
+    /// modes; without one the final gather sees no indirect light).
+    pub fn render_image_with(
+        &self,
+        scene: &Scene,
+        maps: Option<&PhotonMaps>,
+        cache: Option<&RadianceCache>,
+        progress: &dyn Progress,
+    ) -> Result<Image, RenderError> {
+        Ok(self.render_counted(scene, maps, cache, progress)?.0)
+    }
+
+    /// [`Renderer::render_image_with`], and the number of gather rays cast.
+    fn render_counted(
+        &self,
+        scene: &Scene,
+        maps: Option<&PhotonMaps>,
+        cache: Option<&RadianceCache>,
+        progress: &dyn Progress,
+    ) -> Result<(Image, u64), RenderError> {
         self.settings.validate()?;
         if let Some(maps) = maps {
             let (maps, scene) = (maps.assignment().part_count(), scene.part_count());
@@ -139,9 +202,12 @@ impl<E: Estimator> Renderer<E> {
             estimator: &self.estimator,
             options: &options,
             pixel_angle: scene.camera().pixel_angle(s.height),
+            cache,
+            final_gather: s.final_gather,
         };
         let tiles = tiles(s.width, s.height, s.tile_size);
         let done = AtomicUsize::new(0);
+        let gather_rays = AtomicU64::new(0);
         // Each finished tile is copied into the image at once, so the pixels are held once
         // (plus one tile per worker), not twice. Tiles are disjoint: the order of the copies
         // does not change the image.
@@ -151,6 +217,7 @@ impl<E: Estimator> Renderer<E> {
             || (EstimatorScratch::new(), Vec::new()),
             |(scratch, pixels), tile| {
                 render_tile(&lighting, s, tile, scratch, pixels);
+                gather_rays.fetch_add(std::mem::take(&mut scratch.gather_rays), Ordering::Relaxed);
                 {
                     // A poisoned lock only means another tile's copy panicked; the pixels
                     // themselves are plain data.
@@ -163,9 +230,10 @@ impl<E: Estimator> Renderer<E> {
                 progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
             },
         );
-        Ok(image
+        let image = image
             .into_inner()
-            .unwrap_or_else(|poisoned| poisoned.into_inner()))
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        Ok((image, gather_rays.into_inner()))
     }
 
     fn in_pool<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {

@@ -1,7 +1,7 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
 //! the report's defaults (Ball & Stejko).
 
-use crate::{EstimatorOptions, Mode, RenderError};
+use crate::{EstimatorOptions, FinalGatherOptions, Mode, RenderError};
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 
@@ -27,10 +27,15 @@ pub struct RenderSettings {
     pub mode: Mode,
     /// Seed of every random stream (photon paths and pixel samples).
     pub seed: u64,
-    /// Worker threads; 0 uses rayon's current pool.
+    /// Worker threads; 0 uses rayon's current pool, which outside any `ThreadPool::install` is
+    /// the global pool: one thread per core unless `RAYON_NUM_THREADS` says otherwise. The
+    /// render example's `--threads` means the same.
     pub threads: usize,
     /// Side of the square tiles handed to workers, in pixels.
     pub tile_size: u32,
+    /// Gather rays, cache density and corner rule of [`Mode::FinalGather`] (checked only in
+    /// that mode).
+    pub final_gather: FinalGatherOptions,
 }
 
 impl Default for RenderSettings {
@@ -43,10 +48,11 @@ impl Default for RenderSettings {
             k: EstimatorOptions::DEFAULT_K,
             max_distance: None,
             reject_behind: false,
-            mode: Mode::Visualize,
+            mode: Mode::PhotonMap,
             seed: 0,
             threads: 0,
             tile_size: 16,
+            final_gather: FinalGatherOptions::default(),
         }
     }
 }
@@ -86,6 +92,9 @@ impl RenderSettings {
         }
         if self.tile_size == 0 {
             return Err(RenderError::ZeroTileSize);
+        }
+        if self.mode == Mode::FinalGather {
+            self.final_gather.validate()?;
         }
         self.estimator_options(&Aabb::cube(glam::Vec3::ZERO, 1.0))
             .validate()

@@ -13,6 +13,11 @@ pub struct RenderStats {
     /// times smaller than their map's brightest channel ([`pm_trace::PhotonMaps::channels_below_range`]);
     /// zero in any ordinary scene.
     pub photon_channels_below_range: u64,
+    /// The share of the emitted power whose first hit lay within 1 mm of its light
+    /// ([`pm_trace::TraceStats::near_light_fraction`]): near 1 when a light faces into the
+    /// wall or ceiling it sits on (an area light emits towards `edge_u × edge_v`), which
+    /// otherwise shows only as a dark image; 0 when the mode traces no photons.
+    pub near_light_fraction: f64,
     /// Number of photon maps.
     pub map_count: u32,
     /// Worker threads used.
@@ -23,11 +28,30 @@ pub struct RenderStats {
     pub build: Duration,
     /// Rendering the image.
     pub render: Duration,
+    /// Precomputing the final gather's irradiance cache (zero in the other modes).
+    pub precompute: Duration,
+    /// Points in the final gather's irradiance cache.
+    pub cache_points: u64,
+    /// Bytes held by the final gather's irradiance cache.
+    pub cache_bytes: u64,
+    /// Gather rays cast by the final gather (first rays of each gather, not counting the
+    /// specular bounces they follow).
+    pub gather_rays: u64,
 }
 
 impl RenderStats {
-    /// Sum of the three phases.
+    /// Sum of the phases.
     pub fn total(&self) -> Duration {
-        self.trace + self.build + self.render
+        self.trace + self.build + self.precompute + self.render
+    }
+
+    /// Gather rays per second of the render phase (zero when none were cast).
+    pub fn gather_rays_per_second(&self) -> f64 {
+        let seconds = self.render.as_secs_f64();
+        if self.gather_rays == 0 || seconds <= 0.0 {
+            0.0
+        } else {
+            self.gather_rays as f64 / seconds
+        }
     }
 }

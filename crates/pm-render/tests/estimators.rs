@@ -315,6 +315,8 @@ fn geometry_spreading_conserves_energy_over_random_polygons() {
                 power: Vec3::splat(rng.range(0.1, 1.0)),
                 // Any length: the estimate uses only ratios of cosines with it.
                 direction: rng.unit_vector() * rng.range(0.3, 3.0),
+                kind: PhotonKind::Direct,
+                distance_squared: 0.0,
             })
             .collect();
         let cube = Aabb::cube(Vec3::ZERO, 0.5);

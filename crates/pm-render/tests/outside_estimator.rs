@@ -1,13 +1,9 @@
 //! An estimator written outside pm-render, as a renderer author would: Jensen's cone filter
-//! built from the public k-nearest preamble and the scratch the renderer hands it, checked
+//! built from the public k-nearest preamble, the decoded photons (power in watts, squared
+//! distance, the shared filters applied) and the scratch the renderer hands it, checked
 //! against a brute-force sum over every photon of the map.
 
-use pm_geom::PolygonSet;
-use pm_kdtree::{Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
-use pm_render::glam::Vec3;
-use pm_render::{
-    Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, find_nearest, gather_found,
-};
+use pm_render::prelude::*;
 use std::f32::consts::PI;
 
 /// Jensen's cone filter (1996): each of the k nearest photons weighs `1 − d / (k_c r)`, and the
@@ -16,7 +12,7 @@ struct ConeFilter {
     k_c: f32,
 }
 
-/// The cone filter's own per-thread buffer: the weight of each neighbour.
+/// The cone filter's own per-thread buffer: the weight of each photon.
 #[derive(Default)]
 struct ConeScratch {
     weights: Vec<f32>,
@@ -35,20 +31,17 @@ impl Estimator for ConeFilter {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        let (neighbours, _, own) = scratch.split::<ConeScratch>();
+        gather_found(at, map.tree, options, scratch);
+        let (_, photons, own) = scratch.split::<ConeScratch>();
         own.queries += 1;
         own.weights.clear();
-        let mut relative = Vec3::ZERO;
-        for n in neighbours {
-            let photon = map.tree.get(n.index);
-            let weight = (1.0 - n.distance / (self.k_c * r)).max(0.0);
+        let mut power = Vec3::ZERO;
+        for p in photons {
+            let weight = (1.0 - p.distance_squared.sqrt() / (self.k_c * r)).max(0.0);
             own.weights.push(weight);
-            if !options.reject_behind || photon.direction_l1().dot(at.normal) < 0.0 {
-                relative += photon.relative_power() * weight;
-            }
+            power += p.power * weight;
         }
-        let norm = (1.0 - 2.0 / (3.0 * self.k_c)) * PI * r * r;
-        relative * (map.tree.power_scale().watts() / norm)
+        power / ((1.0 - 2.0 / (3.0 * self.k_c)) * PI * r * r)
     }
 }
 
@@ -61,67 +54,88 @@ fn next(state: &mut u64) -> f32 {
     ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
 }
 
-/// Photons scattered on the floor y = 0, arriving from above with varied powers.
+/// Photons scattered on the floor y = 0 with varied powers, of all three kinds; one in five
+/// arrives from below (it lit the floor's underside).
 fn floor_photons(count: usize, seed: u64) -> Vec<Photon> {
     let mut s = seed;
+    let kinds = [PhotonKind::Direct, PhotonKind::Indirect, PhotonKind::Caustic];
     (0..count)
-        .map(|_| Photon {
-            position: Vec3::new(next(&mut s) * 2.0 - 1.0, 0.0, next(&mut s) * 2.0 - 1.0),
-            power: Vec3::new(0.5 + next(&mut s), 0.5 + next(&mut s), 0.5 + next(&mut s)) * 1e-3,
-            direction: Vec3::new(next(&mut s) - 0.5, -1.0, next(&mut s) - 0.5).normalize(),
-            kind: PhotonKind::Direct,
+        .map(|i| {
+            let up = if i % 5 == 4 { -1.0 } else { 1.0 };
+            Photon {
+                position: Vec3::new(next(&mut s) * 2.0 - 1.0, 0.0, next(&mut s) * 2.0 - 1.0),
+                power: Vec3::new(0.5 + next(&mut s), 0.5 + next(&mut s), 0.5 + next(&mut s)) * 1e-3,
+                direction: Vec3::new(next(&mut s) - 0.5, -up, next(&mut s) - 0.5).normalize(),
+                kind: kinds[i % 3],
+            }
         })
         .collect()
 }
 
-/// The cone-filter estimate by brute force: every photon's distance, sorted, the k nearest.
-fn cone_brute_force(tree: &PhotonTree, at: Vec3, k: usize, k_c: f32) -> Vec3 {
-    let mut all: Vec<(f32, Vec3)> = tree
-        .iter()
-        .map(|p| (p.position().distance(at), p.power(tree.power_scale())))
-        .collect();
-    all.sort_by(|a, b| a.0.total_cmp(&b.0));
+/// The cone-filter estimate by brute force over the photons in full precision: the k nearest
+/// of the kinds asked for, then the sum over those that arrive from above (from the side the
+/// floor's normal +y faces) unless `from_below_too`.
+fn cone_brute_force(
+    photons: &[Photon],
+    at: Vec3,
+    kinds: KindMask,
+    from_below_too: bool,
+    k: usize,
+    k_c: f32,
+) -> Vec3 {
+    let mut all: Vec<&Photon> = photons.iter().filter(|p| kinds.accepts(p.kind)).collect();
+    all.sort_by(|a, b| a.position.distance(at).total_cmp(&b.position.distance(at)));
     let nearest = &all[..k];
-    let r = nearest[k - 1].0;
+    let r = nearest[k - 1].position.distance(at);
     let sum: Vec3 = nearest
         .iter()
-        .map(|&(d, power)| power * (1.0 - d / (k_c * r)).max(0.0))
+        .filter(|p| from_below_too || p.direction.y < 0.0)
+        .map(|p| p.power * (1.0 - p.position.distance(at) / (k_c * r)).max(0.0))
         .sum();
     sum / ((1.0 - 2.0 / (3.0 * k_c)) * PI * r * r)
 }
 
 #[test]
 fn cone_filter_outside_the_crate_matches_brute_force_with_the_given_scratch() {
-    let tree = PhotonTree::build(floor_photons(2000, 7)).unwrap();
+    let photons = floor_photons(3000, 7);
+    let tree = PhotonTree::build(photons.clone()).unwrap();
     let polygons = PolygonSet::new();
     let map = MapView {
         tree: &tree,
         polygons: &polygons,
     };
-    let options = EstimatorOptions {
-        k: 50,
-        max_distance: 10.0,
-        reject_behind: true,
-        kinds: KindMask::ALL,
-    };
     let cone = ConeFilter { k_c: 1.5 };
     // One scratch for every query, as a renderer worker holds one.
     let mut scratch = EstimatorScratch::new();
     let mut s = 99u64;
-    for _ in 0..20 {
-        let at = Vec3::new(next(&mut s) * 1.2 - 0.6, 0.0, next(&mut s) * 1.2 - 0.6);
-        let got = cone.irradiance(SurfacePoint::front(at, Vec3::Y), map, &options, &mut scratch);
-        let want = cone_brute_force(&tree, at, options.k, cone.k_c);
-        assert!(
-            (got - want).abs().max_element() <= 1e-4 * want.max_element(),
-            "at {at}: cone filter {got} but brute force {want}"
-        );
-        assert_eq!(scratch.neighbours().len(), options.k);
+    let cases = [(KindMask::ALL, true), (KindMask::NOT_DIRECT, false)];
+    for (kinds, reject_behind) in cases {
+        let options = EstimatorOptions {
+            k: 50,
+            max_distance: 10.0,
+            reject_behind,
+            kinds,
+        };
+        for _ in 0..20 {
+            let at = Vec3::new(next(&mut s) * 1.2 - 0.6, 0.0, next(&mut s) * 1.2 - 0.6);
+            let got = cone.irradiance(SurfacePoint::front(at, Vec3::Y), map, &options, &mut scratch);
+            let want = cone_brute_force(&photons, at, kinds, !reject_behind, options.k, cone.k_c);
+            // Compact photons keep power within 0.35 % per channel.
+            assert!(
+                (got - want).abs().max_element() <= 5e-3 * want.max_element(),
+                "at {at} ({kinds:?}, reject behind {reject_behind}): cone filter {got} but brute force {want}"
+            );
+            assert_eq!(scratch.neighbours().len(), options.k);
+        }
     }
     // The estimator's own buffers live in the scratch it was given, across queries.
     let own = scratch.slot::<ConeScratch>();
-    assert_eq!(own.queries, 20);
-    assert_eq!(own.weights.len(), options.k);
+    assert_eq!(own.queries, 40);
+    assert_eq!(
+        own.weights.len(),
+        50,
+        "no photon is rejected from behind in the last case"
+    );
     assert!(own.weights.iter().all(|w| (0.0..=1.0).contains(w)));
 }
 
@@ -168,13 +182,31 @@ fn gather_found_decodes_the_neighbours_and_rejects_photons_from_behind() {
     assert_eq!(scratch.neighbours().len(), 3);
     gather_found(at, &tree, &options, &mut scratch);
     assert_eq!(scratch.photons().len(), 2, "the photon from behind is dropped");
-    let scale = tree.power_scale().watts();
     for p in scratch.photons() {
+        // Watts, with the map's power scale applied (compact powers keep 0.35 %).
         assert!(
-            (p.power * scale - Vec3::ONE).abs().max_element() < 1e-2,
+            (p.power - Vec3::ONE).abs().max_element() < 1e-2,
             "power {}",
-            p.power * scale
+            p.power
         );
         assert!(p.direction.dot(Vec3::Y) < 0.0);
+        assert!((p.distance_squared - 1e-4).abs() < 1e-8, "{}", p.distance_squared);
+        assert_eq!(p.kind, PhotonKind::Direct);
+        assert!(options.accepts(at, p.kind, p.direction));
     }
+    // The shared filters: a photon from behind is refused only while rejection is on, and a
+    // kind outside the mask always.
+    assert!(at.arrives_from_behind(-down));
+    assert!(!options.accepts(at, PhotonKind::Direct, -down));
+    let keep_behind = EstimatorOptions {
+        reject_behind: false,
+        ..options
+    };
+    assert!(keep_behind.accepts(at, PhotonKind::Direct, -down));
+    let no_direct = EstimatorOptions {
+        kinds: KindMask::NOT_DIRECT,
+        ..options
+    };
+    assert!(!no_direct.accepts(at, PhotonKind::Direct, down));
+    assert!(no_direct.accepts(at, PhotonKind::Caustic, down));
 }

@@ -23,15 +23,16 @@ impl Estimator for Disc {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        // Powers relative to the map's scale, summed, then scaled once.
-        let relative: Vec3 = if options.reject_behind {
+        let power: Vec3 = if options.reject_behind {
             gather_found(at, map.tree, options, scratch);
             scratch.photons.iter().map(|p| p.power).sum()
         } else {
-            // Directions are only needed to reject photons from behind: skip decoding them.
+            // Directions are only needed to reject photons from behind: skip decoding them,
+            // sum powers relative to the map's scale and scale once.
             let found = scratch.neighbours.as_slice();
-            found.iter().map(|n| map.tree.get(n.index).relative_power()).sum()
+            let relative: Vec3 = found.iter().map(|n| map.tree.get(n.index).relative_power()).sum();
+            relative * map.tree.power_scale().watts()
         };
-        relative * (map.tree.power_scale().watts() / (PI * r * r))
+        power / (PI * r * r)
     }
 }

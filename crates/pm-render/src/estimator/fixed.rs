@@ -3,13 +3,14 @@
 //! Progressive rendering needs them: a volume chosen before the photons are seen makes each
 //! estimate unbiased for the irradiance smoothed over that volume.
 
+use super::gather::gather_within;
 use super::geometry::{collect_faces, spread_power};
 use super::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GatheredPhoton, GeometryBall,
-    GeometryCube, MapView, SurfacePoint, VolumeMetric, find_nearest,
+    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView,
+    SurfacePoint, VolumeMetric, find_nearest,
 };
 use glam::Vec3;
-use pm_kdtree::{Chebyshev, Euclidean, Metric, PhotonTree};
+use pm_kdtree::{Chebyshev, Euclidean, Metric};
 use std::f32::consts::PI;
 
 /// An estimator that can also estimate in a volume of a given extent (a radius, or a cube's
@@ -43,32 +44,6 @@ pub trait FixedVolumeEstimator: Estimator {
     ) -> Vec3;
 }
 
-/// Decodes every photon within `extent` of `at` (under `M`) that `options` accepts into
-/// `scratch.photons`, with powers relative to the tree's scale.
-fn gather_within<M: Metric>(
-    at: SurfacePoint,
-    tree: &PhotonTree,
-    extent: f32,
-    options: &EstimatorOptions,
-    photons: &mut Vec<GatheredPhoton>,
-) {
-    photons.clear();
-    tree.for_each_within::<M>(at.position, extent, |index, _| {
-        let p = tree.get(index);
-        if !options.kinds.accepts(p.kind()) {
-            return;
-        }
-        let direction = p.direction_l1();
-        if options.reject_behind && direction.dot(at.normal) >= 0.0 {
-            return;
-        }
-        photons.push(GatheredPhoton {
-            power: p.relative_power(),
-            direction,
-        });
-    });
-}
-
 fn geometry_within<M: VolumeMetric>(
     at: SurfacePoint,
     map: MapView<'_>,
@@ -93,7 +68,7 @@ fn geometry_within<M: VolumeMetric>(
     let volume = M::volume(at.position, extent);
     let orientation = if at.front_face { 1.0 } else { -1.0 };
     collect_faces(&volume, map.polygons, orientation, clip, candidates, faces);
-    spread_power(at.normal, photons, faces) * map.tree.power_scale().watts()
+    spread_power(at.normal, photons, faces)
 }
 
 impl FixedVolumeEstimator for Disc {
@@ -119,8 +94,8 @@ impl FixedVolumeEstimator for Disc {
             return Vec3::ZERO;
         }
         gather_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
-        let relative: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
-        relative * (map.tree.power_scale().watts() / (PI * extent * extent))
+        let power: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
+        power / (PI * extent * extent)
     }
 }
 

@@ -85,8 +85,7 @@ fn geometry_irradiance<M: VolumeMetric>(
     } = scratch;
     let orientation = if at.front_face { 1.0 } else { -1.0 };
     collect_faces(&volume, map.polygons, orientation, clip, candidates, faces);
-    // The gathered powers are relative to the map's scale.
-    spread_power(at.normal, photons, faces) * map.tree.power_scale().watts()
+    spread_power(at.normal, photons, faces)
 }
 
 /// The geometry estimate for a given gather `volume` and `photons` (already gathered), over

@@ -13,7 +13,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// - A symbolic link is kept: the file it points to is replaced (in that file's folder).
 /// - A target that exists but is not a regular file (a folder, a device, a FIFO, a socket) is
 ///   refused with [`io::ErrorKind::InvalidInput`] before anything is created.
-/// - The new file gets the default permissions of a newly created file.
+/// - A file replaced keeps its permissions; a new file gets the default permissions of a
+///   newly created file.
+/// - A target whose permissions allow no writing is refused with
+///   [`io::ErrorKind::PermissionDenied`] (even for a user, such as root, whom the system
+///   would let write it): replacing it would undo the protection.
 ///
 /// ```
 /// # let dir = std::env::temp_dir().join(format!("pm-atomic-doc-{}", std::process::id()));
@@ -30,11 +34,19 @@ pub fn write_atomically(
     write: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
 ) -> io::Result<()> {
     let target = resolve_target(path.as_ref())?;
+    let kept = match fs::metadata(&target) {
+        Ok(meta) => Some(meta.permissions()),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(e),
+    };
     let (temp_path, file) = create_temp_beside(&target)?;
     let result = (|| {
         let mut writer = BufWriter::new(file);
         write(&mut writer)?;
         let file = writer.into_inner().map_err(|e| e.into_error())?;
+        if let Some(permissions) = kept {
+            file.set_permissions(permissions)?;
+        }
         file.sync_all()?;
         drop(file);
         fs::rename(&temp_path, &target)
@@ -45,10 +57,16 @@ pub fn write_atomically(
     result
 }
 
-/// Checks that `path` names a regular file or nothing, following symbolic links to the file
-/// to replace. Errors name the path.
+/// Checks that `path` names a writable regular file or nothing, following symbolic links to
+/// the file to replace, as [`write_atomically`] will. Errors name the path.
 pub fn check_output_path(path: impl AsRef<Path>) -> io::Result<()> {
     resolve_target(path.as_ref()).map(|_| ())
+}
+
+/// The file a write to `path` replaces or creates: `path` itself, or the final target of the
+/// symbolic link it names (also when that target does not exist yet).
+pub fn output_target(path: impl AsRef<Path>) -> io::Result<PathBuf> {
+    resolve_target(path.as_ref())
 }
 
 /// The file to replace: `path` itself, or the final target of the symbolic link it names.
@@ -78,6 +96,12 @@ fn resolve_target(path: &Path) -> io::Result<PathBuf> {
                     Some(parent) => parent.join(link),
                     None => link,
                 };
+            }
+            Ok(meta) if meta.is_file() && meta.permissions().readonly() => {
+                return Err(io::Error::new(
+                    io::ErrorKind::PermissionDenied,
+                    format!("{} is read-only; refusing to replace it", path.display()),
+                ));
             }
             Ok(meta) if meta.is_file() => return Ok(target),
             Ok(meta) if meta.is_dir() => return Err(refuse("a folder")),
@@ -162,6 +186,39 @@ mod tests {
         assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
         assert_eq!(fs::read(&file).unwrap(), b"new");
         assert!(leftovers(&dir).is_empty());
+        fs::remove_dir_all(&dir).ok();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_rewrite_keeps_the_permissions_and_a_read_only_file_is_refused() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("permissions");
+        let path = dir.join("private.exr");
+        fs::write(&path, b"previous").unwrap();
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o600)).unwrap();
+        write_atomically(&path, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(fs::read(&path).unwrap(), b"new");
+        let mode = fs::metadata(&path).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o600, "{mode:o}");
+        // Read-only: refused before anything is written, the file as it was.
+        fs::set_permissions(&path, fs::Permissions::from_mode(0o444)).unwrap();
+        let err = write_atomically(&path, |w| w.write_all(b"newer")).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::PermissionDenied, "{err}");
+        assert!(check_output_path(&path).is_err());
+        assert_eq!(fs::read(&path).unwrap(), b"new");
+        assert!(leftovers(&dir).is_empty());
+        fs::remove_dir_all(&dir).ok();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_target_of_a_dangling_link_is_the_file_it_would_create() {
+        let dir = scratch("dangling");
+        let link = dir.join("s.json");
+        std::os::unix::fs::symlink("x.exr", &link).unwrap();
+        assert_eq!(output_target(&link).unwrap(), dir.join("x.exr"));
+        assert_eq!(output_target(dir.join("y.png")).unwrap(), dir.join("y.png"));
         fs::remove_dir_all(&dir).ok();
     }
 

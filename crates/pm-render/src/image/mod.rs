@@ -8,7 +8,7 @@ mod metrics;
 mod png_file;
 mod srgb;
 
-pub use atomic::{check_output_path, write_atomically};
+pub use atomic::{check_output_path, output_target, write_atomically};
 pub use srgb::{linear_to_srgb8, srgb8_of_image};
 
 use crate::RenderError;

@@ -1,4 +1,4 @@
-//! Visualize and ShadowRays: specular bounces from the eye, then at the first diffuse hit the
+//! PhotonMap and ShadowRays: specular bounces from the eye, then at the first diffuse hit the
 //! photon-map estimate, plus (for ShadowRays) direct light by shadow rays.
 
 use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};

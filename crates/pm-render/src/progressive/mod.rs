@@ -40,19 +40,23 @@
 //! rendered anywhere and merged ([`Shard::merge`]).
 
 mod pass_maps;
+mod pass_sum;
 mod pilot;
 mod radiance;
 mod schedule;
 mod shard;
+#[cfg(feature = "exr")]
+mod shard_exr;
 mod sppm;
 
-pub use schedule::radius_scale;
-pub use shard::{Shard, ShardError};
+pub use pass_sum::PassSums;
+pub use schedule::{MAX_PASS, radius_scale};
+pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
 use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
 use crate::{EstimatorScratch, FixedVolumeEstimator, Image, Mode, Progress, RenderError, RenderSettings};
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use pass_maps::trace_pass;
 use pilot::Pilot;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
@@ -75,7 +79,7 @@ pub const PROGRESSIVE_VERSION: &str = "v2";
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProgressiveSettings {
     /// Image, photons *per pass*, k (for the pilot's extents), maximum distance, seed,
-    /// threads. `mode` must be [`Mode::Visualize`] (photons for all light) or
+    /// threads. `mode` must be [`Mode::PhotonMap`] (photons for all light) or
     /// [`Mode::ShadowRays`] (direct light by shadow rays, photons for the rest).
     pub render: RenderSettings,
     /// Knaus & Zwicker's α in (0, 1): the share of the previous pass's volume kept (default 2/3).
@@ -106,15 +110,27 @@ impl ProgressiveSettings {
     /// Checks the render settings, the mode, α, and that the run will stop.
     pub fn validate(&self) -> Result<(), RenderError> {
         self.render.validate()?;
-        if !matches!(self.render.mode, Mode::Visualize | Mode::ShadowRays) {
+        if !matches!(self.render.mode, Mode::PhotonMap | Mode::ShadowRays) {
             return Err(RenderError::UnsupportedMode(self.render.mode));
         }
         if !(self.alpha > 0.0 && self.alpha < 1.0) {
             return Err(RenderError::BadAlpha(self.alpha));
         }
         match (self.passes, self.time_budget) {
-            (Some(0), _) | (None, None) => Err(RenderError::ZeroPasses),
-            _ => Ok(()),
+            (Some(0), _) | (None, None) => return Err(RenderError::ZeroPasses),
+            _ => {}
+        }
+        // The passes must end by u64::MAX, whose streams are the pilot's.
+        let last = self
+            .first_pass
+            .checked_add(self.passes.unwrap_or(1) - 1)
+            .filter(|&last| last <= MAX_PASS);
+        match last {
+            Some(_) => Ok(()),
+            None => Err(RenderError::PassRange {
+                first_pass: self.first_pass,
+                passes: self.passes,
+            }),
         }
     }
 
@@ -142,12 +158,11 @@ impl ProgressiveSettings {
     }
 }
 
-/// The running sum of a progressive render's passes.
+/// The running sum of a progressive render's passes, kept exactly (see [`PassSums`]): the
+/// merge of shards of passes gives the same bits as one run of them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Accumulation {
-    width: u32,
-    height: u32,
-    sum: Vec<DVec3>,
+    sums: PassSums,
     first_pass: u64,
     passes: u64,
 }
@@ -155,11 +170,8 @@ pub struct Accumulation {
 impl Accumulation {
     /// An empty sum starting at pass `first_pass`.
     pub fn new(width: u32, height: u32, first_pass: u64) -> Result<Self, RenderError> {
-        crate::image::check_image_size(width, height)?;
         Ok(Accumulation {
-            width,
-            height,
-            sum: vec![DVec3::ZERO; width as usize * height as usize],
+            sums: PassSums::new(width, height)?,
             first_pass,
             passes: 0,
         })
@@ -175,17 +187,14 @@ impl Accumulation {
         self.passes
     }
 
-    /// The per-pixel sums of the passes' radiance, row by row.
-    pub fn sum(&self) -> &[DVec3] {
-        &self.sum
+    /// The per-pixel sums of the passes' radiance.
+    pub fn sums(&self) -> &PassSums {
+        &self.sums
     }
 
     /// The mean of the passes: the progressive estimate (black before any pass).
     pub fn mean(&self) -> Image {
-        let n = self.passes.max(1) as f64;
-        let pixels = self.sum.iter().map(|s| (*s / n).as_vec3()).collect();
-        // The size was checked when the sum was made.
-        Image::from_pixels(self.width, self.height, pixels).unwrap_or_else(|_| unreachable!())
+        self.sums.mean(self.passes)
     }
 }
 
@@ -319,13 +328,20 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         stats.pilot = start.elapsed();
         stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
-        stats.accumulation_bytes = (accumulation.sum.capacity() * size_of::<DVec3>()) as u64;
+        stats.accumulation_bytes = accumulation.sums.heap_bytes();
         let tiles = tiles(r.width, r.height, r.tile_size);
         loop {
             if s.passes.is_some_and(|n| accumulation.passes >= n) {
                 break;
             }
-            let pass = s.first_pass + accumulation.passes;
+            // A run on a time budget stops at the last pass there is.
+            let Some(pass) = s
+                .first_pass
+                .checked_add(accumulation.passes)
+                .filter(|&p| p <= MAX_PASS)
+            else {
+                break;
+            };
             progress.phase("trace");
             let t = Instant::now();
             let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
@@ -344,7 +360,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
                 scale: radius_scale(pass, f64::from(s.alpha)) as f32,
                 shadow_rays: r.mode == Mode::ShadowRays,
             };
-            render_pass(&lighting, r, pass, &tiles, &mut accumulation.sum, progress);
+            render_pass(&lighting, r, pass, &tiles, &mut accumulation.sums, progress);
             drop(maps);
             stats.render += t.elapsed();
             accumulation.passes += 1;
@@ -390,7 +406,7 @@ fn render_pass<E: FixedVolumeEstimator>(
     s: &RenderSettings,
     pass: u64,
     tiles: &[crate::renderer::Tile],
-    sum: &mut [DVec3],
+    sums: &mut PassSums,
     progress: &dyn Progress,
 ) {
     let camera = lighting.scene.camera();
@@ -398,7 +414,7 @@ fn render_pass<E: FixedVolumeEstimator>(
     let spp = s.samples_per_pixel as u64;
     let seed = s.seed ^ PIXEL_SEED_SALT;
     let width = s.width as usize;
-    let sum = Mutex::new(sum);
+    let sums = Mutex::new(sums);
     let done = AtomicUsize::new(0);
     tiles.par_iter().for_each_init(
         || (EstimatorScratch::new(), Vec::<Vec3>::new()),
@@ -421,11 +437,11 @@ fn render_pass<E: FixedVolumeEstimator>(
                 }
             }
             {
-                let mut sum = sum.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+                let mut sums = sums.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
                 for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
                     let start = (tile.y as usize + row) * width + tile.x as usize;
-                    for (acc, p) in sum[start..start + chunk.len()].iter_mut().zip(chunk) {
-                        *acc += p.as_dvec3();
+                    for (i, p) in chunk.iter().enumerate() {
+                        sums.add_value(start + i, *p);
                     }
                 }
             }

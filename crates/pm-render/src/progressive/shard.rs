@@ -1,7 +1,8 @@
-//! Shards: the mean of a contiguous range of progressive passes with what it belongs to (the
-//! scene, the settings), so that shards rendered apart merge into the image one run of all
-//! their passes gives — or are refused.
+//! Shards: the exact sums of a contiguous range of progressive passes with what they belong to
+//! (the scene, the settings), so that shards rendered apart merge into the bits one run of all
+//! their passes gives — or are refused, naming the shard at fault.
 
+use super::{Accumulation, MAX_PASS, PassSums};
 use crate::{Image, RenderError};
 use glam::DVec3;
 use std::ops::Range;
@@ -17,13 +18,45 @@ pub enum ShardError {
     /// A shard of no passes.
     #[error("a shard must hold at least one pass")]
     NoPasses,
-    /// An EXR file without the shard header attributes.
-    #[error("{path}: not a progressive shard (no '{attribute}' attribute in its header)")]
+    /// A pass range that runs past the last pass ([`MAX_PASS`]) or wraps past `u64::MAX`.
+    #[error("{shard}: passes from {first_pass} ({passes} of them) run past the last pass, {max}", max = MAX_PASS)]
+    BadPassRange {
+        /// The shard (its file, or its place in the list).
+        shard: String,
+        /// Its first pass.
+        first_pass: u64,
+        /// Its pass count.
+        passes: u64,
+    },
+    /// A path that is not a regular file (a folder, a FIFO, a device).
+    #[error("{path}: not a regular file; a shard is an EXR file")]
+    NotAFile {
+        /// The path.
+        path: String,
+    },
+    /// An EXR file without the shard header attribute or sum channels.
+    #[error("{path}: not a progressive shard (no valid '{attribute}' in it)")]
     NotAShard {
         /// The file.
         path: String,
-        /// The missing or unreadable attribute.
+        /// The missing or unreadable attribute or channel.
         attribute: &'static str,
+    },
+    /// A pixel that is NaN or infinite, or whose mean is.
+    #[error("{shard}: pixel ({x}, {y}) is not finite")]
+    NonFinite {
+        /// The shard (its file, or its place in the list).
+        shard: String,
+        /// Column.
+        x: u32,
+        /// Row.
+        y: u32,
+    },
+    /// One shard given twice.
+    #[error("{shard} is given twice")]
+    Duplicate {
+        /// The shard.
+        shard: String,
     },
     /// Shards of different scenes.
     #[error("shards of different scenes: '{a}' and '{b}'")]
@@ -50,11 +83,15 @@ pub enum ShardError {
         b: (u32, u32),
     },
     /// Two shards hold the same pass.
-    #[error("shards overlap: passes {a:?} and {b:?}")]
+    #[error("shards overlap: {a_shard} holds passes {a:?} and {b_shard} passes {b:?}")]
     Overlap {
-        /// One pass range.
+        /// One shard.
+        a_shard: String,
+        /// Its pass range.
         a: Range<u64>,
-        /// The other.
+        /// The other shard.
+        b_shard: String,
+        /// Its pass range.
         b: Range<u64>,
     },
     /// The shards leave passes out: no single run gives their merge.
@@ -68,19 +105,154 @@ pub enum ShardError {
     Image(#[from] RenderError),
 }
 
-/// The mean of passes `first_pass .. first_pass + passes` of a progressive render, with the
-/// identities of its scene and settings.
+/// What a shard says about itself, checked before any of its pixels are read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShardHeader {
+    /// The shard's name in messages: its file, or its place in a list.
+    pub name: String,
+    /// Its first pass.
+    pub first_pass: u64,
+    /// Its pass count (at least 1).
+    pub passes: u64,
+    /// The scene identity.
+    pub scene: String,
+    /// The settings identity.
+    pub settings: String,
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+}
+
+impl ShardHeader {
+    /// The passes it holds, refused when empty or running past [`MAX_PASS`].
+    pub fn pass_range(&self) -> Result<Range<u64>, ShardError> {
+        if self.passes == 0 {
+            return Err(ShardError::NoPasses);
+        }
+        let bad = || ShardError::BadPassRange {
+            shard: self.name.clone(),
+            first_pass: self.first_pass,
+            passes: self.passes,
+        };
+        let last = self.first_pass.checked_add(self.passes - 1).ok_or_else(bad)?;
+        if last > MAX_PASS {
+            return Err(bad());
+        }
+        Ok(self.first_pass..last + 1)
+    }
+}
+
+/// Checks that shards can merge (one scene, one settings, one size, pass ranges that neither
+/// overlap, repeat nor leave a gap) and returns their indices in pass order and the merged
+/// header.
+pub fn plan_merge(headers: &[ShardHeader]) -> Result<(Vec<usize>, ShardHeader), ShardError> {
+    let first = headers.first().ok_or(ShardError::Empty)?;
+    let size = |h: &ShardHeader| (h.width, h.height);
+    for h in headers {
+        h.pass_range()?;
+        if h.scene != first.scene {
+            return Err(ShardError::SceneMismatch {
+                a: first.scene.clone(),
+                b: h.scene.clone(),
+            });
+        }
+        if h.settings != first.settings {
+            return Err(ShardError::SettingsMismatch {
+                a: first.settings.clone(),
+                b: h.settings.clone(),
+            });
+        }
+        if size(h) != size(first) {
+            return Err(ShardError::SizeMismatch {
+                a: size(first),
+                b: size(h),
+            });
+        }
+    }
+    let mut order: Vec<usize> = (0..headers.len()).collect();
+    order.sort_by_key(|&i| (headers[i].first_pass, headers[i].passes));
+    let range = |i: usize| headers[i].pass_range();
+    // Every overlap before any gap: a shard given twice is named as such, not as a gap
+    // between the others.
+    for pair in order.windows(2) {
+        let (a, b) = (&headers[pair[0]], &headers[pair[1]]);
+        let (ra, rb) = (range(pair[0])?, range(pair[1])?);
+        if rb.start < ra.end {
+            if a.name == b.name {
+                return Err(ShardError::Duplicate {
+                    shard: a.name.clone(),
+                });
+            }
+            return Err(ShardError::Overlap {
+                a_shard: a.name.clone(),
+                a: ra,
+                b_shard: b.name.clone(),
+                b: rb,
+            });
+        }
+    }
+    let mut passes = 0u64;
+    for pair in order.windows(2) {
+        let (ra, rb) = (range(pair[0])?, range(pair[1])?);
+        if rb.start > ra.end {
+            return Err(ShardError::Gap {
+                missing: ra.end..rb.start,
+            });
+        }
+    }
+    for &i in &order {
+        // Contiguous ranges below u64::MAX cannot overflow; checked all the same.
+        passes = passes
+            .checked_add(headers[i].passes)
+            .ok_or(ShardError::BadPassRange {
+                shard: headers[i].name.clone(),
+                first_pass: headers[i].first_pass,
+                passes: headers[i].passes,
+            })?;
+    }
+    let merged = ShardHeader {
+        name: "the merge".into(),
+        first_pass: headers[order[0]].first_pass,
+        passes,
+        ..first.clone()
+    };
+    merged.pass_range()?;
+    Ok((order, merged))
+}
+
+/// Refuses a shard's sums that are not finite or whose mean is not (f32 overflow), naming
+/// the first such pixel.
+pub(crate) fn check_finite(name: &str, sums: &PassSums, passes: u64) -> Result<(), ShardError> {
+    let (hi, lo) = sums.parts();
+    let n = passes.max(1) as f64;
+    for (i, (h, l)) in hi.iter().zip(lo).enumerate() {
+        if !h.is_finite() || !l.is_finite() || !(*h / n).as_vec3().is_finite() {
+            let w = sums.width() as usize;
+            return Err(ShardError::NonFinite {
+                shard: name.to_owned(),
+                x: (i % w) as u32,
+                y: (i / w) as u32,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The exact sums of passes `first_pass .. first_pass + passes` of a progressive render, with
+/// the identities of its scene and settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shard {
-    mean: Image,
+    sums: PassSums,
     first_pass: u64,
     passes: u64,
     scene: String,
     settings: String,
 }
 
-/// Keeps identities to characters an EXR text attribute holds (Latin-1), so that a shard
-/// reads back as written.
+/// Keeps identities to characters an EXR text attribute holds (Latin-1, no control
+/// characters: the header separates its fields by line), so that a shard reads back as
+/// written.
 fn latin1(text: &str) -> String {
     text.chars()
         .map(|c| {
@@ -94,8 +266,26 @@ fn latin1(text: &str) -> String {
 }
 
 impl Shard {
-    /// A shard of `passes` passes from `first_pass` whose mean is `mean`; `scene` and
-    /// `settings` identify what was rendered (characters outside Latin-1 become `?`).
+    /// The shard of a progressive run's sums, exact: shards made this way merge into the bits
+    /// of one run. `scene` and `settings` identify what was rendered (characters outside
+    /// Latin-1 become `?`).
+    pub fn from_accumulation(
+        accumulation: &Accumulation,
+        scene: &str,
+        settings: &str,
+    ) -> Result<Self, ShardError> {
+        Self::from_sums(
+            accumulation.sums().clone(),
+            accumulation.pass_range().start,
+            accumulation.passes(),
+            scene,
+            settings,
+        )
+    }
+
+    /// A shard from the mean of `passes` passes from `first_pass`: its sums are the mean times
+    /// the pass count, rounded, so a merge of such shards is within rounding of one run (use
+    /// [`Shard::from_accumulation`] for the exact sums).
     pub fn new(
         mean: Image,
         first_pass: u64,
@@ -103,26 +293,59 @@ impl Shard {
         scene: &str,
         settings: &str,
     ) -> Result<Self, ShardError> {
-        if passes == 0 {
-            return Err(ShardError::NoPasses);
-        }
-        Ok(Shard {
-            mean,
+        let n = passes as f64;
+        let hi: Vec<DVec3> = mean.pixels().iter().map(|p| p.as_dvec3() * n).collect();
+        let lo = vec![DVec3::ZERO; hi.len()];
+        let sums = PassSums::from_parts(mean.width(), mean.height(), hi, lo)?;
+        Self::from_sums(sums, first_pass, passes, scene, settings)
+    }
+
+    /// A shard of these sums, its pass range and finiteness checked.
+    pub(crate) fn from_sums(
+        sums: PassSums,
+        first_pass: u64,
+        passes: u64,
+        scene: &str,
+        settings: &str,
+    ) -> Result<Self, ShardError> {
+        let shard = Shard {
+            sums,
             first_pass,
             passes,
             scene: latin1(scene),
             settings: latin1(settings),
-        })
+        };
+        shard.header("the shard").pass_range()?;
+        check_finite("the shard", &shard.sums, passes)?;
+        Ok(shard)
     }
 
-    /// The mean of the shard's passes.
-    pub fn mean(&self) -> &Image {
-        &self.mean
+    /// What the shard says about itself, under `name` in messages.
+    pub fn header(&self, name: &str) -> ShardHeader {
+        ShardHeader {
+            name: name.to_owned(),
+            first_pass: self.first_pass,
+            passes: self.passes,
+            scene: self.scene.clone(),
+            settings: self.settings.clone(),
+            width: self.sums.width(),
+            height: self.sums.height(),
+        }
+    }
+
+    /// The mean of the shard's passes (computed from the exact sums).
+    pub fn mean(&self) -> Image {
+        self.sums.mean(self.passes)
+    }
+
+    /// The exact per-pixel sums of its passes.
+    pub fn sums(&self) -> &PassSums {
+        &self.sums
     }
 
     /// The passes it holds.
     pub fn pass_range(&self) -> Range<u64> {
-        self.first_pass..self.first_pass.saturating_add(self.passes)
+        self.first_pass..self.first_pass + self.passes
     }
 
     /// Number of passes.
@@ -140,155 +363,28 @@ impl Shard {
         &self.settings
     }
 
-    /// The shard one run of all the shards' passes gives: the pass-weighted mean (summed in
-    /// f64, so it differs from the single run by rounding only). Refuses shards of different
-    /// scenes, settings or sizes, overlapping pass ranges, and ranges that leave a gap.
+    /// The shard one run of all the shards' passes gives: their exact sums added, so its mean
+    /// has the bits of one run's when every shard came from [`Shard::from_accumulation`].
+    /// Refuses shards of different scenes, settings or sizes, a shard given twice,
+    /// overlapping pass ranges and ranges that leave a gap (shards are named by their place
+    /// in the list, from 1).
     pub fn merge(shards: &[Shard]) -> Result<Shard, ShardError> {
-        let first = shards.first().ok_or(ShardError::Empty)?;
-        let size = |s: &Shard| (s.mean.width(), s.mean.height());
-        for s in shards {
-            if s.scene != first.scene {
-                return Err(ShardError::SceneMismatch {
-                    a: first.scene.clone(),
-                    b: s.scene.clone(),
-                });
-            }
-            if s.settings != first.settings {
-                return Err(ShardError::SettingsMismatch {
-                    a: first.settings.clone(),
-                    b: s.settings.clone(),
-                });
-            }
-            if size(s) != size(first) {
-                return Err(ShardError::SizeMismatch {
-                    a: size(first),
-                    b: size(s),
-                });
-            }
+        let headers: Vec<ShardHeader> = shards
+            .iter()
+            .enumerate()
+            .map(|(i, s)| s.header(&format!("shard {}", i + 1)))
+            .collect();
+        let (order, merged) = plan_merge(&headers)?;
+        let mut sums = PassSums::new(merged.width, merged.height)?;
+        for i in order {
+            sums.add_sums(&shards[i].sums)?;
         }
-        let mut order: Vec<&Shard> = shards.iter().collect();
-        order.sort_by_key(|s| s.first_pass);
-        for pair in order.windows(2) {
-            let (a, b) = (pair[0].pass_range(), pair[1].pass_range());
-            if b.start < a.end {
-                return Err(ShardError::Overlap { a, b });
-            }
-            if b.start > a.end {
-                return Err(ShardError::Gap {
-                    missing: a.end..b.start,
-                });
-            }
-        }
-        let mut sum = vec![DVec3::ZERO; first.mean.pixels().len()];
-        let mut passes = 0u64;
-        for s in &order {
-            let n = s.passes as f64;
-            for (acc, p) in sum.iter_mut().zip(s.mean.pixels()) {
-                *acc += p.as_dvec3() * n;
-            }
-            passes += s.passes;
-        }
-        let pixels = sum.iter().map(|s| (*s / passes as f64).as_vec3()).collect();
-        let mean = Image::from_pixels(first.mean.width(), first.mean.height(), pixels)?;
-        Ok(Shard {
-            mean,
-            first_pass: order[0].first_pass,
-            passes,
-            scene: first.scene.clone(),
-            settings: first.settings.clone(),
-        })
-    }
-}
-
-#[cfg(feature = "exr")]
-mod exr_io {
-    use super::{Shard, ShardError};
-    use crate::{Image, RenderError};
-    use exr::meta::attribute::{AttributeValue, Text};
-    use exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
-    use std::path::Path;
-
-    const FIRST_PASS: &str = "photonMapsFirstPass";
-    const PASSES: &str = "photonMapsPasses";
-    const SCENE: &str = "photonMapsScene";
-    const SETTINGS: &str = "photonMapsSettings";
-
-    fn io_error(path: &Path, e: impl std::fmt::Display) -> RenderError {
-        RenderError::ImageIo {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    }
-
-    impl Shard {
-        /// Writes the shard's mean as a lossless 32-bit float RGB EXR (viewable as an image)
-        /// with its pass range, scene and settings as text attributes of the header.
-        pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), ShardError> {
-            let path = path.as_ref();
-            let w = self.mean.width() as usize;
-            let pixels = self.mean.pixels();
-            let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-                let p = pixels[y * w + x];
-                (p.x, p.y, p.z)
-            });
-            let mut image = exr::prelude::Image::from_encoded_channels(
-                (w, self.mean.height() as usize),
-                Encoding::SMALL_LOSSLESS,
-                channels,
-            );
-            let text = |s: &str| AttributeValue::Text(Text::new_or_none(s).unwrap_or_default());
-            let other = &mut image.attributes.other;
-            other.insert(Text::from(FIRST_PASS), text(&self.first_pass.to_string()));
-            other.insert(Text::from(PASSES), text(&self.passes.to_string()));
-            other.insert(Text::from(SCENE), text(&self.scene));
-            other.insert(Text::from(SETTINGS), text(&self.settings));
-            // Atomically: the exr crate's `to_file` deletes the target when a write fails.
-            crate::image::write_atomically(path, |writer| {
-                image
-                    .write()
-                    .to_buffered(writer)
-                    .map_err(|e| std::io::Error::other(e.to_string()))
-            })
-            .map_err(|e| io_error(path, e).into())
-        }
-
-        /// Reads a shard written by [`Shard::write_exr`]; a plain EXR is
-        /// [`ShardError::NotAShard`].
-        pub fn read_exr(path: impl AsRef<Path>) -> Result<Shard, ShardError> {
-            let path = path.as_ref();
-            let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| io_error(path, e))?;
-            // The reader files unknown text attributes under the layer, whichever part of the
-            // header they were written to: look in both.
-            let attributes: std::collections::HashMap<Text, AttributeValue> = meta
-                .headers
-                .first()
-                .map(|h| {
-                    let shared = h.shared_attributes.other.iter();
-                    shared
-                        .chain(h.own_attributes.other.iter())
-                        .map(|(k, v)| (k.clone(), v.clone()))
-                        .collect()
-                })
-                .unwrap_or_default();
-            let get = |name: &'static str| -> Result<String, ShardError> {
-                match attributes.get(&Text::from(name)) {
-                    Some(AttributeValue::Text(t)) => Ok(t.to_string()),
-                    _ => Err(ShardError::NotAShard {
-                        path: path.display().to_string(),
-                        attribute: name,
-                    }),
-                }
-            };
-            let number = |name: &'static str| -> Result<u64, ShardError> {
-                get(name)?.parse().map_err(|_| ShardError::NotAShard {
-                    path: path.display().to_string(),
-                    attribute: name,
-                })
-            };
-            let (first_pass, passes) = (number(FIRST_PASS)?, number(PASSES)?);
-            let (scene, settings) = (get(SCENE)?, get(SETTINGS)?);
-            let mean = Image::read_exr(path)?;
-            Shard::new(mean, first_pass, passes, &scene, &settings)
-        }
+        Self::from_sums(
+            sums,
+            merged.first_pass,
+            merged.passes,
+            &merged.scene,
+            &merged.settings,
+        )
     }
 }

@@ -45,7 +45,7 @@
 //!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); the emissive texture
 //!   is read for emission (below, with `KHR_texture_transform` too); other textures (normal
 //!   maps, metallic-roughness, occlusion) are ignored. Each texture keeps a box-filtered mip
-//!   chain: the Visualize and ShadowRays modes average it over the camera pixel's footprint
+//!   chain: the photon-map and shadow-ray modes average it over the camera pixel's footprint
 //!   ([`Scene::albedo_over`]), so a texture seen from afar does not alias; photon tracing,
 //!   the path tracer and the progressive modes look textures up at points (their many
 //!   samples average them). `NORMAL` gives smooth shading normals

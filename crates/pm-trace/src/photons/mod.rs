@@ -9,5 +9,6 @@ mod trace;
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
 pub use scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use trace::{
-    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, TraceOptions, TraceStats, TracedPhotons, trace_photons,
+    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions, TraceStats, TracedPhotons,
+    trace_photons,
 };

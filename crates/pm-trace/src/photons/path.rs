@@ -2,7 +2,7 @@
 //! traced one at a time or, in large scenes, two at a time with their rays cast together.
 
 use super::scatter::{glass_direction, mirror_direction};
-use super::trace::{LightPicker, TraceOptions};
+use super::trace::{LightPicker, NEAR_LIGHT_DISTANCE, TraceOptions};
 use crate::sampling::cosine_hemisphere;
 use crate::{Hit, MapAssignment, Material, Ray, RayKind, Rng, Scene};
 use glam::{Vec2, Vec3};
@@ -15,6 +15,7 @@ use pm_kdtree::{Photon, PhotonKind};
 /// [`Scene::intersect_pair`]; when one ends, the next path takes its place at once. Photons of
 /// a path that ends before an older one are held back until the older one has ended, so the
 /// order (and every photon) is what one path at a time gives.
+#[allow(clippy::too_many_arguments)] // the chunk's inputs, then its two outputs
 pub(super) fn trace_paths(
     scene: &Scene,
     assignment: &MapAssignment,
@@ -23,6 +24,7 @@ pub(super) fn trace_paths(
     (begin, end): (u32, u32),
     paired: bool,
     out: &mut Vec<(u32, Photon)>,
+    near: &mut NearLight,
 ) {
     if !paired {
         for path in begin..end {
@@ -31,6 +33,7 @@ pub(super) fn trace_paths(
                 let hit = scene.intersect(&p.ray, f32::INFINITY, RayKind::Other);
                 p.interact(scene, assignment, hit, out);
             }
+            near.add(&p);
         }
         return;
     }
@@ -72,6 +75,7 @@ pub(super) fn trace_paths(
                 continue;
             }
             let ended = slots[k].take().expect("checked above");
+            near.add(&ended.path);
             let mut photons = ended.photons;
             if slots[1 - k].as_ref().is_some_and(|o| o.index < ended.index) {
                 waiting.append(&mut photons);
@@ -84,11 +88,35 @@ pub(super) fn trace_paths(
     }
 }
 
+/// The power emitted by a chunk's paths and the part of it whose first hit lay on a surface
+/// within [`NEAR_LIGHT_DISTANCE`] of its light (summed over channels).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct NearLight {
+    pub(super) emitted: f64,
+    pub(super) near: f64,
+}
+
+impl NearLight {
+    fn add(&mut self, path: &PhotonPath) {
+        self.emitted += f64::from(path.emitted);
+        self.near += f64::from(path.near_light);
+    }
+}
+
 /// One photon path in flight: emitted from a light, then carried from surface to surface
 /// until it is absorbed, leaves the scene or reaches `max_bounces` interactions.
 struct PhotonPath {
     rng: Rng,
     power: Vec3,
+    /// The power it started with, summed over channels.
+    emitted: f32,
+    /// `emitted` when its first hit lay on a surface whose plane passes within
+    /// [`NEAR_LIGHT_DISTANCE`] of where it left the light, else 0.
+    near_light: f32,
+    /// Where it left its light (the first ray starts a step further).
+    emitted_at: Vec3,
+    /// True until the first ray's hit has been handled.
+    first_ray: bool,
     /// The ray to cast next.
     ray: Ray,
     diffuse_bounces: u32,
@@ -104,9 +132,14 @@ impl PhotonPath {
         let mut rng = Rng::for_pass(options.seed, options.pass, path as u64);
         let (li, photon_power) = picker.pick(&mut rng);
         let emitted = scene.lights()[li].emit(&mut rng);
+        let power = photon_power * emitted.weight;
         PhotonPath {
             rng,
-            power: photon_power * emitted.weight,
+            power,
+            emitted: power.element_sum(),
+            near_light: 0.0,
+            emitted_at: emitted.ray.origin,
+            first_ray: true,
             // Step off the emitter's own surface (area lights start on their geometry).
             ray: Ray {
                 origin: emitted.ray.at(scene.epsilon()),
@@ -133,11 +166,17 @@ impl PhotonPath {
         hit: Option<Hit>,
         out: &mut Vec<(u32, Photon)>,
     ) {
+        let first = std::mem::replace(&mut self.first_ray, false);
         self.bounces_left -= 1;
         let Some(hit) = hit else {
             self.bounces_left = 0;
             return;
         };
+        if first && (hit.position - self.emitted_at).dot(hit.normal).abs() <= NEAR_LIGHT_DISTANCE {
+            // The first surface hit lies in a plane within 1 mm of the light: a light facing
+            // into the wall or ceiling it sits on.
+            self.near_light = self.emitted;
+        }
         let direction = match *scene.material(&hit) {
             Material::Lambertian { .. } => {
                 let albedo = scene.albedo_at(&hit);
@@ -213,7 +252,17 @@ mod tests {
         let picker = LightPicker::new(&scene, options.photons).unwrap();
         let trace = |paired: bool, range: (u32, u32)| {
             let mut out = Vec::new();
-            trace_paths(&scene, &assignment, &options, &picker, range, paired, &mut out);
+            let mut near = NearLight::default();
+            trace_paths(
+                &scene,
+                &assignment,
+                &options,
+                &picker,
+                range,
+                paired,
+                &mut out,
+                &mut near,
+            );
             out
         };
         // The smallest chunks too: one path (no pair), two (one pair), three (a pair and a

@@ -2,7 +2,7 @@
 //! `(seed, pass, path index)`, chunks of paths run on rayon and are merged in path order, so the
 //! stored photons are bit-identical for any thread count.
 
-use super::path::trace_paths;
+use super::path::{NearLight, trace_paths};
 use crate::sampling::pick_cumulative;
 use crate::{MapAssignment, Rng, Scene, TraceError};
 use glam::Vec3;
@@ -12,6 +12,11 @@ use std::time::Instant;
 
 /// Paths per parallel work item.
 const CHUNK: u32 = 512;
+
+/// How close to its light the surface of a photon's first hit must pass (1 mm: the distance
+/// from where the photon left the light to the plane of the surface at its hit) to count in
+/// [`TraceStats::near_light_fraction`].
+pub const NEAR_LIGHT_DISTANCE: f32 = 1e-3;
 
 /// The most photon paths one call to [`trace_photons`] traces: 2²⁵ (33,554,432). More are
 /// refused with [`TraceError::TooManyPhotons`] before anything is allocated.
@@ -59,6 +64,13 @@ pub struct TraceStats {
     pub emitted: u64,
     /// Photons stored per map, indexed by `PhotonKind as usize` (direct, indirect, caustic).
     pub stored: Vec<[u64; 3]>,
+    /// The share of the emitted power (summed over channels) whose first hit lay on a surface
+    /// within [`NEAR_LIGHT_DISTANCE`] (1 mm) of its light — the plane of the surface at the
+    /// hit passes that close to where the photon left the light: 0 for lights that face into
+    /// the scene, near 1 for a light facing into the wall or ceiling it sits on (an area light
+    /// emits towards `edge_u × edge_v`: swapping its edges turns it round). That power still
+    /// lights the scene, but from the wrong place.
+    pub near_light_fraction: f64,
     /// Wall-clock seconds spent tracing.
     pub seconds: f64,
 }
@@ -200,35 +212,71 @@ pub fn trace_photons(
     // At most one wave of buffers beyond what the run needs (and no u32 overflow below).
     let wave = (16 * rayon::current_num_threads()).min(chunks as usize).max(1) as u32;
     let paired = scene.prefers_ray_pairs();
-    let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>]| {
-        buffers.par_iter_mut().enumerate().for_each(|(i, out)| {
-            out.clear();
-            let chunk = first + i as u32;
-            if chunk >= chunks {
-                return;
-            }
-            let begin = chunk * CHUNK;
-            let end = begin.saturating_add(CHUNK).min(options.photons);
-            trace_paths(scene, assignment, options, &picker, (begin, end), paired, out);
-        });
+    let trace_wave = |first: u32, buffers: &mut [Vec<(u32, Photon)>], near: &mut [NearLight]| {
+        buffers
+            .par_iter_mut()
+            .zip(near.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (out, near))| {
+                out.clear();
+                *near = NearLight::default();
+                let chunk = first + i as u32;
+                if chunk >= chunks {
+                    return;
+                }
+                let begin = chunk * CHUNK;
+                let end = begin.saturating_add(CHUNK).min(options.photons);
+                trace_paths(
+                    scene,
+                    assignment,
+                    options,
+                    &picker,
+                    (begin, end),
+                    paired,
+                    out,
+                    near,
+                );
+            });
     };
     let mut traced: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
     let mut tracing: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
-    trace_wave(0, &mut traced);
+    let mut traced_near = vec![NearLight::default(); wave as usize];
+    let mut tracing_near = vec![NearLight::default(); wave as usize];
+    // Summed in chunk order, so the figure does not depend on the thread count.
+    let mut near_light = NearLight::default();
+    let mut add_near = |near: &[NearLight]| {
+        for n in near {
+            near_light.emitted += n.emitted;
+            near_light.near += n.near;
+        }
+    };
+    trace_wave(0, &mut traced, &mut traced_near);
     let first_wave_paths = (u64::from(wave) * u64::from(CHUNK)).min(u64::from(options.photons));
     merged.reserve_for(&traced, options.photons as f64 / first_wave_paths as f64);
     let mut first = wave;
     while first < chunks {
-        let (appended, ()) = rayon::join(|| merged.append(&traced), || trace_wave(first, &mut tracing));
+        let (appended, ()) = rayon::join(
+            || merged.append(&traced),
+            || trace_wave(first, &mut tracing, &mut tracing_near),
+        );
         appended?;
+        add_near(&traced_near);
         std::mem::swap(&mut traced, &mut tracing);
+        std::mem::swap(&mut traced_near, &mut tracing_near);
         first += wave;
     }
     merged.append(&traced)?;
+    add_near(&traced_near);
     let Merged { photons, stored, .. } = merged;
+    let near_light_fraction = if near_light.emitted > 0.0 {
+        near_light.near / near_light.emitted
+    } else {
+        0.0
+    };
     let stats = TraceStats {
         emitted: options.photons as u64,
         stored,
+        near_light_fraction,
         seconds: start.elapsed().as_secs_f64(),
     };
     Ok(TracedPhotons { photons, stats })

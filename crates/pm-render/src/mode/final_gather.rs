@@ -1,0 +1,226 @@
+//! FinalGather: specular bounces from the eye to the first diffuse hit x; there direct light by
+//! shadow rays, caustics from caustic photons, and indirect light by gather rays into the cache.
+
+use super::Lighting;
+use super::direct::direct_irradiance_shaded;
+use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
+use crate::{
+    Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
+};
+use glam::{Vec2, Vec3};
+use pm_kdtree::{KindMask, PhotonKind};
+use pm_trace::sampling::cosine_hemisphere;
+use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
+use std::f32::consts::FRAC_1_PI;
+
+/// Parameters of [`crate::Mode::FinalGather`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FinalGatherOptions {
+    /// Cosine-weighted gather rays per camera sample at its first diffuse hit (stratified over
+    /// the hemisphere; default 64).
+    pub gather_rays: u32,
+    /// Irradiance is precomputed at every `cache_every`-th photon of each map (default 4, as
+    /// in Christensen's paper).
+    pub cache_every: u32,
+    /// Jensen's extra bounce: a gather ray whose diffuse hit lies closer than this (metres) to
+    /// its origin does not read the cache there but takes direct light, caustics and one more
+    /// cosine-weighted ray into the cache (0, the default: never).
+    pub corner_distance: f32,
+}
+
+impl Default for FinalGatherOptions {
+    fn default() -> Self {
+        FinalGatherOptions {
+            gather_rays: 64,
+            cache_every: 4,
+            corner_distance: 0.0,
+        }
+    }
+}
+
+impl FinalGatherOptions {
+    /// The most gather rays per camera sample (2¹⁴).
+    pub const MAX_GATHER_RAYS: u32 = 1 << 14;
+
+    /// Checks that there is at least one gather ray (at most [`Self::MAX_GATHER_RAYS`]), that
+    /// `cache_every` is at least 1 and that the corner distance is finite and not negative.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        if self.gather_rays == 0 || self.gather_rays > Self::MAX_GATHER_RAYS {
+            return Err(RenderError::BadFinalGather(format!(
+                "{} gather rays: expected 1 to {}",
+                self.gather_rays,
+                Self::MAX_GATHER_RAYS
+            )));
+        }
+        if self.cache_every == 0 {
+            return Err(RenderError::BadFinalGather(
+                "the cache needs every n-th photon with n ≥ 1".into(),
+            ));
+        }
+        if !(self.corner_distance >= 0.0 && self.corner_distance.is_finite()) {
+            return Err(RenderError::BadFinalGather(format!(
+                "corner distance {} must be finite and not negative",
+                self.corner_distance
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// What the final gather reads besides the scene: the photon maps (for caustics at x), the
+/// cache (for the gather rays) and the options.
+pub(crate) struct GatherInputs<'a> {
+    pub cache: &'a RadianceCache,
+    pub options: FinalGatherOptions,
+}
+
+/// Caustic irradiance at `hit`: the photons of kind caustic in the hit's map, with the mode's
+/// estimator and partition.
+fn caustic_irradiance<E: Estimator>(
+    lighting: &Lighting<'_, E>,
+    hit: &Hit,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let Some(maps) = lighting.maps else {
+        return Vec3::ZERO;
+    };
+    let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
+        return Vec3::ZERO;
+    };
+    let options = EstimatorOptions {
+        kinds: KindMask::only(PhotonKind::Caustic),
+        ..*lighting.options
+    };
+    let view = MapView {
+        tree: map.tree(),
+        polygons: map.geometry(),
+    };
+    let at = SurfacePoint {
+        position: hit.position,
+        normal: lighting.scene.shading_normal_at(hit),
+        front_face: hit.front_face,
+    };
+    lighting.estimator.irradiance(at, view, &options, scratch)
+}
+
+/// The `i`-th of `n` stratified points of the unit square: cells of a grid of ⌈√n⌉ columns
+/// and enough rows, shifted by `offset` (uniform over the cells) so that each point alone is
+/// uniform over the square even when `n` does not fill the grid, and jittered within its cell.
+fn stratified(i: u32, n: u32, offset: u32, rng: &mut Rng) -> Vec2 {
+    let columns = (n as f32).sqrt().ceil().max(1.0) as u32;
+    let rows = n.div_ceil(columns);
+    let cell = (i + offset) % (columns * rows);
+    Vec2::new(
+        ((cell % columns) as f32 + rng.next_f32()) / columns as f32,
+        ((cell / columns) as f32 + rng.next_f32()) / rows as f32,
+    )
+    .min(Vec2::splat(1.0 - f32::EPSILON))
+}
+
+/// Radiance a gather ray carries back: through specular bounces to a diffuse hit y, then the
+/// cache at y (or, within the corner distance of the ray's origin and when `extra_bounce`,
+/// one more bounce). Emission is not counted: direct light at the gather's origin comes from
+/// its shadow rays and caustics from its caustic photons.
+fn gather<E: Estimator>(
+    lighting: &Lighting<'_, E>,
+    inputs: &GatherInputs<'_>,
+    mut ray: Ray,
+    extra_bounce: bool,
+    rng: &mut Rng,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let scene = lighting.scene;
+    let mut throughput = Vec3::ONE;
+    let mut travelled = 0.0f32;
+    for _ in 0..=MAX_SPECULAR_BOUNCES {
+        let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
+            return Vec3::ZERO;
+        };
+        travelled += hit.t;
+        if let Material::Lambertian { .. } = *scene.material(&hit) {
+            if extra_bounce && travelled < inputs.options.corner_distance {
+                return throughput * diffuse_bounce(lighting, inputs, &hit, 1, false, rng, scratch);
+            }
+            return throughput * inputs.cache.radiance(scene, &hit, scratch);
+        }
+        let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
+            return Vec3::ZERO;
+        };
+        throughput *= factor;
+        ray = next;
+    }
+    Vec3::ZERO
+}
+
+/// Reflected radiance at a diffuse `hit` (without its emission): direct light by shadow rays,
+/// caustics from the caustic photons, and `rays` gather rays for the rest.
+fn diffuse_bounce<E: Estimator>(
+    lighting: &Lighting<'_, E>,
+    inputs: &GatherInputs<'_>,
+    hit: &Hit,
+    rays: u32,
+    extra_bounce: bool,
+    rng: &mut Rng,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let scene = lighting.scene;
+    let albedo = scene.albedo_at(hit);
+    let shading = scene.shading_normal_at(hit);
+    let e = direct_irradiance_shaded(scene, hit, shading, rng) + caustic_irradiance(lighting, hit, scratch);
+    let mut indirect = Vec3::ZERO;
+    let offset = (rng.next_f32() * rays as f32) as u32;
+    for i in 0..rays {
+        // Cosine sampling: f · cos / pdf = ρ; a direction below the geometric surface carries
+        // nothing (as in the path tracer), so no gather ray leaves through the surface.
+        let direction = cosine_hemisphere(shading, stratified(i, rays, offset, rng));
+        if direction.dot(hit.normal) <= 0.0 {
+            continue;
+        }
+        scratch.gather_rays += 1;
+        indirect += gather(
+            lighting,
+            inputs,
+            scene.spawn_ray(hit, direction),
+            extra_bounce,
+            rng,
+            scratch,
+        );
+    }
+    albedo * (FRAC_1_PI * e + indirect / rays as f32)
+}
+
+/// Radiance along a camera ray under the final gather.
+pub(super) fn radiance<E: Estimator>(
+    lighting: &Lighting<'_, E>,
+    inputs: &GatherInputs<'_>,
+    mut ray: Ray,
+    rng: &mut Rng,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let scene: &Scene = lighting.scene;
+    let mut throughput = Vec3::ONE;
+    for _ in 0..=MAX_SPECULAR_BOUNCES {
+        let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
+            break;
+        };
+        if let Material::Lambertian { .. } = *scene.material(&hit) {
+            let extra = inputs.options.corner_distance > 0.0;
+            let reflected = diffuse_bounce(
+                lighting,
+                inputs,
+                &hit,
+                inputs.options.gather_rays,
+                extra,
+                rng,
+                scratch,
+            );
+            return throughput * (scene.emission(&hit) + reflected);
+        }
+        let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
+            break;
+        };
+        throughput *= factor;
+        ray = next;
+    }
+    Vec3::ZERO
+}

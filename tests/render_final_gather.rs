@@ -1,0 +1,217 @@
+//! The final gather against the path tracer (the repository's independent truth): image and
+//! region means on the Cornell box, the lit/unlit rooms and the accordion; the dark room
+//! exactly black; the same image on any number of threads.
+
+#[path = "support/dark_room.rs"]
+mod dark_room;
+
+use photon_maps::render::glam::Vec3;
+use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::{Contact, CreaseAngle, Material, Partitioner, RayKind, Scene, scenes};
+
+const SIZE: u32 = 48;
+
+fn settings(mode: Mode, spp: u32, seed: u64) -> RenderSettings {
+    RenderSettings {
+        width: SIZE,
+        height: SIZE,
+        samples_per_pixel: spp,
+        photons: 200_000,
+        mode,
+        seed,
+        final_gather: FinalGatherOptions {
+            gather_rays: 16,
+            ..FinalGatherOptions::default()
+        },
+        ..RenderSettings::default()
+    }
+}
+
+fn render<P: Partitioner>(scene: &Scene, partitioner: &P, settings: RenderSettings) -> Image {
+    Renderer::new(EstimatorKind::GeometryCube, settings)
+        .render(scene, partitioner, &())
+        .unwrap()
+        .image
+}
+
+/// The region of each pixel: which way the diffuse, non-emitting surface seen through all of
+/// the pixel faces (floor, ceiling, ±x walls, ±z walls); `None` for pixels that see an
+/// emitter, a specular surface or an edge between regions (their samples scatter widely).
+fn regions(scene: &Scene) -> Vec<Option<usize>> {
+    let camera = scene.camera();
+    let class = |u: f32, v: f32| {
+        let ray = camera.ray(u / SIZE as f32, v / SIZE as f32, 1.0);
+        let hit = scene.intersect(&ray, f32::INFINITY, RayKind::Camera)?;
+        if scene.emission(&hit) != Vec3::ZERO || !matches!(scene.material(&hit), Material::Lambertian { .. })
+        {
+            return None;
+        }
+        let n = hit.normal;
+        let axis = n.abs().max_position();
+        Some(axis * 2 + usize::from(n[axis] > 0.0))
+    };
+    (0..SIZE * SIZE)
+        .map(|i| {
+            let (x, y) = ((i % SIZE) as f32, (i / SIZE) as f32);
+            let centre = class(x + 0.5, y + 0.5)?;
+            [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
+                .iter()
+                .all(|&(dx, dy)| class(x + dx, y + dy) == Some(centre))
+                .then_some(centre)
+        })
+        .collect()
+}
+
+/// Per region with at least `min` pixels: (region, mean of `a`, mean of `b`).
+fn region_means(regions: &[Option<usize>], a: &Image, b: &Image, min: usize) -> Vec<(usize, Vec3, Vec3)> {
+    (0..6)
+        .filter_map(|r| {
+            let pixels: Vec<usize> = (0..regions.len()).filter(|&i| regions[i] == Some(r)).collect();
+            (pixels.len() >= min).then(|| {
+                let mean =
+                    |im: &Image| pixels.iter().map(|&i| im.pixels()[i]).sum::<Vec3>() / pixels.len() as f32;
+                (r, mean(a), mean(b))
+            })
+        })
+        .collect()
+}
+
+fn relative(a: Vec3, b: Vec3) -> Vec3 {
+    (a - b) / b
+}
+
+/// The final gather's image mean within `image_tolerance` per channel of the path tracer's,
+/// and its region means within `region_tolerance`; the path tracer's own noise (two
+/// independent halves) is checked to be a third of the tolerance or less.
+fn agrees_with_the_path_tracer(name: &str, image_tolerance: f32, region_tolerance: f32) {
+    let scene = scenes::build(name).unwrap();
+    let crease = CreaseAngle::default();
+    let halves = [7, 8].map(|seed| render(&scene, &crease, settings(Mode::PathTrace, 512, seed)));
+    let reference = Image::from_pixels(
+        SIZE,
+        SIZE,
+        halves[0]
+            .pixels()
+            .iter()
+            .zip(halves[1].pixels())
+            .map(|(a, b)| (*a + *b) / 2.0)
+            .collect(),
+    )
+    .unwrap();
+    let gathered = render(&scene, &crease, settings(Mode::FinalGather, 8, 1));
+    let error = relative(gathered.mean(), reference.mean());
+    eprintln!(
+        "{name}: image mean {} vs path tracer {} ({error})",
+        gathered.mean(),
+        reference.mean()
+    );
+    assert!(
+        error.abs().max_element() < image_tolerance,
+        "{name}: image mean off by {error}"
+    );
+    let regions = regions(&scene);
+    let checked = region_means(&regions, &gathered, &reference, 60);
+    assert!(checked.len() >= 2, "{name}: only {} regions", checked.len());
+    for ((r, g, p), (_, a, b)) in checked
+        .into_iter()
+        .zip(region_means(&regions, &halves[0], &halves[1], 60))
+    {
+        if p == Vec3::ZERO {
+            // The dark room: the path tracer's exact zero, and nothing else.
+            assert_eq!(
+                g,
+                Vec3::ZERO,
+                "{name} region {r}: light where the path tracer has none"
+            );
+            continue;
+        }
+        // Channels summed: a coloured wall's small channels are too noisy alone.
+        let error = (g.element_sum() - p.element_sum()) / p.element_sum();
+        // The mean of two halves has half their difference's spread.
+        let noise = (a.element_sum() - b.element_sum()).abs() / (a.element_sum() + b.element_sum());
+        eprintln!("{name}: region {r}: {g} vs {p} ({error:+.4}; reference noise {noise:.4})");
+        assert!(
+            noise < region_tolerance / 3.0,
+            "{name} region {r}: the reference is too noisy ({noise})"
+        );
+        assert!(
+            error.abs() < region_tolerance,
+            "{name} region {r}: off by {error}"
+        );
+    }
+}
+
+#[test]
+fn cornell_box_agrees_with_the_path_tracer() {
+    agrees_with_the_path_tracer("cornell-box", 0.02, 0.03);
+}
+
+#[test]
+fn lit_unlit_rooms_agree_with_the_path_tracer() {
+    agrees_with_the_path_tracer("lit-unlit-rooms", 0.02, 0.03);
+}
+
+#[test]
+fn accordion_agrees_with_the_path_tracer() {
+    agrees_with_the_path_tracer("accordion", 0.02, 0.03);
+}
+
+/// The dark room's pixels are exactly zero and the lit room is lit, under `partitioner`.
+fn dark_room_stays_black<P: Partitioner>(scene: &Scene, partitioner: &P) {
+    let dark = dark_room::dark_room_pixels(scene, SIZE, SIZE);
+    assert!(
+        dark.len() > (SIZE * SIZE / 20) as usize,
+        "{} dark pixels",
+        dark.len()
+    );
+    for kind in EstimatorKind::ALL {
+        let settings = RenderSettings {
+            photons: 50_000,
+            ..settings(Mode::FinalGather, 2, 3)
+        };
+        let out = Renderer::new(kind, settings)
+            .render(scene, partitioner, &())
+            .unwrap();
+        for &i in &dark {
+            assert_eq!(
+                out.image.pixels()[i].to_array(),
+                [0.0; 3],
+                "{kind}: pixel {i} leaks"
+            );
+        }
+        assert!(
+            out.stats.cache_points > 0 && out.stats.gather_rays > 0,
+            "{:?}",
+            out.stats
+        );
+        assert!(out.image.mean().x > 0.0, "{kind}: the lit room must be lit");
+    }
+}
+
+#[test]
+fn lit_unlit_rooms_dark_room_is_exactly_black_with_crease_maps() {
+    dark_room_stays_black(
+        &scenes::build("lit-unlit-rooms").unwrap(),
+        &CreaseAngle::default(),
+    );
+}
+
+#[test]
+fn touching_rooms_dark_room_is_exactly_black_with_contact_maps() {
+    let contact = Contact::default();
+    let scene = contact
+        .prepare_scene(scenes::build("touching-rooms").unwrap())
+        .unwrap();
+    dark_room_stays_black(&scene, &contact);
+}
+
+#[test]
+fn touching_rooms_leak_through_the_shared_floor_map_with_crease_maps() {
+    // The control: the same test can fail. Crease maps share the floor across the wall, and
+    // the cache points on the lit side answer gather rays from the dark side.
+    let scene = scenes::build("touching-rooms").unwrap();
+    let dark = dark_room::dark_room_pixels(&scene, SIZE, SIZE);
+    let out = render(&scene, &CreaseAngle::default(), settings(Mode::FinalGather, 2, 3));
+    let lit = dark.iter().filter(|&&i| out.pixels()[i].x > 0.0).count();
+    assert!(lit > dark.len() / 10, "{lit} of {} dark pixels lit", dark.len());
+}
