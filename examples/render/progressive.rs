@@ -111,8 +111,17 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         .write_png(&png_path, args.exposure())
         .map_err(|e| e.to_string())?;
     let m = image.mean();
+    // Power that hit a surface within a millimetre of its light: a light facing into a wall.
+    let near = if stats.near_light_fraction >= 0.01 {
+        format!(
+            " ({:.1} % of the emitted power hit a surface within 1 mm of its light: facing into a wall? an area light faces edge_u × edge_v)",
+            100.0 * stats.near_light_fraction
+        )
+    } else {
+        String::new()
+    };
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
@@ -260,9 +269,10 @@ fn stats_json(
         );
         let _ = write!(
             o,
-            "\"photons_emitted\": {}, \"photons_stored\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",
+            "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",
             s.photons_emitted,
             s.photons_stored,
+            json_number(s.near_light_fraction),
             s.map_count,
             s.threads,
             json_number(s.pilot.as_secs_f64()),

@@ -76,3 +76,33 @@ fn a_light_facing_its_ceiling_shows_in_the_render_stats() {
     .unwrap();
     assert_eq!(traced.stats.near_light_fraction, 0.0);
 }
+
+#[test]
+fn a_light_facing_its_ceiling_shows_in_the_progressive_and_sppm_stats() {
+    let (x, z) = (vec3(0.5, 0.0, 0.0), vec3(0.0, 0.0, 0.5));
+    let render = RenderSettings {
+        width: 16,
+        height: 16,
+        photons: 5_000,
+        ..Default::default()
+    };
+    let progressive = |scene: &Scene| {
+        ProgressiveRenderer::new(GeometryCube, ProgressiveSettings::new(render, 3))
+            .render(scene, &CreaseAngle::default(), &())
+            .unwrap()
+            .stats
+    };
+    let sppm = |scene: &Scene| {
+        pm_render::progressive::SppmRenderer::new(pm_render::progressive::SppmSettings::new(render, 3))
+            .render(scene, &())
+            .unwrap()
+            .stats
+    };
+    let (down, up) = (room(x, z), room(z, x));
+    assert_eq!(progressive(&down).near_light_fraction, 0.0);
+    assert_eq!(sppm(&down).near_light_fraction, 0.0);
+    for stats in [progressive(&up), sppm(&up)] {
+        assert_eq!(stats.passes, 3);
+        assert!(stats.near_light_fraction > 0.99, "{}", stats.near_light_fraction);
+    }
+}

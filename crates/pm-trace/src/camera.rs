@@ -11,6 +11,8 @@ pub struct Camera {
     right: Vec3,
     up: Vec3,
     tan_half_fov: f32,
+    /// The vertical field of view asked for, radians (checked by [`Camera::validate`]).
+    vfov: f32,
     /// Why the view fell back to its default, for [`Camera::validate`].
     fallback: Option<&'static str>,
 }
@@ -41,6 +43,7 @@ impl Camera {
             right,
             up,
             tan_half_fov: (vfov_radians * 0.5).tan(),
+            vfov: vfov_radians,
             fallback,
         }
     }
@@ -53,6 +56,12 @@ impl Camera {
         }
         if !self.position.is_finite() {
             return Err(format!("position {} is not finite", self.position));
+        }
+        // Checked on the angle itself: tan(fov/2) of 2π comes out a tiny positive number.
+        let in_range = self.vfov > 0.0 && self.vfov < std::f32::consts::PI;
+        if !(in_range && self.tan_half_fov.is_finite() && self.tan_half_fov > 0.0) {
+            let fov = self.vfov;
+            return Err(format!("vertical field of view {fov} rad is not in (0, π)"));
         }
         if !(self.tan_half_fov.is_finite() && self.tan_half_fov > 0.0) {
             let fov = 2.0 * self.tan_half_fov.atan();

@@ -69,6 +69,18 @@ pub enum SceneError {
     /// The scene has no surfaces at all.
     #[error("the scene has no geometry")]
     NoGeometry,
+    /// Geometry reaching ±[`pm_kdtree::MAX_COORDINATE`] (10¹⁸ m) or beyond: photons there
+    /// cannot be stored and f32 no longer resolves a room's size.
+    #[error(
+        "the scene's geometry spans {min:?} to {max:?}; coordinates must stay within ±{limit:e} m (pm_kdtree::MAX_COORDINATE)",
+        limit = pm_kdtree::MAX_COORDINATE
+    )]
+    GeometryOutOfRange {
+        /// The bounds' lower corner.
+        min: [f32; 3],
+        /// The bounds' upper corner.
+        max: [f32; 3],
+    },
     /// `scenes::build` got a name it does not know.
     #[error("unknown scene {name:?}; the built-in scenes are: {valid}")]
     UnknownScene {

@@ -207,6 +207,10 @@ pub struct ProgressiveStats {
     pub photons_emitted: u64,
     /// Photons stored over all passes.
     pub photons_stored: u64,
+    /// The share of the emitted power whose first hit lay within 1 mm of its light, averaged
+    /// over the passes ([`crate::RenderStats::near_light_fraction`]): near 1 when a light faces
+    /// into the wall or ceiling it sits on.
+    pub near_light_fraction: f64,
     /// Number of photon maps.
     pub map_count: u32,
     /// Worker threads used.
@@ -227,6 +231,14 @@ pub struct ProgressiveStats {
     pub pilot_bytes: u64,
     /// Heap bytes of the running sum (SPPM: its per-pixel state).
     pub accumulation_bytes: u64,
+}
+
+impl ProgressiveStats {
+    /// Folds pass number `done` (counting from 0) into the mean near-light fraction; every
+    /// pass emits the same number of photon paths, so each weighs the same.
+    pub(crate) fn add_near_light(&mut self, done: u64, fraction: f64) {
+        self.near_light_fraction += (fraction - self.near_light_fraction) / (done + 1) as f64;
+    }
 }
 
 /// A progressive render's sum and figures.
@@ -348,6 +360,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             stats.trace += t.elapsed();
             stats.photons_emitted += u64::from(r.photons);
             stats.photons_stored += maps.stored;
+            stats.add_near_light(accumulation.passes, maps.near_light_fraction);
             stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
             progress.phase("render");
             let t = Instant::now();

@@ -8,10 +8,12 @@ use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
 
-/// The photon trees of one pass, indexed by map id, and the photons stored in them.
+/// The photon trees of one pass, indexed by map id, the photons stored in them, and the share
+/// of the pass's power whose first hit lay within 1 mm of its light.
 pub(crate) struct PassMaps {
     pub(crate) trees: Vec<PhotonTree>,
     pub(crate) stored: u64,
+    pub(crate) near_light_fraction: f64,
 }
 
 impl PassMaps {
@@ -38,6 +40,7 @@ pub(crate) fn trace_pass(
     };
     let traced = trace_photons(scene, assignment, &options)?;
     let stored = traced.stats().total_stored();
+    let near_light_fraction = traced.stats().near_light_fraction;
     let (photons, _) = traced.into_parts();
     let trees = photons
         .into_par_iter()
@@ -52,5 +55,9 @@ pub(crate) fn trace_pass(
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(PassMaps { trees, stored })
+    Ok(PassMaps {
+        trees,
+        stored,
+        near_light_fraction,
+    })
 }

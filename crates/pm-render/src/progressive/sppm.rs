@@ -154,6 +154,7 @@ impl SppmRenderer {
                 stats.trace += t.elapsed();
                 stats.photons_emitted += u64::from(r.photons);
                 stats.photons_stored += maps.stored;
+                stats.add_near_light(passes, maps.near_light_fraction);
                 stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
                 progress.phase("render");
                 let t = Instant::now();

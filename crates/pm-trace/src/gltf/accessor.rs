@@ -90,6 +90,37 @@ impl<'a> AccessorReader<'a> {
         })
     }
 
+    /// Reads a `COLOR_n` accessor as linear RGB (alpha dropped): `VEC3` or `VEC4` of floats, or
+    /// of unsigned bytes or shorts marked normalized, as the glTF specification allows (a
+    /// plain integer colour would read 255 or 65,535 times too bright: refused). A NaN or
+    /// infinite component is refused naming the accessor and vertex; finite components are
+    /// clamped to [0, 1], the range of a colour that multiplies an albedo.
+    pub(super) fn read_colors(&self, index: usize) -> Result<Vec<Vec3>, GltfError> {
+        let accessor = self.get(index)?;
+        let (_, component) = self.types(index, accessor)?;
+        let integer = matches!(component, ComponentType::U8 | ComponentType::U16);
+        if !(component == ComponentType::F32 || integer && accessor.normalized) {
+            return Err(self.error(
+                index,
+                format!(
+                    "COLOR_n of component type {component:?}{}: the specification allows floats or normalized unsigned bytes or shorts",
+                    if integer { " not marked normalized" } else { "" }
+                ),
+            ));
+        }
+        let colours = self.read_vec(index, &[Type::Vec3, Type::Vec4])?;
+        if let Some(vertex) = colours.iter().position(|c| !c.is_finite()) {
+            return Err(self.error(
+                index,
+                format!("colour of vertex {vertex} is {} (not finite)", colours[vertex]),
+            ));
+        }
+        Ok(colours
+            .iter()
+            .map(|c| c.truncate().clamp(Vec3::ZERO, Vec3::ONE))
+            .collect())
+    }
+
     /// Reads a `SCALAR` accessor of unsigned bytes, shorts or ints as vertex indices.
     pub(super) fn read_indices(&self, index: usize) -> Result<Vec<u32>, GltfError> {
         let accessor = self.get(index)?;

@@ -226,7 +226,16 @@ fn flatten(
                                 ),
                             });
                         }
-                        let material = map_material(material, options);
+                        let material =
+                            map_material(material, options).map_err(|reason| GltfError::Primitive {
+                                file: file.to_path_buf(),
+                                mesh: mesh_index,
+                                primitive,
+                                reason: match material_index {
+                                    Some(i) => format!("material {i}: {reason}"),
+                                    None => reason,
+                                },
+                            })?;
                         let attribute = |semantic: Semantic| {
                             prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value())
                         };
@@ -264,13 +273,7 @@ fn flatten(
                             &material,
                         )?;
                         let colors = match attribute(Semantic::Colors(0)) {
-                            Some(a) => Some(
-                                reader
-                                    .read_vec(a, &[Type::Vec3, Type::Vec4])?
-                                    .iter()
-                                    .map(|v| v.truncate().max(Vec3::ZERO))
-                                    .collect::<Vec<Vec3>>(),
-                            ),
+                            Some(a) => Some(reader.read_colors(a)?),
                             None => None,
                         };
                         let normals = match attribute(Semantic::Normals) {

@@ -57,16 +57,19 @@ fn clamp01(v: Vec3) -> Vec3 {
 }
 
 /// Maps a glTF material (or the spec's default material for `None`).
-pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOptions) -> GltfMaterial {
+pub(super) fn map_material(
+    material: Option<&json::Material>,
+    options: &GltfOptions,
+) -> Result<GltfMaterial, String> {
     let Some(m) = material else {
         // The glTF default material: white base colour, metallic 1, roughness 1.
-        return GltfMaterial {
+        return Ok(GltfMaterial {
             kind: Material::Lambertian { albedo: Vec3::ONE },
             emission: Vec3::ZERO,
             base_color_texture: None,
             emissive_texture: None,
             double_sided: false,
-        };
+        });
     };
     let pbr = &m.pbr_metallic_roughness;
     let [r, g, b, _] = pbr.base_color_factor.0;
@@ -86,17 +89,24 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     let strength = ext
         .and_then(|e| e.emissive_strength.as_ref())
         .map_or(1.0, |s| s.emissive_strength.0);
-    let strength = finite_or(strength, 0.0).max(0.0);
-    let emission = Vec3::from(m.emissive_factor.0)
-        * strength
-        * options.light_units.emission_factor()
-        * options.emission_scale;
-    let emission = Vec3::new(
-        finite_or(emission.x, 0.0),
-        finite_or(emission.y, 0.0),
-        finite_or(emission.z, 0.0),
-    )
-    .max(Vec3::ZERO);
+    // An infinite or negative emission is a broken file, not a black emitter: refused.
+    if !(strength.is_finite() && strength >= 0.0) {
+        return Err(format!(
+            "emissive strength {strength} must be finite and not negative"
+        ));
+    }
+    let factor = Vec3::from(m.emissive_factor.0);
+    if !(factor.is_finite() && factor.min_element() >= 0.0) {
+        return Err(format!(
+            "emissive factor {factor} must be finite and not negative"
+        ));
+    }
+    let emission = factor * strength * options.light_units.emission_factor() * options.emission_scale;
+    if !(emission.is_finite() && emission.min_element() >= 0.0) {
+        return Err(format!(
+            "emission {emission} (emissive factor {factor} × strength {strength} × the options' scale) must be finite and not negative"
+        ));
+    }
     let kind = if transmission >= GLASS_MIN_TRANSMISSION {
         Material::Glass { ior }
     } else if metallic >= MIRROR_MIN_METALLIC && roughness <= MIRROR_MAX_ROUGHNESS {
@@ -104,13 +114,13 @@ pub(super) fn map_material(material: Option<&json::Material>, options: &GltfOpti
     } else {
         Material::Lambertian { albedo: base }
     };
-    GltfMaterial {
+    Ok(GltfMaterial {
         kind,
         emission,
         base_color_texture: pbr.base_color_texture.as_ref().map(TextureRef::from_info),
         emissive_texture: m.emissive_texture.as_ref().map(TextureRef::from_info),
         double_sided: m.double_sided,
-    }
+    })
 }
 
 #[cfg(test)]
@@ -119,7 +129,7 @@ mod tests {
 
     fn kind_of(json: &str) -> Material {
         let m: json::Material = material_from(json);
-        map_material(Some(&m), &GltfOptions::default()).kind
+        map_material(Some(&m), &GltfOptions::default()).unwrap().kind
     }
 
     fn material_from(text: &str) -> json::Material {
@@ -157,14 +167,14 @@ mod tests {
             ..GltfOptions::default()
         };
         assert_eq!(
-            map_material(Some(&m), &options).emission,
+            map_material(Some(&m), &options).unwrap().emission,
             Vec3::new(2.0, 1.0, 0.0)
         );
         // Without the extension the strength is 1; colours above 1 are clamped for albedo.
         let m = material_from(
             r#"{"emissiveFactor":[0.25,0.25,0.25],"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,1],"metallicFactor":0}}"#,
         );
-        let mapped = map_material(Some(&m), &GltfOptions::default());
+        let mapped = map_material(Some(&m), &GltfOptions::default()).unwrap();
         assert_eq!(mapped.emission, Vec3::splat(0.25));
         assert_eq!(
             mapped.kind,
@@ -172,5 +182,31 @@ mod tests {
                 albedo: Vec3::new(1.0, 0.5, 0.0)
             }
         );
+    }
+
+    #[test]
+    fn infinite_or_negative_emission_is_refused_not_black() {
+        let strength = |s: &str| {
+            material_from(&format!(
+                r#"{{"emissiveFactor":[1,1,1],"extensions":{{"KHR_materials_emissive_strength":{{"emissiveStrength":{s}}}}}}}"#
+            ))
+        };
+        for (m, needle) in [
+            (strength("-2"), "strength"),
+            (strength("1e39"), "strength"),
+            (material_from(r#"{"emissiveFactor":[1e39,0,0]}"#), "factor"),
+            (material_from(r#"{"emissiveFactor":[-1,0,0]}"#), "factor"),
+            // Each finite, the product not.
+            (
+                material_from(
+                    r#"{"emissiveFactor":[2,2,2],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":3e38}}}"#,
+                ),
+                "emission",
+            ),
+        ] {
+            let err = map_material(Some(&m), &GltfOptions::default()).unwrap_err();
+            assert!(err.contains(needle), "{err}");
+        }
+        assert!(map_material(Some(&strength("1e30")), &GltfOptions::default()).is_ok());
     }
 }

@@ -20,10 +20,11 @@ pub struct DirectionalLight {
 }
 
 impl DirectionalLight {
-    /// A light travelling along `direction` (normalised; zero means straight down).
+    /// A light travelling along `direction` (normalised; a zero or non-finite direction is
+    /// refused when the scene is built).
     pub fn new(direction: Vec3, irradiance: Vec3) -> Self {
         DirectionalLight {
-            direction: super::normalize_or_down(direction),
+            direction: super::normalize_or_invalid(direction),
             irradiance,
             center: Vec3::ZERO,
             radius: 0.0,

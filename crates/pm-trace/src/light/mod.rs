@@ -114,12 +114,11 @@ pub(crate) fn check_direction(what: &str, d: Vec3) -> Result<(), String> {
     }
 }
 
-/// A direction normalised, or down for a zero one; a non-finite one stays NaN so that
-/// [`Light::validate`] refuses it rather than the light silently pointing down.
-pub(crate) fn normalize_or_down(d: Vec3) -> Vec3 {
+/// A direction normalised; a zero or non-finite one becomes NaN so that [`Light::validate`]
+/// refuses it rather than the light silently pointing somewhere.
+pub(crate) fn normalize_or_invalid(d: Vec3) -> Vec3 {
     match d.try_normalize() {
         Some(d) => d,
-        None if d.is_finite() => Vec3::NEG_Y,
         None => Vec3::NAN,
     }
 }

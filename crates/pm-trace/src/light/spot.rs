@@ -21,11 +21,12 @@ pub struct SpotLight {
 }
 
 impl SpotLight {
-    /// A spot light (the direction is normalised; a zero direction points down).
+    /// A spot light (the direction is normalised; a zero or non-finite direction is refused
+    /// when the scene is built).
     pub fn new(position: Vec3, direction: Vec3, cone_angle: f32, power: Vec3) -> Self {
         SpotLight {
             position,
-            direction: super::normalize_or_down(direction),
+            direction: super::normalize_or_invalid(direction),
             cone_angle,
             power,
         }

@@ -425,6 +425,14 @@ impl SceneBuilder {
             .flat_map(|m| m.mesh.positions().iter())
             .fold(Aabb::EMPTY, |b, &p| b.grow(p));
         let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
+        let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
+        // NaN bounds cannot occur (positions are checked finite), but are refused all the same.
+        if reach.is_nan() || reach >= pm_kdtree::MAX_COORDINATE {
+            return Err(SceneError::GeometryOutOfRange {
+                min: bounds.min.to_array(),
+                max: bounds.max.to_array(),
+            });
+        }
         let mut lights = self.lights;
         for light in &mut lights {
             light.attach(&bounds);
