@@ -8,6 +8,8 @@ trap 'rm -rf "$out"' EXIT
 cargo build --release --example render
 render() { cargo run --quiet --release --example render -- "$@"; }
 render --out "$out/cornell-box.exr"
+render --mode final-gather --size 300x300 --photons 200000 --gather-rays 64 --spp 4 \
+    --out "$out/cornell-box-final-gather.exr"
 render --compare --scene lit-unlit-rooms --out "$out/lit-unlit-rooms-compare.exr"
 render --scene touching-rooms --maps crease --exposure -3.5 --out "$out/touching-rooms-crease.exr"
 render --scene touching-rooms --maps contact --exposure -3.5 --out "$out/touching-rooms-contact.exr"

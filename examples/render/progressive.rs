@@ -41,6 +41,10 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     // Each progressive pass renders like `photon-map` (photons for all light) or
     // `shadow-rays`, as --direct says; SPPM always has shadow rays for direct light.
     settings.mode = args.direct.mode();
+    if super::gather::gathers(args) {
+        // A final gather per pass (direct light by shadow rays whatever --direct says).
+        settings.mode = photon_maps::render::Mode::FinalGather;
+    }
     let progressive_settings = ProgressiveSettings {
         first_pass: args.first_pass,
         passes,
@@ -121,7 +125,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         String::new()
     };
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}: pilot {:.3} s, trace {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
@@ -129,6 +133,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         stats.photons_emitted,
         stats.pilot.as_secs_f64(),
         stats.trace.as_secs_f64(),
+        stats.precompute.as_secs_f64(),
         stats.render.as_secs_f64(),
         stats.total.as_secs_f64(),
         heap_peak as f64 / (1 << 20) as f64,
@@ -269,7 +274,7 @@ fn stats_json(
         );
         let _ = write!(
             o,
-            "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"render\": {}, \"total\": {}}}, ",
+            "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, ",
             s.photons_emitted,
             s.photons_stored,
             json_number(s.near_light_fraction),
@@ -277,6 +282,7 @@ fn stats_json(
             s.threads,
             json_number(s.pilot.as_secs_f64()),
             json_number(s.trace.as_secs_f64()),
+            json_number(s.precompute.as_secs_f64()),
             json_number(s.render.as_secs_f64()),
             json_number(s.total.as_secs_f64()),
         );

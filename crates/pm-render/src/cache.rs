@@ -4,7 +4,7 @@
 use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RenderError, SurfacePoint};
 use glam::Vec3;
 use pm_kdtree::{Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
-use pm_trace::{Hit, PhotonMaps, Ray, RayKind, Scene};
+use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};
 use rayon::prelude::*;
 use std::f32::consts::FRAC_1_PI;
 
@@ -63,6 +63,9 @@ pub struct RadianceCache {
     /// direction is the surface normal on the side the photons arrived from.
     maps: Vec<PhotonTree>,
     map_of_part: Vec<u32>,
+    /// Per photon map: its photons of kind caustic alone (Jensen's caustic map, split as the
+    /// photon maps are), so that a caustic estimate does not wade through the others.
+    caustics: Vec<PhotonTree>,
     max_distance: f32,
 }
 
@@ -78,32 +81,62 @@ impl RadianceCache {
         options: &EstimatorOptions,
         every: u32,
     ) -> Result<Self, RenderError> {
-        if every == 0 {
-            return Err(RenderError::BadFinalGather(
-                "the cache needs every n-th photon with n ≥ 1".into(),
-            ));
-        }
         options.validate()?;
         let options = EstimatorOptions {
             kinds: KindMask::ALL,
             ..*options
         };
-        let assignment = maps.assignment();
+        let trees: Vec<&PhotonTree> = maps.maps().iter().map(|m| m.tree()).collect();
+        Self::build_with(
+            scene,
+            &trees,
+            maps.assignment(),
+            every,
+            options.max_distance,
+            |map, at, scratch| {
+                let map = maps.map(map as u32);
+                let view = MapView {
+                    tree: map.tree(),
+                    polygons: map.geometry(),
+                };
+                estimator.irradiance(at, view, &options, scratch)
+            },
+        )
+    }
+
+    /// The cache of photon trees `trees` (one per map of `assignment`, indexed by map id) with
+    /// your own irradiance estimate: `irradiance(map, at, scratch)` is called at every
+    /// `every`-th photon of each tree, `at` being the photon's position with the normal and
+    /// side of the surface it landed on. Lookups search within `max_distance`. Runs on the
+    /// current rayon pool; the result does not depend on the number of threads.
+    pub fn build_with<F>(
+        scene: &Scene,
+        trees: &[&PhotonTree],
+        assignment: &MapAssignment,
+        every: u32,
+        max_distance: f32,
+        irradiance: F,
+    ) -> Result<Self, RenderError>
+    where
+        F: Fn(usize, SurfacePoint, &mut EstimatorScratch) -> Vec3 + Sync,
+    {
+        if every == 0 {
+            return Err(RenderError::BadFinalGather(
+                "the cache needs every n-th photon with n ≥ 1".into(),
+            ));
+        }
+        if !(max_distance > 0.0 && max_distance.is_finite()) {
+            return Err(RenderError::BadMaxDistance(max_distance));
+        }
         let map_of_part: Vec<u32> = (0..assignment.part_count() as u32)
-            .map(|p| maps.map_of(pm_trace::PartId(p)))
+            .map(|p| assignment.map_of(pm_trace::PartId(p)))
             .collect();
         // The cast that finds a photon's surface starts this far before it.
         let back = 4.0 * scene.epsilon();
-        let trees = maps
-            .maps()
+        let cache = trees
             .iter()
             .enumerate()
-            .map(|(m, map)| {
-                let tree = map.tree();
-                let view = MapView {
-                    tree,
-                    polygons: map.geometry(),
-                };
+            .map(|(m, tree)| {
                 let indices: Vec<u32> = (0..tree.len() as u32).step_by(every as usize).collect();
                 let points: Vec<Photon> = indices
                     .par_iter()
@@ -124,10 +157,9 @@ impl RadianceCache {
                             normal: scene.shading_normal_at(&hit),
                             front_face: hit.front_face,
                         };
-                        let e = estimator.irradiance(at, view, &options, scratch);
                         Some(Photon {
                             position,
-                            power: e,
+                            power: irradiance(m, at, scratch),
                             direction: hit.normal,
                             kind: PhotonKind::Direct,
                         })
@@ -137,10 +169,23 @@ impl RadianceCache {
                 PhotonTree::build(points).map_err(|e| RenderError::BadFinalGather(e.to_string()))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let caustics = trees
+            .iter()
+            .map(|tree| {
+                let scale = tree.power_scale();
+                let photons: Vec<Photon> = tree
+                    .iter()
+                    .filter(|p| p.kind() == PhotonKind::Caustic)
+                    .map(|p| p.decode(scale))
+                    .collect();
+                PhotonTree::build(photons).map_err(|e| RenderError::BadFinalGather(e.to_string()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(RadianceCache {
-            maps: trees,
+            maps: cache,
             map_of_part,
-            max_distance: options.max_distance,
+            caustics,
+            max_distance,
         })
     }
 
@@ -156,19 +201,47 @@ impl RadianceCache {
         map: u32,
         scratch: &mut EstimatorScratch,
     ) -> Option<Vec3> {
+        self.irradiance_within(position, normal, map, self.max_distance, scratch)
+    }
+
+    /// [`RadianceCache::irradiance`] from a cache point within `radius` of `position` only
+    /// (a consistent renderer shrinks it with its gather volumes, and estimates afresh where
+    /// no cache point is that close).
+    pub fn irradiance_within(
+        &self,
+        position: Vec3,
+        normal: Vec3,
+        map: u32,
+        radius: f32,
+        scratch: &mut EstimatorScratch,
+    ) -> Option<Vec3> {
         let tree = self.maps.get(map as usize)?;
+        let max_distance = radius.min(self.max_distance);
         if tree.is_empty() {
             return None;
         }
         let neighbours = &mut scratch.neighbours;
-        tree.nearest_k::<Euclidean>(position, CANDIDATES, self.max_distance, KindMask::ALL, neighbours);
+        // The nearest point first (almost always the answer), then more candidates.
+        tree.nearest_k::<Euclidean>(position, 1, max_distance, KindMask::ALL, neighbours);
+        let agrees = |p: &pm_kdtree::CompactPhoton| p.direction().dot(normal) >= NORMAL_AGREEMENT;
+        match neighbours.as_slice().first().map(|n| tree.get(n.index)) {
+            None => return None,
+            Some(p) if agrees(&p) => return Some(p.power(tree.power_scale())),
+            Some(_) => {}
+        }
+        tree.nearest_k::<Euclidean>(position, CANDIDATES, max_distance, KindMask::ALL, neighbours);
         neighbours.sort_by_distance();
         neighbours
             .as_slice()
             .iter()
             .map(|n| tree.get(n.index))
-            .find(|p| p.direction().dot(normal) >= NORMAL_AGREEMENT)
+            .find(agrees)
             .map(|p| p.power(tree.power_scale()))
+    }
+
+    /// The photon map of part `part` (as the assignment the cache was built with says).
+    pub fn map_of(&self, part: pm_trace::PartId) -> Option<u32> {
+        self.map_of_part.get(part.0 as usize).copied()
     }
 
     /// Outgoing radiance `ρ/π · E` (W/(m²·sr)) of a diffuse `hit`, with `E` from
@@ -182,6 +255,13 @@ impl RadianceCache {
             Some(e) => scene.albedo_at(hit) * FRAC_1_PI * e,
             None => Vec3::ZERO,
         }
+    }
+
+    /// The photons of kind caustic of photon map `map` alone, as a tree of their own (Jensen's
+    /// caustic map, one per photon map); `None` for a map without any. Their powers are
+    /// re-encoded relative to the tree's own scale (unbiased, like every photon's).
+    pub fn caustic_tree(&self, map: u32) -> Option<&PhotonTree> {
+        self.caustics.get(map as usize).filter(|t| !t.is_empty())
     }
 
     /// Cache points over all maps.
@@ -198,6 +278,7 @@ impl RadianceCache {
     pub fn memory_bytes(&self) -> usize {
         self.maps.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + self.map_of_part.len() * size_of::<u32>()
+            + self.caustics.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
 }

@@ -8,7 +8,7 @@ use crate::{
     Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
 };
 use glam::{Vec2, Vec3};
-use pm_kdtree::{KindMask, PhotonKind};
+use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
 use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
@@ -67,40 +67,65 @@ impl FinalGatherOptions {
     }
 }
 
-/// What the final gather reads besides the scene: the photon maps (for caustics at x), the
-/// cache (for the gather rays) and the options.
-pub(crate) struct GatherInputs<'a> {
-    pub cache: &'a RadianceCache,
-    pub options: FinalGatherOptions,
+/// What a final gather reads besides its rays: the caustics at a diffuse point and the cached
+/// outgoing radiance at a gather ray's diffuse hit. The one-shot mode reads k-nearest
+/// estimates; a progressive pass reads fixed-volume ones.
+pub(crate) trait GatherSource {
+    /// The scene.
+    fn scene(&self) -> &Scene;
+    /// The gather's parameters.
+    fn options(&self) -> &FinalGatherOptions;
+    /// Irradiance at `hit` from the photons of kind caustic of its map.
+    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3;
+    /// Outgoing radiance (no emission) of the diffuse `hit` of a gather ray.
+    fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3;
 }
 
-/// Caustic irradiance at `hit`: the photons of kind caustic in the hit's map, with the mode's
-/// estimator and partition.
-fn caustic_irradiance<E: Estimator>(
-    lighting: &Lighting<'_, E>,
-    hit: &Hit,
-    scratch: &mut EstimatorScratch,
-) -> Vec3 {
-    let Some(maps) = lighting.maps else {
-        return Vec3::ZERO;
-    };
-    let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
-        return Vec3::ZERO;
-    };
-    let options = EstimatorOptions {
-        kinds: KindMask::only(PhotonKind::Caustic),
-        ..*lighting.options
-    };
-    let view = MapView {
-        tree: map.tree(),
-        polygons: map.geometry(),
-    };
-    let at = SurfacePoint {
-        position: hit.position,
-        normal: lighting.scene.shading_normal_at(hit),
-        front_face: hit.front_face,
-    };
-    lighting.estimator.irradiance(at, view, &options, scratch)
+/// The one-shot mode's source: the mode's estimator on the photon maps' caustic trees, and the
+/// cache's nearest point.
+pub(crate) struct ModeGather<'a, E> {
+    pub lighting: &'a Lighting<'a, E>,
+    pub cache: &'a RadianceCache,
+}
+
+impl<E: Estimator> GatherSource for ModeGather<'_, E> {
+    fn scene(&self) -> &Scene {
+        self.lighting.scene
+    }
+
+    fn options(&self) -> &FinalGatherOptions {
+        &self.lighting.final_gather
+    }
+
+    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        let lighting = self.lighting;
+        let Some(maps) = lighting.maps else {
+            return Vec3::ZERO;
+        };
+        let map_id = maps.map_of(hit.part);
+        let (Some(tree), Some(map)) = (self.cache.caustic_tree(map_id), maps.maps().get(map_id as usize))
+        else {
+            return Vec3::ZERO;
+        };
+        let options = EstimatorOptions {
+            kinds: KindMask::ALL,
+            ..*lighting.options
+        };
+        let view = MapView {
+            tree,
+            polygons: map.geometry(),
+        };
+        let at = SurfacePoint {
+            position: hit.position,
+            normal: lighting.scene.shading_normal_at(hit),
+            front_face: hit.front_face,
+        };
+        lighting.estimator.irradiance(at, view, &options, scratch)
+    }
+
+    fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        self.cache.radiance(self.lighting.scene, hit, scratch)
+    }
 }
 
 /// The `i`-th of `n` stratified points of the unit square: cells of a grid of ⌈√n⌉ columns
@@ -121,15 +146,14 @@ fn stratified(i: u32, n: u32, offset: u32, rng: &mut Rng) -> Vec2 {
 /// cache at y (or, within the corner distance of the ray's origin and when `extra_bounce`,
 /// one more bounce). Emission is not counted: direct light at the gather's origin comes from
 /// its shadow rays and caustics from its caustic photons.
-fn gather<E: Estimator>(
-    lighting: &Lighting<'_, E>,
-    inputs: &GatherInputs<'_>,
+fn gather<G: GatherSource>(
+    source: &G,
     mut ray: Ray,
     extra_bounce: bool,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    let scene = lighting.scene;
+    let scene = source.scene();
     let mut throughput = Vec3::ONE;
     let mut travelled = 0.0f32;
     for _ in 0..=MAX_SPECULAR_BOUNCES {
@@ -138,10 +162,10 @@ fn gather<E: Estimator>(
         };
         travelled += hit.t;
         if let Material::Lambertian { .. } = *scene.material(&hit) {
-            if extra_bounce && travelled < inputs.options.corner_distance {
-                return throughput * diffuse_bounce(lighting, inputs, &hit, 1, false, rng, scratch);
+            if extra_bounce && travelled < source.options().corner_distance {
+                return throughput * diffuse_bounce(source, &hit, 1, false, rng, scratch);
             }
-            return throughput * inputs.cache.radiance(scene, &hit, scratch);
+            return throughput * source.cached_radiance(&hit, scratch);
         }
         let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
             return Vec3::ZERO;
@@ -154,21 +178,22 @@ fn gather<E: Estimator>(
 
 /// Reflected radiance at a diffuse `hit` (without its emission): direct light by shadow rays,
 /// caustics from the caustic photons, and `rays` gather rays for the rest.
-fn diffuse_bounce<E: Estimator>(
-    lighting: &Lighting<'_, E>,
-    inputs: &GatherInputs<'_>,
+fn diffuse_bounce<G: GatherSource>(
+    source: &G,
     hit: &Hit,
     rays: u32,
     extra_bounce: bool,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    let scene = lighting.scene;
+    let scene = source.scene();
     let albedo = scene.albedo_at(hit);
     let shading = scene.shading_normal_at(hit);
-    let e = direct_irradiance_shaded(scene, hit, shading, rng) + caustic_irradiance(lighting, hit, scratch);
+    let e = direct_irradiance_shaded(scene, hit, shading, rng) + source.caustic_irradiance(hit, scratch);
     let mut indirect = Vec3::ZERO;
-    let offset = (rng.next_f32() * rays as f32) as u32;
+    let columns = (rays as f32).sqrt().ceil().max(1.0) as u32;
+    let cells = columns * rays.div_ceil(columns);
+    let offset = ((rng.next_f32() * cells as f32) as u32).min(cells - 1);
     for i in 0..rays {
         // Cosine sampling: f · cos / pdf = ρ; a direction below the geometric surface carries
         // nothing (as in the path tracer), so no gather ray leaves through the surface.
@@ -178,8 +203,7 @@ fn diffuse_bounce<E: Estimator>(
         }
         scratch.gather_rays += 1;
         indirect += gather(
-            lighting,
-            inputs,
+            source,
             scene.spawn_ray(hit, direction),
             extra_bounce,
             rng,
@@ -190,30 +214,21 @@ fn diffuse_bounce<E: Estimator>(
 }
 
 /// Radiance along a camera ray under the final gather.
-pub(super) fn radiance<E: Estimator>(
-    lighting: &Lighting<'_, E>,
-    inputs: &GatherInputs<'_>,
+pub(crate) fn radiance<G: GatherSource>(
+    source: &G,
     mut ray: Ray,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    let scene: &Scene = lighting.scene;
+    let scene = source.scene();
     let mut throughput = Vec3::ONE;
     for _ in 0..=MAX_SPECULAR_BOUNCES {
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
             break;
         };
         if let Material::Lambertian { .. } = *scene.material(&hit) {
-            let extra = inputs.options.corner_distance > 0.0;
-            let reflected = diffuse_bounce(
-                lighting,
-                inputs,
-                &hit,
-                inputs.options.gather_rays,
-                extra,
-                rng,
-                scratch,
-            );
+            let extra = source.options().corner_distance > 0.0;
+            let reflected = diffuse_bounce(source, &hit, source.options().gather_rays, extra, rng, scratch);
             return throughput * (scene.emission(&hit) + reflected);
         }
         let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {

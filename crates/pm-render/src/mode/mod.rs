@@ -3,7 +3,7 @@
 //! unbiased reference, `FinalGather` reads the maps through one gathered bounce.
 
 mod direct;
-mod final_gather;
+pub(crate) mod final_gather;
 mod path_trace;
 pub(crate) mod scatter;
 mod visualize;
@@ -147,11 +147,11 @@ impl<E: Estimator> Lighting<'_, E> {
             Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
             Mode::FinalGather => match self.cache {
                 Some(cache) => {
-                    let inputs = final_gather::GatherInputs {
+                    let source = final_gather::ModeGather {
+                        lighting: self,
                         cache,
-                        options: self.final_gather,
                     };
-                    final_gather::radiance(self, &inputs, ray, rng, scratch)
+                    final_gather::radiance(&source, ray, rng, scratch)
                 }
                 None => Vec3::ZERO,
             },

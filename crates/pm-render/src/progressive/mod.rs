@@ -55,10 +55,14 @@ pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
 use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
-use crate::{EstimatorScratch, FixedVolumeEstimator, Image, Mode, Progress, RenderError, RenderSettings};
+use crate::{
+    EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, Image, MapView, Mode, Progress, RadianceCache,
+    RenderError, RenderSettings,
+};
 use glam::Vec3;
 use pass_maps::trace_pass;
 use pilot::Pilot;
+use pm_kdtree::PhotonTree;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use radiance::PassLighting;
 use rayon::prelude::*;
@@ -79,8 +83,11 @@ pub const PROGRESSIVE_VERSION: &str = "v2";
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProgressiveSettings {
     /// Image, photons *per pass*, k (for the pilot's extents), maximum distance, seed,
-    /// threads. `mode` must be [`Mode::PhotonMap`] (photons for all light) or
-    /// [`Mode::ShadowRays`] (direct light by shadow rays, photons for the rest).
+    /// threads. `mode` must be [`Mode::PhotonMap`] (photons for all light),
+    /// [`Mode::ShadowRays`] (direct light by shadow rays, photons for the rest) or
+    /// [`Mode::FinalGather`] (a final gather per pass: the pass's caustic photons and cache,
+    /// each read in the pass's fixed volume; a gather hit reads the cache only from a point
+    /// within that volume and estimates afresh otherwise, so the gather converges too).
     pub render: RenderSettings,
     /// Knaus & Zwicker's α in (0, 1): the share of the previous pass's volume kept (default 2/3).
     pub alpha: f32,
@@ -107,10 +114,15 @@ impl ProgressiveSettings {
         }
     }
 
-    /// Checks the render settings, the mode, α, and that the run will stop.
+    /// Checks the render settings, the mode, α, that the exact sums fit
+    /// [`crate::image::MAX_PIXEL_STATE_BYTES`], and that the run will stop.
     pub fn validate(&self) -> Result<(), RenderError> {
         self.render.validate()?;
-        if !matches!(self.render.mode, Mode::PhotonMap | Mode::ShadowRays) {
+        crate::image::check_pixel_state(self.render.width, self.render.height, PassSums::BYTES_PER_PIXEL)?;
+        if !matches!(
+            self.render.mode,
+            Mode::PhotonMap | Mode::ShadowRays | Mode::FinalGather
+        ) {
             return Err(RenderError::UnsupportedMode(self.render.mode));
         }
         if !(self.alpha > 0.0 && self.alpha < 1.0) {
@@ -142,6 +154,16 @@ impl ProgressiveSettings {
         let max_distance = s
             .max_distance
             .map_or_else(|| "default".to_owned(), |d| format!("{d:e}"));
+        // The final gather's parameters change its image (and only its).
+        let gather = if s.mode == Mode::FinalGather {
+            let g = &s.final_gather;
+            format!(
+                " gather_rays={} cache_every={} corner_distance={:e}",
+                g.gather_rays, g.cache_every, g.corner_distance
+            )
+        } else {
+            String::new()
+        };
         format!(
             "progressive {PROGRESSIVE_VERSION} size={}x{} spp={} photons={} k={} max_distance={} reject_behind={} mode={} seed={} alpha={:e}",
             s.width,
@@ -154,7 +176,7 @@ impl ProgressiveSettings {
             s.mode,
             s.seed,
             self.alpha
-        )
+        ) + &gather
     }
 }
 
@@ -221,6 +243,9 @@ pub struct ProgressiveStats {
     pub trace: Duration,
     /// Rendering, summed over passes.
     pub render: Duration,
+    /// Precomputing the final gather's irradiance caches, summed over passes (zero in the
+    /// other modes).
+    pub precompute: Duration,
     /// Wall time of the whole run.
     pub total: Duration,
     /// Heap bytes of the largest pass's photon trees: the photons one pass holds (earlier
@@ -362,6 +387,16 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             stats.photons_stored += maps.stored;
             stats.add_near_light(accumulation.passes, maps.near_light_fraction);
             stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+            let scale = radius_scale(pass, f64::from(s.alpha)) as f32;
+            let cache = if r.mode == Mode::FinalGather {
+                progress.phase("precompute");
+                let t = Instant::now();
+                let cache = self.pass_cache(scene, assignment, &maps.trees, &pilot, &options, scale)?;
+                stats.precompute += t.elapsed();
+                Some(cache)
+            } else {
+                None
+            };
             progress.phase("render");
             let t = Instant::now();
             let lighting = PassLighting {
@@ -370,8 +405,9 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
                 pilot: &pilot,
                 estimator: &self.estimator,
                 options: &options,
-                scale: radius_scale(pass, f64::from(s.alpha)) as f32,
+                scale,
                 shadow_rays: r.mode == Mode::ShadowRays,
+                gather: cache.as_ref().map(|c| (c, r.final_gather)),
             };
             render_pass(&lighting, r, pass, &tiles, &mut accumulation.sums, progress);
             drop(maps);
@@ -390,6 +426,43 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         stats.passes = accumulation.passes;
         stats.total = start.elapsed();
         Ok(ProgressiveRendered { accumulation, stats })
+    }
+}
+
+impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
+    /// A pass's final-gather cache: irradiance at every n-th photon of the pass, each in the
+    /// pass's fixed volume there (the pilot's extent times the pass's shrink factor).
+    fn pass_cache(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        trees: &[PhotonTree],
+        pilot: &Pilot,
+        options: &EstimatorOptions,
+        scale: f32,
+    ) -> Result<RadianceCache, RenderError> {
+        let trees: Vec<&PhotonTree> = trees.iter().collect();
+        RadianceCache::build_with(
+            scene,
+            &trees,
+            assignment,
+            self.settings.render.final_gather.cache_every,
+            options.max_distance,
+            |map, at, scratch| {
+                let (Some(tree), Some(pilot_map)) = (trees.get(map), pilot.maps.maps().get(map)) else {
+                    return Vec3::ZERO;
+                };
+                let Some(extent) = pilot.extent(map, at.position, options, scratch) else {
+                    return Vec3::ZERO;
+                };
+                let view = MapView {
+                    tree,
+                    polygons: pilot_map.geometry(),
+                };
+                self.estimator
+                    .irradiance_within(at, view, extent * scale, options, scratch)
+            },
+        )
     }
 }
 

@@ -4,8 +4,12 @@
 
 use super::pilot::Pilot;
 use crate::mode::direct_irradiance;
+use crate::mode::final_gather::{self, GatherSource};
 use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
-use crate::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
+use crate::{
+    EstimatorOptions, EstimatorScratch, FinalGatherOptions, FixedVolumeEstimator, MapView, RadianceCache,
+    SurfacePoint,
+};
 use glam::Vec3;
 use pm_kdtree::PhotonTree;
 use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
@@ -25,6 +29,8 @@ pub(super) struct PassLighting<'a, E> {
     pub scale: f32,
     /// Direct light by shadow rays (photons of kind direct excluded by `options`).
     pub shadow_rays: bool,
+    /// The final gather instead: this pass's cache, and the gather's parameters.
+    pub gather: Option<(&'a RadianceCache, FinalGatherOptions)>,
 }
 
 impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
@@ -50,6 +56,14 @@ impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
     }
 
     pub fn radiance(&self, mut ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
+        if let Some((cache, options)) = self.gather {
+            let source = PassGather {
+                lighting: self,
+                cache,
+                options,
+            };
+            return final_gather::radiance(&source, ray, rng, scratch);
+        }
         let scene = self.scene;
         let mut throughput = Vec3::ONE;
         for _ in 0..=MAX_SPECULAR_BOUNCES {
@@ -71,5 +85,67 @@ impl<E: FixedVolumeEstimator> PassLighting<'_, E> {
             ray = next;
         }
         Vec3::ZERO
+    }
+}
+
+/// A progressive pass's final gather: fixed-volume estimates throughout. The caustics at x
+/// come from the pass's caustic photons in the pass's volume there; a gather hit y reads the
+/// pass's cache only from a point within the pass's gather extent at y, and estimates afresh
+/// at y otherwise, so as the volumes shrink every reading converges to the irradiance at y.
+struct PassGather<'a, E> {
+    lighting: &'a PassLighting<'a, E>,
+    cache: &'a RadianceCache,
+    options: FinalGatherOptions,
+}
+
+impl<E: FixedVolumeEstimator> GatherSource for PassGather<'_, E> {
+    fn scene(&self) -> &Scene {
+        self.lighting.scene
+    }
+
+    fn options(&self) -> &FinalGatherOptions {
+        &self.options
+    }
+
+    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        let l = self.lighting;
+        let map_id = l.pilot.maps.map_of(hit.part);
+        let (Some(tree), Some(pilot)) = (
+            self.cache.caustic_tree(map_id),
+            l.pilot.maps.maps().get(map_id as usize),
+        ) else {
+            return Vec3::ZERO;
+        };
+        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
+            return Vec3::ZERO;
+        };
+        let at = SurfacePoint {
+            position: hit.position,
+            normal: l.scene.shading_normal_at(hit),
+            front_face: hit.front_face,
+        };
+        let view = MapView {
+            tree,
+            polygons: pilot.geometry(),
+        };
+        l.estimator
+            .irradiance_within(at, view, extent * l.scale, l.options, scratch)
+    }
+
+    fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+        let l = self.lighting;
+        let map_id = l.pilot.maps.map_of(hit.part);
+        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
+            return Vec3::ZERO;
+        };
+        let e =
+            match self
+                .cache
+                .irradiance_within(hit.position, hit.normal, map_id, extent * l.scale, scratch)
+            {
+                Some(e) => e,
+                None => l.irradiance(hit, scratch),
+            };
+        l.scene.albedo_at(hit) * FRAC_1_PI * e
     }
 }

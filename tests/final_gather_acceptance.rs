@@ -1,0 +1,157 @@
+//! Longer acceptance runs of the final gather, `#[ignore]`d for CI time (minutes each):
+//!
+//! `cargo test --release --test final_gather_acceptance -- --ignored --nocapture --test-threads 1`
+//!
+//! - the error (relative RMSE over the pixels that see only diffuse surfaces, against a
+//!   4096-spp path-traced reference) of the final gather
+//!   and of the path tracer at about equal render time, on the Cornell box at 128²;
+//! - Jensen's extra bounce near corners: the final gather's region means with and without it
+//!   against the same reference.
+
+use photon_maps::render::glam::Vec3;
+use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::{CreaseAngle, Material, RayKind, Scene, scenes};
+use std::time::Instant;
+
+const SIZE: u32 = 128;
+
+fn render(scene: &Scene, settings: RenderSettings) -> (Image, f64) {
+    let start = Instant::now();
+    let out = Renderer::new(EstimatorKind::GeometryCube, settings)
+        .render(scene, &CreaseAngle::default(), &())
+        .unwrap();
+    (out.image, start.elapsed().as_secs_f64())
+}
+
+fn settings(mode: Mode, spp: u32, seed: u64, photons: u32, gather: FinalGatherOptions) -> RenderSettings {
+    RenderSettings {
+        width: SIZE,
+        height: SIZE,
+        samples_per_pixel: spp,
+        photons,
+        mode,
+        seed,
+        final_gather: gather,
+        ..RenderSettings::default()
+    }
+}
+
+/// Pixels that see only diffuse, non-emitting surfaces (their centre and four corners): at a
+/// few samples per pixel, a light's edge pixels or a mirror's reflection of it, a hundred times
+/// brighter than the walls, would be all the error, and the same for every method at the
+/// same samples per pixel.
+fn diffuse_pixels(scene: &Scene) -> Vec<bool> {
+    let camera = scene.camera();
+    let diffuse = |u: f32, v: f32| {
+        let ray = camera.ray(u / SIZE as f32, v / SIZE as f32, 1.0);
+        scene
+            .intersect(&ray, f32::INFINITY, RayKind::Camera)
+            .is_some_and(|hit| {
+                scene.emission(&hit) == Vec3::ZERO
+                    && matches!(scene.material(&hit), Material::Lambertian { .. })
+            })
+    };
+    (0..SIZE * SIZE)
+        .map(|i| {
+            let (x, y) = ((i % SIZE) as f32, (i / SIZE) as f32);
+            [(0.5, 0.5), (0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
+                .iter()
+                .all(|&(dx, dy)| diffuse(x + dx, y + dy))
+        })
+        .collect()
+}
+
+/// Relative RMSE over the `mask`ed pixels.
+fn relative_rmse(image: &Image, reference: &Image, mask: &[bool]) -> f32 {
+    let (mut sum, mut mean, mut n) = (0.0f64, 0.0f64, 0usize);
+    for ((a, b), &m) in image.pixels().iter().zip(reference.pixels()).zip(mask) {
+        if m {
+            sum += (*a - *b).as_dvec3().length_squared() / 3.0;
+            mean += b.as_dvec3().element_sum() / 3.0;
+            n += 1;
+        }
+    }
+    ((sum / n as f64).sqrt() / (mean / n as f64)) as f32
+}
+
+fn reference(scene: &Scene) -> Image {
+    render(
+        scene,
+        settings(Mode::PathTrace, 4096, 1234, 1, FinalGatherOptions::default()),
+    )
+    .0
+}
+
+#[test]
+#[ignore]
+fn equal_time_error_on_the_cornell_box() {
+    let scene = scenes::build("cornell-box").unwrap();
+    let reference = reference(&scene);
+    let mask = diffuse_pixels(&scene);
+    for (spp, rays, photons) in [
+        (1, 16, 100_000),
+        (1, 64, 200_000),
+        (4, 16, 200_000),
+        (4, 64, 200_000),
+        (16, 16, 400_000),
+    ] {
+        let gather = FinalGatherOptions {
+            gather_rays: rays,
+            ..FinalGatherOptions::default()
+        };
+        let (image, seconds) = render(&scene, settings(Mode::FinalGather, spp, 1, photons, gather));
+        let error = relative_rmse(&image, &reference, &mask);
+        // The path tracer with about the same time.
+        let mut pt_spp = 1;
+        let (mut pt, mut pt_seconds) = render(&scene, settings(Mode::PathTrace, pt_spp, 1, 1, gather));
+        while pt_seconds < seconds && pt_spp < 4096 {
+            pt_spp *= 2;
+            (pt, pt_seconds) = render(&scene, settings(Mode::PathTrace, pt_spp, 1, 1, gather));
+        }
+        println!(
+            "final gather {spp} spp x {rays} rays, {photons} photons: {seconds:.2} s, relative RMSE {error:.4}; path tracer {pt_spp} spp: {pt_seconds:.2} s, {:.4}",
+            relative_rmse(&pt, &reference, &mask)
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn the_extra_bounce_near_corners() {
+    // Mean over a 12-pixel band along the image's left, right and top walls' far corners is
+    // what a corner error would change most; the whole image mean too.
+    let scene = scenes::build("cornell-box").unwrap();
+    let reference = reference(&scene);
+    let mask = diffuse_pixels(&scene);
+    for corner in [0.0, 0.05, 0.2] {
+        let gather = FinalGatherOptions {
+            gather_rays: 64,
+            corner_distance: corner,
+            ..FinalGatherOptions::default()
+        };
+        let (image, seconds) = render(&scene, settings(Mode::FinalGather, 16, 1, 200_000, gather));
+        let band = |im: &Image| {
+            let mut sum = Vec3::ZERO;
+            let mut n = 0;
+            for y in 0..SIZE {
+                for x in 0..SIZE {
+                    // The back wall's edge (its corners with the side walls, floor and ceiling),
+                    // about a quarter and three quarters of the way across.
+                    let near = |c: u32, edge: u32| c.abs_diff(edge) < 4;
+                    if near(x, SIZE * 23 / 100) || near(x, SIZE * 77 / 100) || near(y, SIZE * 22 / 100) {
+                        sum += im.get(x, y).unwrap();
+                        n += 1;
+                    }
+                }
+            }
+            sum / n as f32
+        };
+        let (b, r) = (band(&image), band(&reference));
+        println!(
+            "corner distance {corner}: {seconds:.2} s, image mean {:+.4}, corner bands {:+.4}, relative RMSE {:.4}",
+            ((image.mean() - reference.mean()) / reference.mean()).element_sum() / 3.0,
+            ((b - r) / r).element_sum() / 3.0,
+            relative_rmse(&image, &reference, &mask)
+        );
+    }
+}
