@@ -111,6 +111,32 @@ fn times_past_the_range_of_a_duration_are_refused_with_one_line() {
 }
 
 #[test]
+fn per_pixel_state_past_its_limit_is_refused_before_anything_is_allocated() {
+    let scratch = Scratch::new("state");
+    let out = scratch.path("x.exr");
+    // SPPM's 48 bytes a pixel at 8192² (3 GiB) aborted; the progressive sums are as large.
+    for mode in ["sppm", "progressive"] {
+        for size in ["8192x8192", "6700x6700"] {
+            let args = [
+                "--mode",
+                mode,
+                "--size",
+                size,
+                "--photons",
+                "100",
+                "--passes",
+                "1",
+                "--out",
+                &out,
+            ];
+            let Some(output) = run(&args) else { return };
+            assert_refused(&args, &output, "per-pixel state");
+        }
+    }
+    assert!(!Path::new(&out).exists());
+}
+
+#[test]
 fn a_late_first_pass_costs_what_an_early_one_does_and_the_last_pass_is_kept() {
     let scratch = Scratch::new("first-pass");
     let out = scratch.path("x.exr");

@@ -84,8 +84,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         bar.0.finish_and_clear();
         out.image.write_exr(&exr_path).map_err(|e| e.to_string())?;
         let identity = format!(
-            "sppm k={} photons={} seed={} light_units={}",
-            args.k, args.photons, args.seed, args.light_units
+            "sppm k={} photons={} seed={}{}",
+            args.k,
+            args.photons,
+            args.seed,
+            light_units_applied(args)
         );
         (out.image, out.stats.clone(), 0..out.stats.passes, identity)
     } else {
@@ -99,11 +102,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
         let identity = format!(
-            "{} maps={} estimator={} light_units={}",
+            "{} maps={} estimator={}{}",
             s.identity(),
             args.maps(),
             estimator,
-            args.light_units
+            light_units_applied(args)
         );
         let a = &out.accumulation;
         let shard = Shard::from_accumulation(a, &scene_id, &identity).map_err(|e| e.to_string())?;
@@ -211,6 +214,15 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
         say(&format!("wrote {}", path.display()));
     }
     Ok(())
+}
+
+/// ` light_units=…` for a glTF scene, whose lights it converts; nothing for a built-in scene,
+/// whose lights are in watts already (the identity records only what applied).
+fn light_units_applied(args: &Args) -> String {
+    match scene_input(&args.scene) {
+        Some(_) => format!(" light_units={}", args.light_units),
+        None => String::new(),
+    }
 }
 
 /// `n` and the noun in the number it takes: "1 pass", "2 passes".

@@ -29,6 +29,19 @@ pub enum RenderError {
         /// Height asked for.
         height: u64,
     },
+    /// A render whose per-pixel state would pass [`crate::image::MAX_PIXEL_STATE_BYTES`].
+    #[error(
+        "image size {width}x{height}: its per-pixel state takes {bytes} bytes, more than the limit of {max} (2 GiB)",
+        max = crate::image::MAX_PIXEL_STATE_BYTES
+    )]
+    PixelStateTooLarge {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// Bytes the state would take.
+        bytes: u64,
+    },
     /// Photon maps built for another scene (their part count differs from the scene's).
     #[error("photon maps cover {maps} parts but the scene has {scene}: they were built for another scene")]
     MapsForAnotherScene {

@@ -283,3 +283,35 @@ fn merging_files_holds_one_running_sum_not_every_shard() {
     assert!(peak < 3 * sums, "peak {peak} B for sums of {sums} B");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn pixel_state_is_counted_against_its_limit_at_both_ends() {
+    use pm_render::image::{MAX_PIXEL_STATE_BYTES, check_pixel_state};
+    use pm_render::progressive::{ProgressiveSettings, SppmSettings};
+    use pm_render::{RenderError, RenderSettings};
+    let settings = |side: u32| RenderSettings {
+        width: side,
+        height: side,
+        ..RenderSettings::default()
+    };
+    // 6688² × 48 B is just under 2 GiB, 6689² just over.
+    for (side, fits) in [(6688u32, true), (6689, false), (8192, false)] {
+        let sppm = SppmSettings::new(settings(side), 1).validate();
+        let progressive = ProgressiveSettings::new(settings(side), 1).validate();
+        for result in [sppm, progressive] {
+            assert_eq!(result.is_ok(), fits, "{side}: {result:?}");
+            if !fits {
+                assert!(matches!(result, Err(RenderError::PixelStateTooLarge { .. })));
+            }
+        }
+    }
+    assert!(
+        check_pixel_state(1 << 13, 1 << 13, 12).is_ok(),
+        "the film at the pixel limit fits"
+    );
+    assert_eq!(MAX_PIXEL_STATE_BYTES, 1 << 31);
+    assert!(matches!(
+        PassSums::new(8192, 8192),
+        Err(RenderError::PixelStateTooLarge { .. })
+    ));
+}

@@ -134,6 +134,25 @@ pub(crate) fn check_same_size(a: &Image, b: &Image) -> Result<(), RenderError> {
 /// ([`Image::grid_2x2`]) counts its four cells.
 pub const MAX_PIXELS: u64 = 1 << 26;
 
+/// The most bytes the per-pixel state of a render may hold: 2 GiB. The progressive
+/// renderer's exact sums ([`crate::progressive::PassSums`], 48 bytes a pixel, also the running
+/// sum of a merge) and SPPM's pixel state (48 bytes a pixel) count against it, so those modes
+/// stop at about 44.7 million pixels (6688×6688) where the single-pass film (12 bytes a pixel)
+/// fits [`MAX_PIXELS`]; past it the run is refused with [`RenderError::PixelStateTooLarge`]
+/// before anything is allocated.
+pub const MAX_PIXEL_STATE_BYTES: u64 = 1 << 31;
+
+/// Checks that `bytes_per_pixel` of state for a `width × height` image fit
+/// [`MAX_PIXEL_STATE_BYTES`] (and the size itself, as [`check_image_size`]).
+pub fn check_pixel_state(width: u32, height: u32, bytes_per_pixel: u64) -> Result<(), RenderError> {
+    check_image_size(width, height)?;
+    let bytes = u64::from(width) * u64::from(height) * bytes_per_pixel;
+    if bytes > MAX_PIXEL_STATE_BYTES {
+        return Err(RenderError::PixelStateTooLarge { width, height, bytes });
+    }
+    Ok(())
+}
+
 /// Checks an image size: both sides at least 1 ([`RenderError::EmptyImage`]) and at most
 /// [`MAX_PIXELS`] pixels in all ([`RenderError::ImageTooLarge`]). Call it before allocating
 /// for an image made of others (a grid of `2w × 2h`).

@@ -114,9 +114,11 @@ impl ProgressiveSettings {
         }
     }
 
-    /// Checks the render settings, the mode, α, and that the run will stop.
+    /// Checks the render settings, the mode, α, that the exact sums fit
+    /// [`crate::image::MAX_PIXEL_STATE_BYTES`], and that the run will stop.
     pub fn validate(&self) -> Result<(), RenderError> {
         self.render.validate()?;
+        crate::image::check_pixel_state(self.render.width, self.render.height, PassSums::BYTES_PER_PIXEL)?;
         if !matches!(
             self.render.mode,
             Mode::PhotonMap | Mode::ShadowRays | Mode::FinalGather

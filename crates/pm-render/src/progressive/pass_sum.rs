@@ -43,9 +43,10 @@ impl PassSums {
     /// Bytes a pixel's sums hold (two f64 per channel).
     pub const BYTES_PER_PIXEL: u64 = 2 * size_of::<DVec3>() as u64;
 
-    /// Zero sums for a `width × height` image.
+    /// Zero sums for a `width × height` image, within
+    /// [`crate::image::MAX_PIXEL_STATE_BYTES`].
     pub fn new(width: u32, height: u32) -> Result<Self, RenderError> {
-        crate::image::check_image_size(width, height)?;
+        crate::image::check_pixel_state(width, height, Self::BYTES_PER_PIXEL)?;
         let n = width as usize * height as usize;
         Ok(PassSums {
             width,

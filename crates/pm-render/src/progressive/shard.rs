@@ -364,7 +364,9 @@ impl Shard {
     }
 
     /// The shard one run of all the shards' passes gives: their exact sums added, so its mean
-    /// has the bits of one run's when every shard came from [`Shard::from_accumulation`].
+    /// has the bits of one run's when every shard came from [`Shard::from_accumulation`]
+    /// (exact while each pixel's sum spans at most 106 significant bits: pass values within a
+    /// ratio of about 2⁵⁰ over up to 2³⁰ passes; see [`PassSums`]).
     /// Refuses shards of different scenes, settings or sizes, a shard given twice,
     /// overlapping pass ranges and ranges that leave a gap (shards are named by their place
     /// in the list, from 1).

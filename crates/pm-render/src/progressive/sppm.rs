@@ -48,6 +48,9 @@ pub struct SppmSettings {
 }
 
 impl SppmSettings {
+    /// Bytes of state SPPM keeps per pixel (flux, direct light, photon count, radius).
+    pub const BYTES_PER_PIXEL: u64 = size_of::<PixelState>() as u64;
+
     /// `passes` passes with α = 2/3 and `render`'s settings.
     pub fn new(render: RenderSettings, passes: u64) -> Self {
         SppmSettings {
@@ -58,9 +61,11 @@ impl SppmSettings {
         }
     }
 
-    /// Checks the render settings, α and that the run will stop.
+    /// Checks the render settings, α, that the per-pixel state fits
+    /// [`crate::image::MAX_PIXEL_STATE_BYTES`], and that the run will stop.
     pub fn validate(&self) -> Result<(), RenderError> {
         self.render.validate()?;
+        crate::image::check_pixel_state(self.render.width, self.render.height, Self::BYTES_PER_PIXEL)?;
         if !(self.alpha > 0.0 && self.alpha < 1.0) {
             return Err(RenderError::BadAlpha(self.alpha));
         }
@@ -140,7 +145,6 @@ impl SppmRenderer {
                 ..ProgressiveStats::default()
             };
             let width = r.width as usize;
-            crate::image::check_image_size(r.width, r.height)?;
             let mut state = vec![PixelState::default(); width * r.height as usize];
             stats.accumulation_bytes = (state.capacity() * size_of::<PixelState>()) as u64;
             let mut passes = 0u64;

@@ -3,7 +3,6 @@
 
 use std::path::Path;
 
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3};
@@ -13,10 +12,10 @@ use super::GltfOptions;
 use super::accessor::AccessorReader;
 use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
-use super::emissive::{TextureSources, emission_texture};
+use super::compact::{gather, keep_referenced};
+use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
 use super::graph::{root_nodes, walk};
-use super::image::load_texture;
 use super::light::{GltfLight, place_light};
 use super::material::{GltfMaterial, map_material};
 use super::primitive::{PrimitiveGeometry, read_primitive};
@@ -167,7 +166,7 @@ fn flatten(
     let placed = walk(file, root, &roots)?;
     let mut content = GltfContent::default();
     let mut triangle_count = 0u64;
-    let mut textures: HashMap<usize, (Arc<Texture>, Sampler)> = HashMap::new();
+    let mut textures = TextureCache::default();
     let sources = TextureSources {
         file,
         root,
@@ -244,15 +243,7 @@ fn flatten(
                         let mut uvs: Option<Vec<Vec2>> = None;
                         if let Some(reference) = material.base_color_texture {
                             let texture = reference.index;
-                            let loaded = match textures.get(&texture) {
-                                Some(t) => t.clone(),
-                                None => {
-                                    let t = load_texture(file, root, buffers, texture, options)?;
-                                    scene_bytes = scene_bytes.saturating_add(t.0.heap_bytes() as u64);
-                                    textures.insert(texture, t.clone());
-                                    t
-                                }
-                            };
+                            let loaded = cached_texture(&sources, &mut textures, texture, &mut scene_bytes)?;
                             uvs = reference.read_uvs(&reader, prim)?;
                             if uvs.is_some() {
                                 base_color_texture = Some(loaded);
@@ -317,6 +308,17 @@ fn flatten(
                         {
                             return Err(wrong("normals", v.len()));
                         }
+                        // Only the vertices the triangles use are kept (and later welded).
+                        let mut triangles = triangles;
+                        let kept = keep_referenced(&mut triangles, n);
+                        let positions = gather(&positions, &kept);
+                        let uvs = uvs.map(|u| gather(&u, &kept));
+                        let colors = colors.map(|c| gather(&c, &kept));
+                        let normals = normals.map(|v| gather(&v, &kept));
+                        let emission_texture = emission_texture.map(|e| EmissionTexture {
+                            uvs: gather(&e.uvs, &kept),
+                            ..e
+                        });
                         content.meshes.push(GltfMesh {
                             node: p.index,
                             mesh: mesh_index,

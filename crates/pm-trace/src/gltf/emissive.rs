@@ -12,13 +12,18 @@ use super::GltfOptions;
 use super::accessor::AccessorReader;
 use super::buffers::Buffer;
 use super::error::GltfError;
-use super::image::load_texture;
+use super::image::{load_image, texture_source};
 use super::material::GltfMaterial;
 use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
 
-/// Decoded textures by glTF texture index, shared by base-colour and emissive uses.
-pub(super) type TextureCache = HashMap<usize, (Arc<Texture>, Sampler)>;
+/// Decoded images by glTF image index (each decoded once however many textures name it)
+/// and the textures made of them, by texture index.
+#[derive(Default)]
+pub(super) struct TextureCache {
+    images: HashMap<usize, Arc<Texture>>,
+    textures: HashMap<usize, (Arc<Texture>, Sampler)>,
+}
 
 /// Where textures come from: the file, its JSON, its buffers and the loader's limits.
 pub(super) struct TextureSources<'a> {
@@ -29,27 +34,39 @@ pub(super) struct TextureSources<'a> {
     pub(super) options: &'a GltfOptions,
 }
 
-/// Texture `texture` from the cache, else decoded (a broken or missing image is
-/// [`GltfError::Image`]) and its bytes added to `scene_bytes`.
+/// Texture `texture` from the cache, else its image from the image cache, else decoded (a
+/// broken, missing or too large image is [`GltfError::Image`]; the decode is checked against
+/// what `scene_bytes` leaves of [`GltfOptions::max_scene_bytes`] from the image's header
+/// before it starts) and its bytes added to `scene_bytes`.
 pub(super) fn cached_texture(
     sources: &TextureSources<'_>,
     cache: &mut TextureCache,
     texture: usize,
     scene_bytes: &mut u64,
 ) -> Result<(Arc<Texture>, Sampler), GltfError> {
-    if let Some(t) = cache.get(&texture) {
+    if let Some(t) = cache.textures.get(&texture) {
         return Ok(t.clone());
     }
-    let t = load_texture(
-        sources.file,
-        sources.root,
-        sources.buffers,
-        texture,
-        sources.options,
-    )?;
-    *scene_bytes = scene_bytes.saturating_add(t.0.heap_bytes() as u64);
-    cache.insert(texture, t.clone());
-    Ok(t)
+    let (image, sampler) = texture_source(sources.file, sources.root, texture)?;
+    let decoded = match cache.images.get(&image) {
+        Some(decoded) => decoded.clone(),
+        None => {
+            let budget = sources.options.max_scene_bytes.saturating_sub(*scene_bytes);
+            let decoded = Arc::new(load_image(
+                sources.file,
+                sources.root,
+                sources.buffers,
+                image,
+                sources.options,
+                budget,
+            )?);
+            *scene_bytes = scene_bytes.saturating_add(decoded.heap_bytes() as u64);
+            cache.images.insert(image, decoded.clone());
+            decoded
+        }
+    };
+    cache.textures.insert(texture, (decoded.clone(), sampler));
+    Ok((decoded, sampler))
 }
 
 /// The emission texture of primitive `prim` (mesh and primitive indices `at`) with

@@ -4,7 +4,6 @@
 
 use std::io::Cursor;
 use std::path::Path;
-use std::sync::Arc;
 
 use gltf::json;
 
@@ -13,14 +12,12 @@ use super::buffers::{Buffer, confined_target, decode_data_uri, has_prefix_ignore
 use super::error::GltfError;
 use crate::texture::{Sampler, Texture, Wrap};
 
-/// Reads and decodes texture `texture` of `root`: its image and its sampler.
-pub(super) fn load_texture(
+/// Texture `texture` of `root`: the index of its image (checked to exist) and its sampler.
+pub(super) fn texture_source(
     file: &Path,
     root: &json::Root,
-    buffers: &[Buffer],
     texture: usize,
-    options: &GltfOptions,
-) -> Result<(Arc<Texture>, Sampler), GltfError> {
+) -> Result<(usize, Sampler), GltfError> {
     let fail = |image: usize, reason: String| GltfError::Image {
         file: file.to_path_buf(),
         image,
@@ -31,19 +28,55 @@ pub(super) fn load_texture(
         .get(texture)
         .ok_or_else(|| fail(texture, format!("texture {texture} does not exist")))?;
     let image = t.source.value();
-    let i = root.images.get(image).ok_or_else(|| {
-        fail(
+    if image >= root.images.len() {
+        return Err(fail(
             image,
             format!("does not exist (the file has {})", root.images.len()),
-        )
-    })?;
-    let bytes = image_bytes(file, root, buffers, i, options).map_err(|r| fail(image, r))?;
-    let decoded = decode_image(&bytes, options.max_texture_pixels).map_err(|r| fail(image, r))?;
+        ));
+    }
     let sampler = t
         .sampler
         .and_then(|s| root.samplers.get(s.value()))
         .map_or_else(Sampler::default, map_sampler);
-    Ok((Arc::new(decoded), sampler))
+    Ok((image, sampler))
+}
+
+/// Bytes a decode of a `width × height` image may hold at its peak: the decoder's output (up
+/// to 8 bytes a texel before 16-bit samples are stripped), the sRGB texels (3) and their
+/// mip levels (1).
+pub(super) fn decode_bytes(width: u32, height: u32) -> u64 {
+    u64::from(width) * u64::from(height) * 12
+}
+
+/// Reads image `image` of `root` and decodes it, after checking from its header that the
+/// decode fits in `budget` bytes (see [`decode_bytes`]): a broken, missing or too large
+/// image is [`GltfError::Image`].
+pub(super) fn load_image(
+    file: &Path,
+    root: &json::Root,
+    buffers: &[Buffer],
+    image: usize,
+    options: &GltfOptions,
+    budget: u64,
+) -> Result<Texture, GltfError> {
+    let fail = |reason: String| GltfError::Image {
+        file: file.to_path_buf(),
+        image,
+        reason,
+    };
+    let i = root
+        .images
+        .get(image)
+        .ok_or_else(|| fail(format!("does not exist (the file has {})", root.images.len())))?;
+    let bytes = image_bytes(file, root, buffers, i, options).map_err(fail)?;
+    let (width, height) = image_size(&bytes).map_err(fail)?;
+    let needed = decode_bytes(width, height);
+    if needed > budget {
+        return Err(fail(format!(
+            "{width}×{height} texels take {needed} bytes to decode, past the {budget} bytes left of GltfOptions::max_scene_bytes"
+        )));
+    }
+    decode_image(&bytes, options.max_texture_pixels).map_err(fail)
 }
 
 fn map_sampler(s: &json::texture::Sampler) -> Sampler {
@@ -102,6 +135,25 @@ fn image_bytes(
 
 const PNG_MAGIC: &[u8] = b"\x89PNG\r\n\x1a\n";
 const JPEG_MAGIC: &[u8] = &[0xFF, 0xD8, 0xFF];
+
+/// The width and height a PNG or JPEG declares in its header, read without decoding pixels.
+pub(super) fn image_size(bytes: &[u8]) -> Result<(u32, u32), String> {
+    if bytes.starts_with(JPEG_MAGIC) {
+        use zune_jpeg::JpegDecoder;
+        use zune_jpeg::zune_core::bytestream::ZCursor;
+        let mut decoder = JpegDecoder::new(ZCursor::new(bytes));
+        decoder.decode_headers().map_err(|e| format!("JPEG: {e:?}"))?;
+        let info = decoder.info().ok_or("JPEG: no frame header")?;
+        return Ok((u32::from(info.width), u32::from(info.height)));
+    }
+    if !bytes.starts_with(PNG_MAGIC) {
+        return Err("not a PNG image".into());
+    }
+    let reader = png::Decoder::new(Cursor::new(bytes))
+        .read_info()
+        .map_err(|e| format!("PNG: {e}"))?;
+    Ok((reader.info().width, reader.info().height))
+}
 
 /// Decodes PNG or JPEG bytes into a texture, refusing images of more than `max_pixels` texels
 /// from their header, before the pixel buffer is allocated.

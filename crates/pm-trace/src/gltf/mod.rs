@@ -104,6 +104,7 @@ mod accessor;
 mod buffers;
 mod build;
 mod camera;
+mod compact;
 mod content;
 mod emissive;
 mod error;
