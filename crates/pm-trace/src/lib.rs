@@ -120,8 +120,8 @@ pub use emission::EmissionTexture;
 pub use error::{MapError, SceneError, TraceError};
 pub use glam;
 pub use light::{
-    AreaLight, DirectionalLight, EmittedRay, Light, LightClone, LightSample, PointLight, SpotLight,
-    TexturedAreaLight,
+    AreaLight, DirectionalLight, EmittedRay, IncidentPdf, Light, LightClone, LightSample, PointLight,
+    SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
 pub use partition::{
