@@ -120,11 +120,13 @@ pub use emission::EmissionTexture;
 pub use error::{MapError, SceneError, TraceError};
 pub use glam;
 pub use light::{
-    AreaLight, DirectionalLight, EmittedRay, Light, LightClone, LightSample, PointLight, SpotLight,
-    TexturedAreaLight,
+    AreaLight, DirectionalLight, EmittedRay, IncidentPdf, Light, LightClone, LightSample, PointLight,
+    SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
-pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
+pub use partition::{
+    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap,
+};
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps,
     TraceOptions, TraceStats, TracedPhotons, trace_photons,

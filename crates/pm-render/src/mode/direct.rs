@@ -1,7 +1,9 @@
-//! Direct irradiance by shadow rays: one sample per light, unoccluded samples only.
+//! Direct irradiance by shadow rays: one sample per light, unoccluded samples only; and its
+//! multiple-importance weights against cosine-weighted rays that hit the lights.
 
 use glam::Vec3;
 use pm_trace::{Hit, Rng, Scene};
+use std::f32::consts::FRAC_1_PI;
 
 /// Irradiance (W/m²) at `hit` straight from the scene's lights, one shadow ray per light.
 ///
@@ -29,4 +31,72 @@ pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, 
         }
     }
     e
+}
+
+/// True when every light of `scene` gives exact densities for multiple importance sampling
+/// ([`pm_trace::Light::supports_mis`]); otherwise shadow rays alone carry direct light.
+pub(crate) fn mis_enabled(scene: &Scene) -> bool {
+    scene.lights().iter().all(|l| l.supports_mis())
+}
+
+/// The power heuristic (Veach 1997, β = 2) of a strategy of density `f` against one of `g`
+/// (each already multiplied by its sample count).
+#[inline]
+pub(crate) fn power_heuristic(f: f32, g: f32) -> f32 {
+    let (f2, g2) = (f * f, g * g);
+    if f2 + g2 > 0.0 { f2 / (f2 + g2) } else { 0.0 }
+}
+
+/// Direct irradiance at `hit` by one shadow ray per light, each weighted by the power heuristic
+/// against `bsdf_samples` cosine-weighted rays about `shading` that could hit the same light
+/// (their emission weighted by [`bsdf_emission_weight`]). Delta lights keep weight 1.
+pub(crate) fn direct_irradiance_mis(
+    scene: &Scene,
+    hit: &Hit,
+    shading: Vec3,
+    bsdf_samples: f32,
+    rng: &mut Rng,
+) -> Vec3 {
+    let mut e = Vec3::ZERO;
+    for light in scene.lights() {
+        let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
+            continue;
+        };
+        let cos = shading.dot(sample.direction);
+        if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
+            continue;
+        }
+        if scene.occluded(hit.position, hit.position + sample.direction * sample.distance) {
+            continue;
+        }
+        let weight = match light.incident_pdf(hit.position, sample.direction) {
+            Some(p) => power_heuristic(p.pdf, bsdf_samples * cos * FRAC_1_PI),
+            None => 1.0,
+        };
+        e += sample.radiance_over_pdf * cos * weight;
+    }
+    e
+}
+
+/// The weight of emission found by a cosine-weighted ray from `from` along `direction` that
+/// hit an emitter at distance `t`, one of `bsdf_samples` rays of density `bsdf_pdf` each,
+/// against the one shadow ray per light of [`direct_irradiance_mis`]: the power heuristic
+/// with the densities of the lights whose surface the ray meets there.
+pub(crate) fn bsdf_emission_weight(
+    scene: &Scene,
+    from: Vec3,
+    direction: Vec3,
+    t: f32,
+    bsdf_samples: f32,
+    bsdf_pdf: f32,
+) -> f32 {
+    let tolerance = 1e-3 * t + 8.0 * scene.epsilon();
+    let light_pdf: f32 = scene
+        .lights()
+        .iter()
+        .filter_map(|l| l.incident_pdf(from, direction))
+        .filter(|p| (p.distance - t).abs() <= tolerance)
+        .map(|p| p.pdf)
+        .sum();
+    power_heuristic(bsdf_samples * bsdf_pdf, light_pdf)
 }

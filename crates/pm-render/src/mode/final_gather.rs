@@ -1,8 +1,9 @@
 //! FinalGather: specular bounces from the eye to the first diffuse hit x; there direct light by
-//! shadow rays, caustics from caustic photons, and indirect light by gather rays into the cache.
+//! shadow rays MIS-combined with the gather rays, caustics from caustic photons, and indirect
+//! light by the gather rays into the cache.
 
 use super::Lighting;
-use super::direct::direct_irradiance_shaded;
+use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
 use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
 use crate::{
     Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
@@ -142,38 +143,59 @@ fn stratified(i: u32, n: u32, offset: u32, rng: &mut Rng) -> Vec2 {
     .min(Vec2::splat(1.0 - f32::EPSILON))
 }
 
+/// How a gather ray weighs emission at its first hit: `None` (shadow rays carry all direct
+/// light), or the multiple-importance weight against them, from the origin x, the ray's
+/// density and the number of gather rays.
+#[derive(Clone, Copy)]
+struct EmissionWeight {
+    from: Vec3,
+    pdf: f32,
+    rays: f32,
+}
+
 /// Radiance a gather ray carries back: through specular bounces to a diffuse hit y, then the
 /// cache at y (or, within the corner distance of the ray's origin and when `extra_bounce`,
-/// one more bounce). Emission is not counted: direct light at the gather's origin comes from
-/// its shadow rays and caustics from its caustic photons.
+/// one more bounce). Emission met straight away counts with its multiple-importance weight
+/// `mis` (and not at all without one); emission after specular bounces does not count: the
+/// caustic photons at the gather's origin carry it.
 fn gather<G: GatherSource>(
     source: &G,
     mut ray: Ray,
     extra_bounce: bool,
+    mis: Option<EmissionWeight>,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
     let scene = source.scene();
     let mut throughput = Vec3::ONE;
     let mut travelled = 0.0f32;
-    for _ in 0..=MAX_SPECULAR_BOUNCES {
+    let mut emitted = Vec3::ZERO;
+    for bounce in 0..=MAX_SPECULAR_BOUNCES {
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
-            return Vec3::ZERO;
+            return emitted;
         };
         travelled += hit.t;
+        if bounce == 0
+            && let Some(w) = mis
+        {
+            let le = scene.emission(&hit);
+            if le != Vec3::ZERO {
+                emitted = le * bsdf_emission_weight(scene, w.from, ray.direction, hit.t, w.rays, w.pdf);
+            }
+        }
         if let Material::Lambertian { .. } = *scene.material(&hit) {
             if extra_bounce && travelled < source.options().corner_distance {
-                return throughput * diffuse_bounce(source, &hit, 1, false, rng, scratch);
+                return emitted + throughput * diffuse_bounce(source, &hit, 1, false, rng, scratch);
             }
-            return throughput * source.cached_radiance(&hit, scratch);
+            return emitted + throughput * source.cached_radiance(&hit, scratch);
         }
         let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
-            return Vec3::ZERO;
+            return emitted;
         };
         throughput *= factor;
         ray = next;
     }
-    Vec3::ZERO
+    emitted
 }
 
 /// Reflected radiance at a diffuse `hit` (without its emission): direct light by shadow rays,
@@ -189,7 +211,13 @@ fn diffuse_bounce<G: GatherSource>(
     let scene = source.scene();
     let albedo = scene.albedo_at(hit);
     let shading = scene.shading_normal_at(hit);
-    let e = direct_irradiance_shaded(scene, hit, shading, rng) + source.caustic_irradiance(hit, scratch);
+    let mis = mis_enabled(scene);
+    let direct = if mis {
+        direct_irradiance_mis(scene, hit, shading, rays as f32, rng)
+    } else {
+        direct_irradiance_shaded(scene, hit, shading, rng)
+    };
+    let e = direct + source.caustic_irradiance(hit, scratch);
     let mut indirect = Vec3::ZERO;
     let columns = (rays as f32).sqrt().ceil().max(1.0) as u32;
     let cells = columns * rays.div_ceil(columns);
@@ -202,10 +230,16 @@ fn diffuse_bounce<G: GatherSource>(
             continue;
         }
         scratch.gather_rays += 1;
+        let weight = mis.then(|| EmissionWeight {
+            from: hit.position,
+            pdf: shading.dot(direction).max(0.0) * FRAC_1_PI,
+            rays: rays as f32,
+        });
         indirect += gather(
             source,
             scene.spawn_ray(hit, direction),
             extra_bounce,
+            weight,
             rng,
             scratch,
         );

@@ -30,11 +30,15 @@ pub enum Mode {
     /// Direct light by shadow rays to every light, plus the photon map without direct photons
     /// for the rest (Image 1 of Ball & Stejko's report).
     ShadowRays,
-    /// An unbiased path tracer with next-event estimation and Russian roulette (the reference).
+    /// An unbiased path tracer with next-event estimation, combined with its diffuse bounces by
+    /// multiple importance sampling (power heuristic) where every light supports it
+    /// ([`pm_trace::Light::supports_mis`]), and Russian roulette (the reference).
     PathTrace,
     /// Final gathering (Jensen 1996, with Christensen's precomputed irradiance): specular
-    /// bounces from the eye to the first diffuse hit x; there direct light by shadow rays,
-    /// caustics from the photons of kind caustic in x's map, and the rest by
+    /// bounces from the eye to the first diffuse hit x; there direct light by shadow rays
+    /// combined with the gather rays that hit lights by multiple importance sampling (power
+    /// heuristic, where every light supports it), caustics from the photons of kind caustic
+    /// in x's map, and the rest by
     /// [`FinalGatherOptions::gather_rays`] cosine-weighted rays whose diffuse hits read the
     /// [`RadianceCache`] in their own map. Clean images at a fraction of a path tracer's time;
     /// the cache's blur is hidden behind the gathered hemisphere.

@@ -1,8 +1,7 @@
-//! PathTrace: an unbiased path tracer with next-event estimation. Emission is counted only on
-//! camera rays and after specular bounces (diffuse bounces get it from the shadow rays), so
-//! nothing is counted twice; Russian roulette ends long paths without bias.
+//! PathTrace: an unbiased path tracer with next-event estimation combined with the diffuse
+//! bounces by multiple importance sampling (power heuristic); Russian roulette ends long paths.
 
-use super::direct::direct_irradiance_shaded;
+use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
 use super::scatter::specular_bounce;
 use glam::{Vec2, Vec3};
 use pm_trace::sampling::cosine_hemisphere;
@@ -17,7 +16,13 @@ const ROULETTE_AFTER: u32 = 3;
 pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
+    // Emission found by the ray is counted in full on camera rays and after specular bounces;
+    // after a diffuse bounce from `(x, pdf)` it is weighted against the shadow rays there (by
+    // multiple importance sampling, when every light allows it; else not counted at all, the
+    // shadow rays having carried it).
     let mut count_emission = true;
+    let mut diffuse_from: Option<(Vec3, f32)> = None;
+    let mis = mis_enabled(scene);
     let mut kind = RayKind::Camera;
     for depth in 0..MAX_DEPTH {
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, kind) else {
@@ -25,13 +30,23 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
         };
         if count_emission {
             radiance += throughput * scene.emission(&hit);
+        } else if let Some((from, pdf)) = diffuse_from {
+            let le = scene.emission(&hit);
+            if le != Vec3::ZERO {
+                radiance +=
+                    throughput * le * bsdf_emission_weight(scene, from, ray.direction, hit.t, 1.0, pdf);
+            }
         }
         match *scene.material(&hit) {
             Material::Lambertian { .. } => {
                 let albedo = scene.albedo_at(&hit);
                 let shading = scene.shading_normal_at(&hit);
-                radiance +=
-                    throughput * albedo * FRAC_1_PI * direct_irradiance_shaded(scene, &hit, shading, rng);
+                let direct = if mis {
+                    direct_irradiance_mis(scene, &hit, shading, 1.0, rng)
+                } else {
+                    direct_irradiance_shaded(scene, &hit, shading, rng)
+                };
+                radiance += throughput * albedo * FRAC_1_PI * direct;
                 // Cosine sampling about the shading normal: f · cos / pdf = (albedo / π) · cos /
                 // (cos / π) = albedo. A direction below the geometric surface (possible where
                 // the shading normal leans away from it, near the terminator) ends the path
@@ -43,6 +58,7 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 throughput *= albedo;
                 ray = scene.spawn_ray(&hit, direction);
                 count_emission = false;
+                diffuse_from = mis.then(|| (hit.position, shading.dot(direction).max(0.0) * FRAC_1_PI));
                 kind = RayKind::Other;
             }
             _ => {
@@ -52,6 +68,7 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 throughput *= factor;
                 ray = next;
                 count_emission = true;
+                diffuse_from = None;
             }
         }
         if depth >= ROULETTE_AFTER {

@@ -1,7 +1,7 @@
 //! The area light: any set of triangles emitting constant radiance from their front side
 //! (counter-clockwise winding) or from both sides, cosine-distributed.
 
-use super::{EmittedRay, Light, LightSample};
+use super::{EmittedRay, IncidentPdf, Light, LightSample};
 use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame, pick_cumulative, uniform_triangle};
 use crate::{Ray, Rng, Sides};
 use glam::{Vec2, Vec3};
@@ -145,6 +145,36 @@ impl Light for AreaLight {
         }
     }
 
+    fn supports_mis(&self) -> bool {
+        true
+    }
+
+    /// The nearest of the light's triangles the ray meets on an emitting side, and the density
+    /// of [`Light::sample_incident`] there: `d² / (A cos θ_light)` (points uniform over the
+    /// total area `A`).
+    fn incident_pdf(&self, point: Vec3, direction: Vec3) -> Option<IncidentPdf> {
+        let area = self.area();
+        if area <= 0.0 {
+            return None;
+        }
+        let mut nearest: Option<(f32, f32)> = None;
+        for (t, frame) in self.triangles.iter().zip(&self.frames) {
+            let Some(d) = ray_triangle(point, direction, t) else {
+                continue;
+            };
+            let cos = direction.dot(frame[2]);
+            let cos_light = if self.two_sided { cos.abs() } else { -cos };
+            if cos_light > 0.0 && nearest.is_none_or(|(best, _)| d < best) {
+                nearest = Some((d, cos_light));
+            }
+        }
+        let (distance, cos_light) = nearest?;
+        Some(IncidentPdf {
+            distance,
+            pdf: distance * distance / (area * cos_light),
+        })
+    }
+
     fn sample_incident(&self, point: Vec3, _normal: Vec3, rng: &mut Rng) -> Option<LightSample> {
         let (y, [_, _, n]) = self.sample_point(rng)?;
         let to = y - point;
@@ -166,4 +196,28 @@ impl Light for AreaLight {
             radiance_over_pdf: self.radiance * (self.area() * cos_light / d2),
         })
     }
+}
+
+/// Distance along the ray `origin + t · direction` (t > 0) to triangle `t`, by Möller and
+/// Trumbore's test; `None` when it misses.
+fn ray_triangle(origin: Vec3, direction: Vec3, t: &[Vec3; 3]) -> Option<f32> {
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let p = direction.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = origin - t[0];
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = direction.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let d = e2.dot(q) * inv;
+    (d > 0.0).then_some(d)
 }

@@ -60,6 +60,12 @@ impl Light for DirectionalLight {
         }
     }
 
+    /// A delta light: no ray meets it, so multiple importance sampling leaves it to shadow
+    /// rays.
+    fn supports_mis(&self) -> bool {
+        true
+    }
+
     fn sample_incident(&self, _point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
         Some(LightSample {
             direction: -self.direction,

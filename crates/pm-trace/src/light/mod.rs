@@ -48,6 +48,17 @@ pub struct LightSample {
     pub radiance_over_pdf: Vec3,
 }
 
+/// Where a ray meets a light's emitting surface, for multiple importance sampling
+/// ([`Light::incident_pdf`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IncidentPdf {
+    /// Distance along the ray to the emitting surface.
+    pub distance: f32,
+    /// Solid-angle density (1/sr) with which [`Light::sample_incident`] from the ray's origin
+    /// picks the ray's direction.
+    pub pdf: f32,
+}
+
 /// Copies a boxed light, so that scenes and their builders can be cloned. Implemented for every
 /// `Light + Clone`: a light only needs `#[derive(Clone)]`.
 pub trait LightClone {
@@ -80,6 +91,24 @@ pub trait Light: LightClone + Send + Sync + std::fmt::Debug {
     /// lights may use to skip samples behind the surface); `None` when the light cannot
     /// reach the point.
     fn sample_incident(&self, point: Vec3, normal: Vec3, rng: &mut Rng) -> Option<LightSample>;
+
+    /// For multiple importance sampling: where the ray from `point` along the unit `direction`
+    /// meets this light's emitting side, with the solid-angle density of
+    /// [`Light::sample_incident`] picking that direction from `point`; `None` when the ray
+    /// misses it. Delta lights (point, spot, directional), which no ray meets, return `None`.
+    /// Default: `None`.
+    fn incident_pdf(&self, point: Vec3, direction: Vec3) -> Option<IncidentPdf> {
+        let _ = (point, direction);
+        None
+    }
+
+    /// True when [`Light::incident_pdf`] is exact for this light (always `None` for a delta
+    /// light). Renderers combine shadow rays with rays that hit emitters by multiple
+    /// importance sampling only when every light of the scene says so; otherwise shadow rays
+    /// alone carry direct light. Default: `false`.
+    fn supports_mis(&self) -> bool {
+        false
+    }
 
     /// Called once by the scene builder with the bounds of the scene's geometry, before any
     /// other call (the directional light sizes its emission disc here). Default: nothing.

@@ -57,6 +57,12 @@ impl Light for SpotLight {
         ray_from_point(self.position, d)
     }
 
+    /// A delta light: no ray meets it, so multiple importance sampling leaves it to shadow
+    /// rays.
+    fn supports_mis(&self) -> bool {
+        true
+    }
+
     fn sample_incident(&self, point: Vec3, _normal: Vec3, _rng: &mut Rng) -> Option<LightSample> {
         let cos_max = self.cos_max();
         sample_point_light(self.position, point, |direction| {
