@@ -35,7 +35,7 @@ mod tracking_allocator;
 
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
 use files::{NamedFile, check_run_outputs, load_scene, say, scene_input, scene_name};
-use report::{Record, json_number, json_object, json_string, summary};
+use report::{Record, contacts_json, contacts_summary, json_number, json_object, json_string, summary};
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
 #[derive(Parser, Debug)]
@@ -46,7 +46,7 @@ struct Args {
     /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,
-    /// Photon-map partition [default: crease].
+    /// Photon-map partition [default: contact].
     #[arg(long, value_enum)]
     maps: Option<MapsChoice>,
     /// Radiance estimator [default: cube].
@@ -125,7 +125,7 @@ struct Args {
 impl Args {
     /// `--maps`, or its default.
     fn maps(&self) -> MapsChoice {
-        self.maps.unwrap_or(MapsChoice::Crease)
+        self.maps.unwrap_or(MapsChoice::Contact)
     }
 
     /// `--estimator`, or its default.
@@ -248,6 +248,7 @@ fn run(args: &Args) -> Result<(), String> {
             settings: &settings,
             stats: out.stats,
             mean,
+            contacts: (contacts_summary(scene), contacts_json(scene)),
         };
         say(&summary(&record));
         records.push(record);

@@ -409,7 +409,8 @@ fn options_the_mode_would_ignore_are_refused() {
     assert!(
         std::fs::read_to_string(&json)
             .unwrap()
-            .contains("\"maps\": \"crease\"")
+            .contains("\"maps\": \"contact\""),
+        "the default partition is recorded"
     );
 }
 

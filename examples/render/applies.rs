@@ -22,7 +22,7 @@ enum Run {
 /// so. Options not listed (`--out`, `--stats-json`, `--exposure`) apply to every run.
 fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
     use ModeChoice::*;
-    let maps_mode = |m: ModeChoice| matches!(m, PhotonMap | ShadowRays | Progressive);
+    let maps_mode = |m: ModeChoice| matches!(m, PhotonMap | ShadowRays | Progressive | FinalGather);
     let gltf = {
         let ext = Path::new(&args.scene).extension().and_then(|e| e.to_str());
         ext.is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
@@ -36,13 +36,18 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("passes" | "time", run) => matches!(run, Run::Passes(_)),
         ("first_pass" | "direct", run) => run == Run::Passes(Progressive),
         ("light_units", _) => gltf,
+        // gather.rs refines progressive: there they need --gather-rays.
+        ("gather_rays" | "cache_every" | "corner_distance", run) => {
+            matches!(run, Run::Single(FinalGather) | Run::Passes(Progressive))
+        }
         _ => true,
     };
     if ok {
         return None;
     }
     Some(match option {
-        "maps" | "estimator" => "the photon-map modes (photon-map, shadow-rays, progressive)",
+        "maps" | "estimator" => "the photon-map modes (photon-map, shadow-rays, final-gather, progressive)",
+        "gather_rays" | "cache_every" | "corner_distance" => "--mode final-gather and --mode progressive",
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
         "passes" | "time" => "--mode progressive and --mode sppm",
@@ -53,7 +58,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 15] = [
+const OPTIONS: [(&str, &str); 18] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -69,6 +74,9 @@ const OPTIONS: [(&str, &str); 15] = [
     ("time", "--time"),
     ("light_units", "--light-units"),
     ("direct", "--direct"),
+    ("gather_rays", "--gather-rays"),
+    ("cache_every", "--cache-every"),
+    ("corner_distance", "--corner-distance"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

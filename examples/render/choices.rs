@@ -14,7 +14,9 @@ pub enum MapsChoice {
     Single,
     /// One map per group of faces joined across edges with a small crease angle.
     Crease,
-    /// The crease-angle maps, aware of faces in contact (the scene is split first).
+    /// The default: crease-angle maps that never join across faces that meet — walls standing
+    /// on or running through floors, overlapping or duplicated faces, gaps under 0.2 % of the
+    /// scene (the scene is cut where faces meet first).
     Contact,
 }
 

@@ -2,6 +2,7 @@
 
 use super::{Args, Variant};
 use photon_maps::render::{RenderSettings, RenderStats};
+use photon_maps::trace::Scene;
 use std::fmt::Write as _;
 
 /// The figures of one finished render, for the summary and the JSON.
@@ -12,6 +13,45 @@ pub struct Record<'a> {
     pub settings: &'a RenderSettings,
     pub stats: RenderStats,
     pub mean: [f32; 3],
+    /// [`contacts_summary`] and [`contacts_json`] of the scene rendered.
+    pub contacts: (String, String),
+}
+
+/// What the contact partition found where faces meet, for the summary: empty when the scene
+/// was not split.
+pub fn contacts_summary(scene: &Scene) -> String {
+    let Some(record) = scene.contact_record() else {
+        return String::new();
+    };
+    let c = record.counts();
+    format!(
+        ", faces meeting: {} piercing, {} in-plane, {} coplanar, {} near-contact ({} hidden copies dropped, {} pieces sealed in solids; {:.3} s)",
+        c.piercing,
+        c.in_plane,
+        c.coplanar_overlap,
+        c.near_contact,
+        c.duplicate_pieces,
+        c.sealed_pieces,
+        record.seconds()
+    )
+}
+
+/// The same as a JSON value: `null` when the scene was not split.
+pub fn contacts_json(scene: &Scene) -> String {
+    let Some(record) = scene.contact_record() else {
+        return "null".to_owned();
+    };
+    let c = record.counts();
+    format!(
+        "{{\"piercing\": {}, \"in_plane\": {}, \"coplanar_overlap\": {}, \"near_contact\": {}, \"duplicate_pieces\": {}, \"sealed_pieces\": {}, \"seconds\": {}}}",
+        c.piercing,
+        c.in_plane,
+        c.coplanar_overlap,
+        c.near_contact,
+        c.duplicate_pieces,
+        c.sealed_pieces,
+        json_number(record.seconds())
+    )
 }
 
 pub fn summary(r: &Record<'_>) -> String {
@@ -53,9 +93,10 @@ pub fn summary(r: &Record<'_>) -> String {
         _ => String::new(),
     };
     format!(
-        "{} [{}]: {lighting}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
+        r.contacts.0,
         r.settings.mode,
         r.settings.width,
         r.settings.height,
@@ -127,7 +168,8 @@ pub fn json_object(r: &Record<'_>) -> String {
     }
     let _ = write!(
         o,
-        "\"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
+        "\"contacts\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
+        r.contacts.1,
         json_number(s.trace.as_secs_f64()),
         json_number(s.build.as_secs_f64()),
         json_number(s.precompute.as_secs_f64()),

@@ -60,10 +60,10 @@
 //!   `docs/results.md`.
 
 pub mod aabb;
+pub mod arrangement;
 pub mod ball;
 mod bounds_bvh;
 pub mod clip;
-pub mod contact;
 pub mod error;
 pub mod merge;
 pub mod mesh;
@@ -73,9 +73,12 @@ pub mod polygon_set;
 pub mod volume;
 
 pub use aabb::Aabb;
+pub use arrangement::{
+    Arrangement, ArrangementError, ArrangementOptions, BarrierSet, IntersectionCounts,
+    split_polygons_at_intersections,
+};
 pub use ball::{Ball, polygon_area_in_ball};
 pub use clip::{ClipScratch, clip_polygon_to_aabb, split_convex_polygon_by_plane};
-pub use contact::{ContactSplit, split_polygons_at_contacts};
 pub use error::MeshError;
 pub use glam;
 pub use merge::{CoplanarMerger, MergeOptions, merge_coplanar_polygons};

@@ -63,6 +63,9 @@ pub enum SceneError {
         /// What is wrong.
         reason: String,
     },
+    /// Splitting the faces where they meet (the contact partition) passed one of its bounds.
+    #[error("splitting faces where they meet: {0}")]
+    Arrangement(#[from] pm_geom::ArrangementError),
     /// The scene has no surfaces at all.
     #[error("the scene has no geometry")]
     NoGeometry,

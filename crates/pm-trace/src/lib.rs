@@ -124,7 +124,9 @@ pub use light::{
     SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
-pub use partition::{Contact, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap};
+pub use partition::{
+    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap,
+};
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps,
     TraceOptions, TraceStats, TracedPhotons, trace_photons,

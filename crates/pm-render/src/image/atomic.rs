@@ -97,13 +97,23 @@ fn resolve_target(path: &Path) -> io::Result<PathBuf> {
                     None => link,
                 };
             }
-            Ok(meta) if meta.is_file() && meta.permissions().readonly() => {
-                return Err(io::Error::new(
-                    io::ErrorKind::PermissionDenied,
-                    format!("{} is read-only; refusing to replace it", path.display()),
-                ));
+            Ok(meta) if meta.is_file() => {
+                // A rename would replace a file the user may not write (the folder's
+                // permission suffices): refuse one without write permission bits, or that
+                // the user cannot open for writing (opened, not truncated: nothing changes).
+                let writable =
+                    !meta.permissions().readonly() && OpenOptions::new().write(true).open(&target).is_ok();
+                if !writable {
+                    return Err(io::Error::new(
+                        io::ErrorKind::PermissionDenied,
+                        format!(
+                            "{} is read-only (or not writable by this user); refusing to replace it",
+                            path.display()
+                        ),
+                    ));
+                }
+                return Ok(target);
             }
-            Ok(meta) if meta.is_file() => return Ok(target),
             Ok(meta) if meta.is_dir() => return Err(refuse("a folder")),
             Ok(_) => return Err(refuse("a device, FIFO or socket")),
         }

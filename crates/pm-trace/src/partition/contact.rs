@@ -1,46 +1,95 @@
-//! Contact-aware partition: the crease-angle partition, made to see faces that touch without
-//! sharing an edge (a wall standing on a floor that runs under it), so that no photon map
-//! spans both sides of such a contact. Ball & Stejko's future work ("light bleeding would still
-//! occur if the floor were one rectangle across both boxes").
+//! Contact-aware partition: the crease-angle partition, made to see faces that meet without
+//! sharing an edge — walls standing on or running through floor slabs, duplicated floors, boxes
+//! sunk into or resting on others, and gaps narrower than an estimate's reach — so that no
+//! photon map spans both sides of such a meeting. Ball & Stejko's future work ("light bleeding
+//! would still occur if the floor were one rectangle across both boxes"), taken to solids.
 
 use super::{MapAssignment, PartitionError, Partitioner};
 use crate::{PartId, PartSource, Scene, SceneError, Surface};
 use glam::Vec3;
-use pm_geom::{FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_contacts};
+use pm_geom::{
+    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, IntersectionCounts, MeshOptions,
+    split_polygons_at_intersections,
+};
 
-/// Crease-angle maps over all meshes of a scene welded together, after splitting faces along
-/// their contacts.
+/// Crease-angle maps over all meshes of a scene welded together, after cutting faces where
+/// other faces meet them. The default partition of the renderers.
 ///
-/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) cuts
-/// every face that another face stands on
-/// (the floor under a wall) along the contact line into convex pieces, so that the contact
-/// becomes an edge shared by three or more faces (floor left, floor right, wall); then
-/// [`Partitioner::partition`] flood-fills across edges with a crease angle below `max_angle`
-/// over one half-edge mesh of *all* mesh faces, where such an edge is non-manifold and never
-/// joins two maps. Where the cut runs beyond the contact (a doorway, the floor around a box)
-/// the pieces share ordinary edges and stay in one map, because light really passes there.
-/// The renderers refuse a scene that has not been split ([`Partitioner::check_scene`]).
+/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) finds
+/// every pair of mesh faces that pierce each other, where an edge of one lies in the other (a
+/// wall standing on a floor), that overlap in one plane (duplicated or stacked floors), or that
+/// come closer than the gap tolerance without meeting, and cuts each such face into convex
+/// pieces along those segments; then [`Partitioner::partition`] flood-fills across edges with a
+/// crease angle below `max_angle` over one half-edge mesh of *all* mesh faces, never across a
+/// segment where faces meet (or an edge of three or more faces), and never into a piece that
+/// lies inside a closed solid (the floor slab's top under a wall box: no light reaches it).
+/// Where a cut line runs beyond the meeting (a doorway, the floor around a box) the pieces stay
+/// in one map, because light really passes there. Of faces overlapping in one plane and facing
+/// the same way only the first is kept. The renderers refuse a scene that has not been split
+/// ([`Partitioner::check_scene`]).
 ///
-/// Unlike [`crate::CreaseAngle`], faces of different meshes join when they share a flat edge.
+/// On a scene where no faces meet, the scene is left as it is and the maps are the
+/// crease-angle maps, except that faces of different meshes join when they share a flat edge.
 /// Analytic parts each get a map of their own, as with [`crate::CreaseAngle`].
 ///
-/// Tolerances scale with the scene: a point counts as lying on a plane, a line or another point
-/// within `relative_tolerance × scene diagonal` (default `1e-5`: 10 µm in a 1 m room).
+/// Tolerances scale with the scene's bounding-box diagonal: a point lies on a plane, a line or
+/// another point within `relative_tolerance × diagonal` (default `1e-5`: 10 µm in a 1 m room),
+/// and faces closer than `relative_gap × diagonal` (default `2e-3`: 2 mm in the 0.55 m Cornell
+/// box) count as touching. The gap is what it costs: light that really passes through a slit
+/// that narrow reaches the far side's surfaces, but their maps are cut off from the near side,
+/// so the estimate there sees only the few photons that came through (measured on a wall 0.1 %
+/// of the diagonal short of floor and ceiling: see the repository's `docs/results.md`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
     /// Largest crease angle (between face normals, 0 = flat) that still joins, radians.
     pub max_angle: f32,
     /// Contact and welding tolerance as a fraction of the scene's bounding-box diagonal.
     pub relative_tolerance: f32,
+    /// Widest gap between faces that still counts as touching, as a fraction of the scene's
+    /// bounding-box diagonal (at least the tolerance).
+    pub relative_gap: f32,
 }
 
 impl Default for Contact {
-    /// 30° and `1e-5`.
+    /// 30°, a tolerance of `1e-5` and a gap of `2e-3` of the diagonal.
     fn default() -> Self {
         Contact {
             max_angle: 30f32.to_radians(),
             relative_tolerance: 1e-5,
+            relative_gap: 2e-3,
         }
+    }
+}
+
+/// What [`Contact::split_scene`] found and cut: the meeting segments no map crosses, the pieces
+/// inside closed solids, and counts of each kind of meeting.
+#[derive(Clone, Debug, Default)]
+pub struct ContactRecord {
+    barriers: BarrierSet,
+    sealed_parts: Vec<bool>,
+    counts: IntersectionCounts,
+    seconds: f64,
+}
+
+impl ContactRecord {
+    /// How many meetings of each kind were found, and pieces dropped or sealed.
+    pub fn counts(&self) -> IntersectionCounts {
+        self.counts
+    }
+
+    /// The segments along which faces meet: no photon map joins across them.
+    pub fn barriers(&self) -> &BarrierSet {
+        &self.barriers
+    }
+
+    /// True when `part` lies inside a closed solid, where no light reaches.
+    pub fn is_sealed(&self, part: PartId) -> bool {
+        self.sealed_parts.get(part.0 as usize).copied().unwrap_or(false)
+    }
+
+    /// Wall-clock seconds the split took.
+    pub fn seconds(&self) -> f64 {
+        self.seconds
     }
 }
 
@@ -50,36 +99,52 @@ impl Contact {
         (self.relative_tolerance * scene.bounds().diagonal()).max(f32::MIN_POSITIVE)
     }
 
-    /// Rebuilds `scene` with every mesh face that another face touches split along the contact
-    /// lines. Each piece keeps its face's surface and its vertex attributes (texture
-    /// coordinates, colours and normals, interpolated over the original triangle, so
-    /// [`Scene::albedo_at`] and [`Scene::shading_normal_at`] give what they gave before the
-    /// split); lights, analytic shapes and the camera are unchanged, and so is the total area
-    /// of every face.
+    /// The absolute gap (metres) for `scene`: faces closer than this count as touching.
+    pub fn gap(&self, scene: &Scene) -> f32 {
+        (self.relative_gap * scene.bounds().diagonal()).max(self.tolerance(scene))
+    }
+
+    /// Rebuilds `scene` with every mesh face cut where other faces meet it. Each piece keeps its
+    /// face's surface and its vertex attributes (texture coordinates, colours and normals,
+    /// interpolated over the original triangle, so [`Scene::albedo_at`] and
+    /// [`Scene::shading_normal_at`] give what they gave before the split); lights, analytic
+    /// shapes and the camera are unchanged, and so is the total area of every face except the
+    /// hidden copies of duplicated faces. A scene where no faces meet comes back unchanged.
+    ///
+    /// Fails with [`SceneError::Arrangement`] when the faces meet in more places than the
+    /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
+    /// mesh), before allocating past them.
     pub fn split_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
+        let start = std::time::Instant::now();
         let tolerance = self.tolerance(&scene);
-        let (polygons, surfaces, mesh_of) = mesh_faces(&scene);
-        let split = split_polygons_at_contacts(&polygons, tolerance);
-        // The face (within its mesh) of each polygon, in the same order as `mesh_faces`.
-        let face_of: Vec<FaceId> = scene
-            .meshes()
-            .iter()
-            .flat_map(|m| m.half_edge_mesh().faces())
-            .collect();
+        let options = ArrangementOptions::new(tolerance, self.gap(&scene));
+        let faces = mesh_faces(&scene);
+        let split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
+        let counts = split.counts;
+        if counts.meetings() == 0 && counts.duplicate_pieces == 0 {
+            let mut scene = scene;
+            scene.set_contact_record(ContactRecord {
+                seconds: start.elapsed().as_secs_f64(),
+                ..ContactRecord::default()
+            });
+            return Ok(scene);
+        }
 
         // One rebuilt mesh per original mesh, holding that mesh's pieces.
         let mesh_count = scene.meshes().len();
         let mut positions: Vec<Vec<Vec3>> = vec![Vec::new(); mesh_count];
-        let mut faces: Vec<Vec<Vec<u32>>> = vec![Vec::new(); mesh_count];
+        let mut polygons: Vec<Vec<Vec<u32>>> = vec![Vec::new(); mesh_count];
         let mut face_surfaces: Vec<Vec<Surface>> = vec![Vec::new(); mesh_count];
         let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
-        for (piece, &source) in split.polygons.iter().zip(&split.source) {
-            let m = mesh_of[source];
+        let mut piece_index: Vec<Vec<usize>> = vec![Vec::new(); mesh_count];
+        for (index, (piece, &source)) in split.polygons.iter().zip(&split.source).enumerate() {
+            let m = faces.mesh_of[source];
             let start = positions[m].len() as u32;
             positions[m].extend_from_slice(piece);
-            faces[m].push((start..start + piece.len() as u32).collect());
-            face_surfaces[m].push(surfaces[source]);
-            piece_faces[m].push(face_of[source]);
+            polygons[m].push((start..start + piece.len() as u32).collect());
+            face_surfaces[m].push(faces.surfaces[source]);
+            piece_faces[m].push(faces.face_of[source]);
+            piece_index[m].push(index);
         }
         // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
         // shaded by interpolating over the whole original triangle it lies in.
@@ -92,22 +157,36 @@ impl Contact {
         let weld = MeshOptions {
             weld_tolerance: tolerance,
         };
-        let mut builder = scene
-            .into_builder_without_meshes()
-            .mesh_options(weld)
-            .split_at_contacts();
+        let mut builder = scene.into_builder_without_meshes().mesh_options(weld);
+        let mut built_meshes = Vec::new();
         for (m, shading) in shading.into_iter().enumerate() {
-            if !faces[m].is_empty() {
-                builder = builder.mesh_per_face_shaded(&positions[m], &faces[m], &face_surfaces[m], shading);
+            if !polygons[m].is_empty() {
+                builder =
+                    builder.mesh_per_face_shaded(&positions[m], &polygons[m], &face_surfaces[m], shading);
+                built_meshes.push(m);
             }
         }
-        builder.build()
+        let mut rebuilt = builder.build()?;
+        let mut sealed_parts = vec![false; rebuilt.part_count()];
+        for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {
+            for face in mesh.half_edge_mesh().faces() {
+                let piece = piece_index[m][mesh.half_edge_mesh().source_face(face)];
+                sealed_parts[mesh.part_of_face(face).0 as usize] = split.sealed[piece];
+            }
+        }
+        rebuilt.set_contact_record(ContactRecord {
+            barriers: BarrierSet::new(split.barriers, tolerance),
+            sealed_parts,
+            counts,
+            seconds: start.elapsed().as_secs_f64(),
+        });
+        Ok(rebuilt)
     }
 }
 
 impl Partitioner for Contact {
-    /// Splits the scene along its contacts ([`Contact::split_scene`]); a scene split already is
-    /// returned as it is.
+    /// Splits the scene where its faces meet ([`Contact::split_scene`]); a scene split already
+    /// is returned as it is.
     fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
         if scene.is_split_at_contacts() {
             Ok(scene)
@@ -116,7 +195,7 @@ impl Partitioner for Contact {
         }
     }
 
-    /// Refuses a scene not split along its contacts: its maps would silently be the
+    /// Refuses a scene not split where its faces meet: its maps would silently be the
     /// crease-angle ones.
     fn check_scene(&self, scene: &Scene) -> Result<(), PartitionError> {
         if scene.is_split_at_contacts() {
@@ -127,77 +206,171 @@ impl Partitioner for Contact {
     }
 
     fn partition(&self, scene: &Scene) -> MapAssignment {
-        const UNSET: u32 = u32::MAX;
-        let (polygons, _, _) = mesh_faces(scene);
-        let mut part_of_input = Vec::with_capacity(polygons.len());
-        for mesh in scene.meshes() {
-            part_of_input.extend(mesh.half_edge_mesh().faces().map(|f| mesh.part_of_face(f)));
+        let record = scene.contact_record();
+        let no_barriers = BarrierSet::default();
+        let barriers = record.map_or(&no_barriers, |r| r.barriers());
+        let sealed = |part: PartId| record.is_some_and(|r| r.is_sealed(part));
+        let mut groups = UnionFind::new(scene.part_count());
+        // Within each mesh: its own twins (as the crease-angle maps), but never across a
+        // segment where faces meet nor into a sealed piece.
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            let positions = mesh.positions();
+            for face in mesh.faces() {
+                let part = m.part_of_face(face);
+                if sealed(part) {
+                    continue;
+                }
+                for (he, other) in mesh.neighbours(face) {
+                    let other_part = m.part_of_face(other);
+                    if other_part.0 > part.0
+                        && !sealed(other_part)
+                        && mesh.crease_angle(he).is_some_and(|a| a < self.max_angle)
+                        && !barriers.covers_edge(
+                            positions[mesh.origin(he).0 as usize],
+                            positions[mesh.target(he).0 as usize],
+                        )
+                    {
+                        groups.union(part.0, other_part.0);
+                    }
+                }
+            }
         }
+        // Across meshes: the faces with an open edge, welded together, join across flat edges
+        // they share.
         let mut positions = Vec::new();
-        let mut faces = Vec::with_capacity(polygons.len());
-        for polygon in &polygons {
-            let start = positions.len() as u32;
-            positions.extend_from_slice(polygon);
-            faces.push((start..start + polygon.len() as u32).collect::<Vec<u32>>());
+        let mut polygons = Vec::new();
+        let mut parts = Vec::new();
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            for face in mesh.faces() {
+                if mesh.face_half_edges(face).all(|he| mesh.twin(he).is_some()) {
+                    continue;
+                }
+                let start = positions.len() as u32;
+                positions.extend(mesh.face_polygon(face));
+                polygons.push((start..positions.len() as u32).collect::<Vec<u32>>());
+                parts.push(m.part_of_face(face));
+            }
         }
         let options = MeshOptions {
             weld_tolerance: self.tolerance(scene),
         };
-        let mut map_of_part = vec![UNSET; scene.part_count()];
-        let mut next = 0u32;
-        // The scene's meshes were built from the same polygons, so welding them again cannot
-        // fail; if it ever did, every face would fall through to a map of its own below.
-        if let Ok(welded) = HalfEdgeMesh::build(&positions, &faces, &options) {
-            let part = |f: FaceId| part_of_input[welded.source_face(f)];
-            let mut stack: Vec<FaceId> = Vec::new();
-            for seed in welded.faces() {
-                if map_of_part[part(seed).0 as usize] != UNSET {
-                    continue;
-                }
-                map_of_part[part(seed).0 as usize] = next;
-                stack.push(seed);
-                while let Some(face) = stack.pop() {
-                    for (he, other) in welded.neighbours(face) {
-                        let slot = &mut map_of_part[part(other).0 as usize];
-                        if *slot == UNSET && welded.crease_angle(he).is_some_and(|a| a < self.max_angle) {
-                            *slot = next;
-                            stack.push(other);
-                        }
+        // The faces were welded once already, so welding them again cannot fail; if it ever did,
+        // meshes would only not join each other.
+        if let (false, Ok(welded)) = (
+            polygons.is_empty(),
+            HalfEdgeMesh::build(&positions, &polygons, &options),
+        ) {
+            let welded_positions = welded.positions();
+            for face in welded.faces() {
+                let part = parts[welded.source_face(face)];
+                for (he, other) in welded.neighbours(face) {
+                    let other_part = parts[welded.source_face(other)];
+                    if !sealed(part)
+                        && !sealed(other_part)
+                        && welded.crease_angle(he).is_some_and(|a| a < self.max_angle)
+                        && !barriers.covers_edge(
+                            welded_positions[welded.origin(he).0 as usize],
+                            welded_positions[welded.target(he).0 as usize],
+                        )
+                    {
+                        groups.union(part.0, other_part.0);
                     }
                 }
-                next += 1;
             }
         }
-        for slot in map_of_part.iter_mut().filter(|s| **s == UNSET) {
-            *slot = next;
-            next += 1;
+        // Maps numbered in order of each group's first part, as the crease-angle maps are; every
+        // analytic part is a map of its own.
+        let mesh_parts = scene
+            .meshes()
+            .iter()
+            .map(|m| m.half_edge_mesh().face_count())
+            .sum::<usize>();
+        let mut map_of_root = vec![u32::MAX; scene.part_count()];
+        let mut map_of_part = vec![0; scene.part_count()];
+        let mut next = 0u32;
+        for (p, slot) in map_of_part.iter_mut().enumerate() {
+            let root = if p < mesh_parts {
+                groups.find(p as u32) as usize
+            } else {
+                p
+            };
+            if map_of_root[root] == u32::MAX {
+                map_of_root[root] = next;
+                next += 1;
+            }
+            *slot = map_of_root[root];
         }
         MapAssignment {
             map_of_part,
-            map_count: next,
+            map_count: next.max(1),
         }
     }
 }
 
-/// Every mesh face of the scene as a polygon, with its surface and the index of its mesh, in
-/// part order.
-fn mesh_faces(scene: &Scene) -> (Vec<Vec<Vec3>>, Vec<Surface>, Vec<usize>) {
-    let mut polygons = Vec::new();
-    let mut surfaces = Vec::new();
-    let mut mesh_of = Vec::new();
+/// Disjoint sets of parts, with path halving.
+struct UnionFind(Vec<u32>);
+
+impl UnionFind {
+    fn new(n: usize) -> Self {
+        UnionFind((0..n as u32).collect())
+    }
+
+    fn find(&mut self, mut i: u32) -> u32 {
+        while self.0[i as usize] != i {
+            let parent = self.0[i as usize];
+            self.0[i as usize] = self.0[parent as usize];
+            i = parent;
+        }
+        i
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (a, b) = (self.find(a), self.find(b));
+        // The smaller root wins, so a group's root is its first part.
+        match a.cmp(&b) {
+            std::cmp::Ordering::Less => self.0[b as usize] = a,
+            std::cmp::Ordering::Greater => self.0[a as usize] = b,
+            std::cmp::Ordering::Equal => {}
+        }
+    }
+}
+
+/// Every mesh face of a scene as a polygon, in part order, with what the split needs of it.
+struct MeshFaces {
+    polygons: Vec<Vec<Vec3>>,
+    surfaces: Vec<Surface>,
+    mesh_of: Vec<usize>,
+    face_of: Vec<FaceId>,
+    /// The mesh's index when the mesh is a closed solid (every edge shared by two faces).
+    solids: Vec<Option<u32>>,
+}
+
+fn mesh_faces(scene: &Scene) -> MeshFaces {
+    let mut out = MeshFaces {
+        polygons: Vec::new(),
+        surfaces: Vec::new(),
+        mesh_of: Vec::new(),
+        face_of: Vec::new(),
+        solids: Vec::new(),
+    };
     for (m, mesh) in scene.meshes().iter().enumerate() {
         let half_edges = mesh.half_edge_mesh();
+        let closed = half_edges.boundary_edge_count() == 0 && half_edges.non_manifold_edge_count() == 0;
         for face in half_edges.faces() {
-            polygons.push(half_edges.face_polygon(face).collect());
-            surfaces.push(*scene.part_surface(mesh.part_of_face(face)));
-            mesh_of.push(m);
+            out.polygons.push(half_edges.face_polygon(face).collect());
+            out.surfaces.push(*scene.part_surface(mesh.part_of_face(face)));
+            out.mesh_of.push(m);
+            out.face_of.push(face);
+            out.solids.push(closed.then_some(m as u32));
         }
     }
     debug_assert!(
         (0..scene.part_count() as u32)
             .filter(|&p| matches!(scene.part_source(PartId(p)), PartSource::MeshFace { .. }))
             .count()
-            == polygons.len()
+            == out.polygons.len()
     );
-    (polygons, surfaces, mesh_of)
+    out
 }

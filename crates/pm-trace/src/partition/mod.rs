@@ -4,7 +4,7 @@
 mod contact;
 mod crease;
 
-pub use contact::Contact;
+pub use contact::{Contact, ContactRecord};
 pub use crease::CreaseAngle;
 
 use crate::{PartId, Scene, SceneError};

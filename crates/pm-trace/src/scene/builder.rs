@@ -116,8 +116,6 @@ pub struct SceneBuilder {
     pub(super) camera: Option<Camera>,
     pub(super) mesh_options: MeshOptions,
     pub(super) max_triangles: Option<usize>,
-    /// Set by [`crate::Contact::split_scene`] on the builder of the scene it splits.
-    pub(super) split_at_contacts: bool,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -132,12 +130,6 @@ impl std::fmt::Debug for SceneBuilder {
 }
 
 impl SceneBuilder {
-    /// Marks the scene to be built as split along its contacts (by [`crate::Contact`]).
-    pub(crate) fn split_at_contacts(mut self) -> Self {
-        self.split_at_contacts = true;
-        self
-    }
-
     /// Adds a mesh of convex planar polygons (vertex index lists, counter-clockwise seen from
     /// the side the normal points to), all with `surface`.
     pub fn mesh<F: AsRef<[u32]>>(mut self, positions: &[Vec3], faces: &[F], surface: Surface) -> Self {
@@ -465,7 +457,7 @@ impl SceneBuilder {
             epsilon,
             mesh_options: self.mesh_options,
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
-            split_at_contacts: self.split_at_contacts,
+            contacts: None,
             has_shading,
             has_emission_textures,
             has_culling,

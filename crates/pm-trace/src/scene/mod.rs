@@ -13,7 +13,7 @@ pub use shading::VertexAttributes;
 
 use crate::bvh::SceneBvh;
 use crate::shape::{RingSide, Shape};
-use crate::{Camera, Light, Material, SceneError, Surface};
+use crate::{Camera, ContactRecord, Light, Material, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
@@ -127,8 +127,8 @@ pub struct Scene {
     epsilon: f32,
     mesh_options: MeshOptions,
     bvh: Arc<SceneBvh>,
-    /// True when [`crate::Contact`] has split the faces along their contacts.
-    split_at_contacts: bool,
+    /// What [`crate::Contact`] found when it split the faces where they meet; `None` until then.
+    contacts: Option<Arc<ContactRecord>>,
     /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
     has_shading: bool,
     /// True when some mesh has an emission texture (else [`Scene::emission`] skips the lookup).
@@ -182,7 +182,18 @@ impl Scene {
     /// True when [`crate::Contact`] has split this scene's faces along their contacts (its
     /// [`crate::Partitioner::prepare_scene`]).
     pub fn is_split_at_contacts(&self) -> bool {
-        self.split_at_contacts
+        self.contacts.is_some()
+    }
+
+    /// What [`crate::Contact`] found and cut when it split this scene (`None` for a scene it
+    /// has not split).
+    pub fn contact_record(&self) -> Option<&ContactRecord> {
+        self.contacts.as_deref()
+    }
+
+    /// Records that [`crate::Contact`] split this scene, and what it found.
+    pub(crate) fn set_contact_record(&mut self, record: ContactRecord) {
+        self.contacts = Some(Arc::new(record));
     }
 
     /// Bounds of all geometry.

@@ -4,8 +4,10 @@ mod accordion;
 mod cornell;
 mod rooms;
 pub mod scale;
+mod solids;
 
 pub use accordion::ACCORDION_LIGHT_DIRECTION;
+pub use solids::{SOLID_NAMES, solid_rooms_gap};
 
 use crate::{Scene, SceneError};
 use glam::Vec3;
@@ -19,8 +21,9 @@ pub const NAMES: [&str; 5] = [
     "touching-rooms",
 ];
 
-/// Builds the built-in scene `name`, or a scale scene named as [`SCALE_NAMES`] says; an
-/// unknown name is an error listing the valid ones.
+/// Builds the built-in scene `name`: one of the report's [`NAMES`], one of the [`SOLID_NAMES`]
+/// (the lit and unlit rooms built from solid boxes, as modellers build them), or a scale scene
+/// named as [`SCALE_NAMES`] says; an unknown name is an error listing the valid ones.
 ///
 /// ```
 /// let scene = pm_trace::scenes::build("cornell-box")?;
@@ -35,12 +38,18 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
         "colored-rooms" => rooms::colored_rooms(),
         "accordion" => accordion::accordion(),
         "touching-rooms" => rooms::touching_rooms(),
-        _ => build_scale(name).unwrap_or_else(|| {
-            Err(SceneError::UnknownScene {
-                name: name.to_string(),
-                valid: format!("{}, and the scale scenes {SCALE_NAMES}", NAMES.join(", ")),
-            })
-        }),
+        _ => solids::solid_rooms(name)
+            .or_else(|| build_scale(name))
+            .unwrap_or_else(|| {
+                Err(SceneError::UnknownScene {
+                    name: name.to_string(),
+                    valid: format!(
+                        "{}, the solid rooms {}, and the scale scenes {SCALE_NAMES}",
+                        NAMES.join(", "),
+                        SOLID_NAMES.join(", ")
+                    ),
+                })
+            }),
     }
 }
 

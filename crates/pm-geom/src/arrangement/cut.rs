@@ -1,8 +1,34 @@
-//! Cutting one convex face along a contact line into pieces, with the contact points inserted
-//! on the new edges so that the touching face's edge is shared after welding.
+//! Cutting one convex face along the lines where other faces meet it into convex pieces, with
+//! the contact points inserted on the new edges so that the meeting face's edge is shared after
+//! welding.
 
-use super::Cut;
 use glam::Vec3;
+
+/// A cut of one face: a line in the face's plane and the contact points on it.
+#[derive(Clone, Debug)]
+pub(super) struct Cut {
+    pub(super) point: Vec3,
+    pub(super) direction: Vec3,
+    pub(super) contacts: Vec<Vec3>,
+}
+
+/// Adds a cut through `c0`–`c1`, merging it with an existing cut along the same line.
+pub(super) fn add_cut(cuts: &mut Vec<Cut>, c0: Vec3, c1: Vec3, tolerance: f32) {
+    let Some(direction) = (c1 - c0).try_normalize() else {
+        return;
+    };
+    let on_line =
+        |cut: &Cut, p: Vec3| (p - cut.point).reject_from_normalized(cut.direction).length() <= tolerance;
+    if let Some(cut) = cuts.iter_mut().find(|cut| on_line(cut, c0) && on_line(cut, c1)) {
+        cut.contacts.extend([c0, c1]);
+    } else {
+        cuts.push(Cut {
+            point: c0,
+            direction,
+            contacts: vec![c0, c1],
+        });
+    }
+}
 
 /// Cuts every piece crossed by the cut's line in two, adding the cut's contact points to the
 /// new edge on both sides.

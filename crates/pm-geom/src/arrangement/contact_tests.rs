@@ -1,8 +1,15 @@
-//! Contact splitting against hand-made cases: walls on floors, boxes on tables, doorways.
+//! Faces that stand on others, against hand-made cases: walls on floors, boxes on tables,
+//! doorways.
 
 use super::*;
 use crate::polygon_area;
 use glam::vec3;
+
+/// The arrangement with a 10 µm tolerance and no gap.
+fn split<P: AsRef<[Vec3]>>(polygons: &[P]) -> Arrangement {
+    split_polygons_at_intersections(polygons, &[], &ArrangementOptions::new(1e-5, 1e-5))
+        .expect("within bounds")
+}
 
 fn quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> Vec<Vec3> {
     vec![a, b, c, d]
@@ -65,8 +72,8 @@ fn floor_and_wall(z0: f32, z1: f32) -> Vec<Vec<Vec3>> {
 
 #[test]
 fn full_width_wall_cuts_the_floor_in_two() {
-    let split = split_polygons_at_contacts(&floor_and_wall(0.0, 1.0), 1e-5);
-    assert_eq!(split.contact_count, 1);
+    let split = split(&floor_and_wall(0.0, 1.0));
+    assert_eq!(split.counts.meetings(), 1);
     assert_eq!(split.source, vec![0, 0, 1]);
     let areas: Vec<f32> = split.polygons.iter().map(|p| polygon_area(p)).collect();
     assert!(
@@ -77,7 +84,7 @@ fn full_width_wall_cuts_the_floor_in_two() {
 
 #[test]
 fn partial_wall_inserts_its_end_points_into_the_cut() {
-    let split = split_polygons_at_contacts(&floor_and_wall(0.25, 0.75), 1e-5);
+    let split = split(&floor_and_wall(0.25, 0.75));
     assert_eq!(split.polygons.len(), 3);
     for half in &split.polygons[..2] {
         // 4 corners + the two contact points on the cut edge.
@@ -103,8 +110,8 @@ fn wall_on_the_floor_border_is_not_a_contact() {
         vec3(0.0, 1.0, 1.0),
         vec3(0.0, 0.0, 1.0),
     );
-    let split = split_polygons_at_contacts(&[floor, wall], 1e-5);
-    assert_eq!(split.contact_count, 0);
+    let split = split(&[floor, wall]);
+    assert_eq!(split.counts.meetings(), 0);
     assert_eq!(split.polygons.len(), 2);
 }
 
@@ -114,13 +121,13 @@ fn wall_above_the_floor_is_not_a_contact() {
     for p in &mut input[1] {
         p.y += 0.01;
     }
-    assert_eq!(split_polygons_at_contacts(&input, 1e-5).contact_count, 0);
+    assert_eq!(split(&input).counts.meetings(), 0);
 }
 
 #[test]
 fn box_on_a_floor_cuts_nine_pieces_and_keeps_the_area() {
     let input = floor_with_box();
-    let split = split_polygons_at_contacts(&input, 1e-5);
+    let split = split(&input);
     let floor_pieces: Vec<&Vec<Vec3>> = split
         .polygons
         .iter()
@@ -150,7 +157,7 @@ fn mesh_of(polygons: &[Vec<Vec3>]) -> crate::HalfEdgeMesh {
 
 /// For each point on the floor (y = 0, input polygon 0), the group of floor pieces it lies
 /// in, where groups are pieces connected across twinned, flat edges.
-fn floor_groups_at(split: &ContactSplit, points: &[Vec3]) -> Vec<usize> {
+fn floor_groups_at(split: &Arrangement, points: &[Vec3]) -> Vec<usize> {
     let mesh = mesh_of(&split.polygons);
     assert_eq!(mesh.face_count(), split.polygons.len());
     let mut group: Vec<usize> = (0..mesh.face_count()).collect();
@@ -233,7 +240,7 @@ fn thick_wall(spans: &[(f32, f32)]) -> Vec<Vec<Vec3>> {
 
 #[test]
 fn full_width_wall_separates_the_floor_halves() {
-    let split = split_polygons_at_contacts(&thick_wall(&[(0.0, 1.0)]), 1e-5);
+    let split = split(&thick_wall(&[(0.0, 1.0)]));
     let [left, under, right] = floor_groups_at(
         &split,
         &[vec3(0.5, 0.0, 0.5), vec3(1.01, 0.0, 0.5), vec3(1.5, 0.0, 0.5)],
@@ -245,7 +252,7 @@ fn full_width_wall_separates_the_floor_halves() {
 
 #[test]
 fn doorway_keeps_the_floor_one_group() {
-    let split = split_polygons_at_contacts(&thick_wall(&[(0.0, 0.4), (0.6, 1.0)]), 1e-5);
+    let split = split(&thick_wall(&[(0.0, 0.4), (0.6, 1.0)]));
     let groups = floor_groups_at(
         &split,
         &[
@@ -272,7 +279,7 @@ fn doorway_keeps_the_floor_one_group() {
 #[test]
 fn box_on_a_floor_cuts_out_its_footprint_only() {
     let input = floor_with_box();
-    let split = split_polygons_at_contacts(&input, 1e-5);
+    let split = split(&input);
     // The pieces around the box are one group; the footprint is cut out.
     let around = [
         vec3(0.5, 0.0, 0.5),

@@ -1,0 +1,93 @@
+//! Pieces inside closed solids: a ray from each piece of a cut face counts how often it leaves
+//! and enters every other closed solid (signed by the solid's outward normals); a piece with a
+//! winding number of at least one in some solid lies where no light reaches.
+
+use super::pair::Face;
+use crate::Aabb;
+use crate::bounds_bvh::BoundsBvh;
+use glam::Vec3;
+
+/// A direction off every axis and diagonal, added to the piece's normal so that the ray does
+/// not run along the edges of axis-aligned geometry.
+const SKEW: Vec3 = Vec3::new(1.31e-3, 2.87e-3, 1.73e-3);
+
+/// Sets `sealed[p]` for each piece of a cut face that lies inside a closed solid other than
+/// its own.
+pub(super) fn mark_sealed<P: AsRef<[Vec3]>>(
+    pieces: &[Vec<Vec3>],
+    source: &[usize],
+    was_cut: &[bool],
+    polygons: &[P],
+    solids: &[Option<u32>],
+    faces: &[Option<Face>],
+    sealed: &mut [bool],
+) {
+    let boxes: Vec<Aabb> = polygons
+        .iter()
+        .zip(faces)
+        .map(|(p, f)| match f {
+            Some(_) => Aabb::from_points(p.as_ref()),
+            None => Aabb::EMPTY,
+        })
+        .collect();
+    let everything = boxes
+        .iter()
+        .filter(|b| !b.is_empty())
+        .fold(Aabb::EMPTY, |a, &b| a.union(b));
+    let reach = everything.diagonal() * 2.0;
+    let live: Vec<u32> = (0..boxes.len() as u32)
+        .filter(|&i| faces[i as usize].is_some() && solids.get(i as usize).copied().flatten().is_some())
+        .collect();
+    let live_boxes: Vec<Aabb> = live.iter().map(|&i| boxes[i as usize]).collect();
+    let bvh = BoundsBvh::build(&live_boxes);
+    let mut winding: Vec<(u32, i32)> = Vec::new();
+    for (p, piece) in pieces.iter().enumerate() {
+        let s = source[p];
+        if !was_cut[s] {
+            continue;
+        }
+        let Some(own) = &faces[s] else { continue };
+        let own_solid = solids.get(s).copied().flatten();
+        let start = piece.iter().copied().sum::<Vec3>() / piece.len() as f32;
+        let direction = (own.normal + SKEW).normalize();
+        let end = start + direction * reach;
+        let ray_box = Aabb::from_points(&[start, end]);
+        winding.clear();
+        bvh.for_each_candidate(&ray_box, |m| {
+            let k = live[m as usize] as usize;
+            let solid = solids[k].expect("live faces bound solids");
+            if Some(solid) == own_solid || k == s || !live_boxes[m as usize].overlaps(&ray_box) {
+                return;
+            }
+            let Some(face) = &faces[k] else { return };
+            if let Some(sign) = crossing(face, start, direction) {
+                match winding.iter_mut().find(|(id, _)| *id == solid) {
+                    Some((_, w)) => *w += sign,
+                    None => winding.push((solid, sign)),
+                }
+            }
+        });
+        sealed[p] = winding.iter().any(|&(_, w)| w >= 1);
+    }
+}
+
+/// +1 when the ray leaves through `face` (along its normal), −1 when it enters, `None` when it
+/// misses it or starts on it.
+fn crossing(face: &Face, start: Vec3, direction: Vec3) -> Option<i32> {
+    let along = face.normal.dot(direction);
+    if along == 0.0 {
+        return None;
+    }
+    let t = (face.offset - face.normal.dot(start)) / along;
+    let scale = start.abs().max_element().max(1.0);
+    if t <= scale * 1e-5 {
+        return None;
+    }
+    let x = start + direction * t;
+    let n = face.vertices.len();
+    let inside = (0..n).all(|i| {
+        let (a, b) = (face.vertices[i], face.vertices[(i + 1) % n]);
+        face.normal.cross(b - a).dot(x - a) >= 0.0
+    });
+    inside.then_some(if along > 0.0 { 1 } else { -1 })
+}

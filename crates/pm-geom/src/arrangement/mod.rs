@@ -1,0 +1,500 @@
+//! Mesh arrangement of convex faces: every pair of faces that pierce, touch, overlap in one plane
+//! or nearly touch is found, and each face is cut along those segments into convex pieces, so
+//! that every meeting line becomes an edge of the pieces on all its sides and can be kept out of
+//! any photon map's flood fill.
+//!
+//! In the spirit of libigl's `remesh_self_intersections`, CGAL's autorefine and Zhou et al.,
+//! *Mesh Arrangements for Solid Geometry* (SIGGRAPH 2016), with one scene-relative tolerance
+//! instead of exact constructions: a point within the tolerance of a plane, a line or another
+//! point lies on it. Every decision is a comparison of a distance with that tolerance, and the
+//! tolerance is kept far above the rounding of the `f32` coordinates (at least 8 units in the
+//! last place of the largest one), so no sign is decided by rounding noise.
+
+mod barrier;
+#[cfg(test)]
+mod contact_tests;
+mod cut;
+mod inside;
+mod pair;
+#[cfg(test)]
+mod tests;
+
+pub use barrier::BarrierSet;
+
+use crate::bounds_bvh::BoundsBvh;
+use crate::{Aabb, polygon_vector_area};
+use cut::{Cut, add_cut, apply_cut, insert_points_on_edges};
+use glam::Vec3;
+use pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
+
+/// Tolerances and bounds of [`split_polygons_at_intersections`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArrangementOptions {
+    /// Distance (metres) under which points coincide and a point lies on a plane or a line; a
+    /// good choice is `1e-5` × the scene's diagonal, and a mesh welded from the output should
+    /// use the same weld tolerance.
+    pub tolerance: f32,
+    /// Distance (metres, at least `tolerance`) under which two faces that do not meet count as
+    /// touching: a wall that stops this close to a floor cuts the floor as if it stood on it.
+    pub gap: f32,
+    /// Most candidate face pairs (faces whose padded bounds overlap) examined.
+    pub max_pairs: usize,
+    /// Most output pieces, and most cut segments.
+    pub max_pieces: usize,
+    /// Most vertices over all output pieces.
+    pub max_vertices: usize,
+}
+
+impl ArrangementOptions {
+    /// Default [`Self::max_pairs`]: 16 million pairs, a few seconds of work.
+    pub const DEFAULT_MAX_PAIRS: usize = 16_000_000;
+    /// Default [`Self::max_pieces`]: 2 million pieces.
+    pub const DEFAULT_MAX_PIECES: usize = 2_000_000;
+    /// Default [`Self::max_vertices`]: 16 million vertices (192 MB of positions).
+    pub const DEFAULT_MAX_VERTICES: usize = 16_000_000;
+
+    /// `tolerance` and `gap` with the default bounds.
+    pub fn new(tolerance: f32, gap: f32) -> Self {
+        ArrangementOptions {
+            tolerance,
+            gap,
+            max_pairs: Self::DEFAULT_MAX_PAIRS,
+            max_pieces: Self::DEFAULT_MAX_PIECES,
+            max_vertices: Self::DEFAULT_MAX_VERTICES,
+        }
+    }
+}
+
+/// How many meetings of each kind [`split_polygons_at_intersections`] found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct IntersectionCounts {
+    /// Face pairs passing through each other.
+    pub piercing: usize,
+    /// Face pairs where an edge of one lies in the other, across its inside.
+    pub in_plane: usize,
+    /// Face pairs lying in one plane and overlapping.
+    pub coplanar_overlap: usize,
+    /// Face pairs closer than the gap tolerance without meeting.
+    pub near_contact: usize,
+    /// Pieces dropped because another face covers them in the same plane, facing the same way
+    /// (duplicated faces: only the first is kept).
+    pub duplicate_pieces: usize,
+    /// Pieces inside a closed solid, where no light reaches.
+    pub sealed_pieces: usize,
+}
+
+impl IntersectionCounts {
+    /// Meetings of every kind (not counting dropped or sealed pieces).
+    pub fn meetings(&self) -> usize {
+        self.piercing + self.in_plane + self.coplanar_overlap + self.near_contact
+    }
+}
+
+/// The result of [`split_polygons_at_intersections`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Arrangement {
+    /// The convex output pieces, each with extra collinear vertices where other pieces'
+    /// vertices lie on its edges.
+    pub polygons: Vec<Vec<Vec3>>,
+    /// For each piece, the index of the input polygon it lies in.
+    pub source: Vec<usize>,
+    /// For each piece, whether it lies inside a closed solid (see the `solids` argument).
+    pub sealed: Vec<bool>,
+    /// Every segment along which faces meet and no photon map may join: piercing and in-plane
+    /// contacts, near-contacts, and overlaps of faces facing opposite ways. Overlaps of faces
+    /// facing the same way are not barriers (the hidden copy is dropped instead).
+    pub barriers: Vec<[Vec3; 2]>,
+    /// What was found.
+    pub counts: IntersectionCounts,
+}
+
+/// Why [`split_polygons_at_intersections`] stopped: a bound was reached before it allocated
+/// more.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ArrangementError {
+    /// More candidate face pairs than [`ArrangementOptions::max_pairs`].
+    #[error("more than {limit} pairs of faces overlap: too many intersecting faces to resolve")]
+    TooManyPairs {
+        /// The bound.
+        limit: usize,
+    },
+    /// More pieces or cut segments than [`ArrangementOptions::max_pieces`].
+    #[error("cutting the faces where they meet makes more than {limit} pieces")]
+    TooManyPieces {
+        /// The bound.
+        limit: usize,
+    },
+    /// More vertices than [`ArrangementOptions::max_vertices`].
+    #[error("cutting the faces where they meet makes more than {limit} vertices")]
+    TooManyVertices {
+        /// The bound.
+        limit: usize,
+    },
+}
+
+/// Cuts the convex planar `polygons` wherever they meet each other.
+///
+/// Every pair of faces whose bounds (padded by the gap) overlap is examined (candidates come
+/// from a bounding-volume hierarchy, so the cost grows with `n log n` plus the pairs found, not
+/// with `n²`): faces that pierce each other are both cut along their common segment; a face
+/// another face's edge lies in (a wall standing on a floor) is cut along that edge; faces in
+/// one plane that overlap are cut along each other's outline, and where they face the same way
+/// only the first keeps the overlapped part (the later copies' pieces are dropped); a face that
+/// another face's edge comes within `gap` of is cut along that edge's projection, and so is a
+/// face that a parallel face facing it comes within `gap` of. A parallel face facing the same
+/// way a little in front of another (a lamp mounted under a ceiling) is left alone. Cuts run as
+/// full lines across a face, so the pieces stay convex; the meeting segments themselves are
+/// returned as [`Arrangement::barriers`]. Vertices a cut makes are then inserted into every
+/// edge they lie on, so that welding the output links pieces on both sides of a cut.
+///
+/// `solids` gives, for each polygon, the closed solid it bounds (its faces oriented outwards),
+/// or `None`; it may be empty. A piece of a cut face that lies inside another closed solid is
+/// marked [`Arrangement::sealed`].
+///
+/// Degenerate polygons (fewer than 3 vertices, zero area, non-finite) pass through unchanged.
+/// The area of every input polygon is kept by its pieces, except duplicates dropped.
+pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
+    polygons: &[P],
+    solids: &[Option<u32>],
+    options: &ArrangementOptions,
+) -> Result<Arrangement, ArrangementError> {
+    let largest = polygons
+        .iter()
+        .flat_map(|p| p.as_ref().iter())
+        .filter(|p| p.is_finite())
+        .fold(0.0f32, |m, p| m.max(p.abs().max_element()));
+    let tolerance = options
+        .tolerance
+        .max(largest * 8.0 * f32::EPSILON)
+        .max(f32::MIN_POSITIVE);
+    let gap = options.gap.max(tolerance);
+    let duplicate = exact_duplicates(polygons);
+    let faces: Vec<Option<Face>> = polygons
+        .iter()
+        .zip(&duplicate)
+        .map(|(p, &dup)| if dup { None } else { face_of(p.as_ref(), gap) })
+        .collect();
+
+    // Candidate pairs and how each meets.
+    let mut cuts: Vec<Vec<Cut>> = vec![Vec::new(); polygons.len()];
+    let mut barriers: Vec<[Vec3; 2]> = Vec::new();
+    let mut hidden_by: Vec<(usize, usize)> = Vec::new();
+    let mut counts = IntersectionCounts::default();
+    let mut cut_count = 0usize;
+    let mut scratch = PairScratch::default();
+    let mut outcome = PairOutcome::default();
+    let mut pair_count = 0usize;
+    let mut failure = None;
+    for_each_candidate_pair(&faces, |i, j| {
+        if failure.is_some() {
+            return;
+        }
+        pair_count += 1;
+        if pair_count > options.max_pairs {
+            failure = Some(ArrangementError::TooManyPairs {
+                limit: options.max_pairs,
+            });
+            return;
+        }
+        let (Some(a), Some(b)) = (&faces[i], &faces[j]) else {
+            return;
+        };
+        meet(a, b, tolerance, gap, &mut scratch, &mut outcome);
+        let Some(meeting) = outcome.meeting else {
+            return;
+        };
+        match meeting {
+            Meeting::Piercing => counts.piercing += 1,
+            Meeting::InPlane => counts.in_plane += 1,
+            Meeting::CoplanarOverlap => counts.coplanar_overlap += 1,
+            Meeting::NearContact => counts.near_contact += 1,
+        }
+        if let Some(first_hidden) = outcome.first_hidden {
+            cut_count += 1;
+            hidden_by.push(if first_hidden { (i, j) } else { (j, i) });
+        }
+        for (face, list) in [(i, &outcome.on_first), (j, &outcome.on_second)] {
+            let Some(target) = &faces[face] else { continue };
+            for &c in list {
+                let c = if c.barrier {
+                    close_barrier_ends(c, target, tolerance, gap)
+                } else {
+                    c
+                };
+                cut_count += 1;
+                if cut_count > options.max_pieces {
+                    failure = Some(ArrangementError::TooManyPieces {
+                        limit: options.max_pieces,
+                    });
+                    return;
+                }
+                add_cut(&mut cuts[face], c.a, c.b, tolerance);
+                if c.barrier {
+                    barriers.push([c.a, c.b]);
+                }
+            }
+        }
+    });
+    if let Some(error) = failure {
+        return Err(error);
+    }
+
+    // Cut every face met by another into convex pieces.
+    let mut budget = Budget::new(options);
+    let mut pieces: Vec<Vec<Vec3>> = Vec::with_capacity(polygons.len());
+    let mut source = Vec::with_capacity(polygons.len());
+    let mut was_cut = vec![false; polygons.len()];
+    for (index, polygon) in polygons.iter().enumerate() {
+        let polygon = polygon.as_ref();
+        if duplicate[index] {
+            counts.duplicate_pieces += 1;
+            counts.coplanar_overlap += 1;
+            continue;
+        }
+        match &faces[index] {
+            Some(face) if !cuts[index].is_empty() => {
+                let mut current = vec![polygon.to_vec()];
+                for cut in &cuts[index] {
+                    current = apply_cut(current, cut, face.normal, tolerance);
+                    budget.check(pieces.len() + current.len(), 0)?;
+                }
+                was_cut[index] = current.len() > 1;
+                for piece in current {
+                    budget.add(&piece)?;
+                    pieces.push(piece);
+                    source.push(index);
+                }
+            }
+            _ => {
+                budget.add(polygon)?;
+                pieces.push(polygon.to_vec());
+                source.push(index);
+            }
+        }
+    }
+    if was_cut.iter().any(|&c| c) {
+        resolve_t_junctions(&mut pieces, &source, &was_cut, tolerance, &mut budget)?;
+    }
+
+    // Drop the hidden copies of overlapping same-facing faces.
+    let mut keep = vec![true; pieces.len()];
+    if !hidden_by.is_empty() {
+        let mut first_piece = vec![usize::MAX; polygons.len()];
+        for (p, &s) in source.iter().enumerate().rev() {
+            first_piece[s] = p;
+        }
+        for &(hidden, cover) in &hidden_by {
+            let Some(cover_face) = &faces[cover] else { continue };
+            let start = first_piece[hidden];
+            if start == usize::MAX {
+                continue;
+            }
+            for p in (start..pieces.len()).take_while(|&p| source[p] == hidden) {
+                if keep[p] && covered_by(&pieces[p], cover_face, tolerance, gap) {
+                    keep[p] = false;
+                    counts.duplicate_pieces += 1;
+                }
+            }
+        }
+    }
+    let mut sealed = vec![false; pieces.len()];
+    if !solids.is_empty() && was_cut.iter().any(|&c| c) {
+        inside::mark_sealed(&pieces, &source, &was_cut, polygons, solids, &faces, &mut sealed);
+    }
+
+    let mut out = Arrangement {
+        barriers,
+        ..Arrangement::default()
+    };
+    for (p, piece) in pieces.into_iter().enumerate() {
+        if keep[p] {
+            out.polygons.push(piece);
+            out.source.push(source[p]);
+            out.sealed.push(sealed[p]);
+        }
+    }
+    counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
+    out.counts = counts;
+    Ok(out)
+}
+
+/// Counts pieces and vertices against the bounds before they are kept.
+struct Budget {
+    pieces: usize,
+    vertices: usize,
+    max_pieces: usize,
+    max_vertices: usize,
+}
+
+impl Budget {
+    fn new(options: &ArrangementOptions) -> Self {
+        Budget {
+            pieces: 0,
+            vertices: 0,
+            max_pieces: options.max_pieces,
+            max_vertices: options.max_vertices,
+        }
+    }
+
+    fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
+        if pieces > self.max_pieces {
+            return Err(ArrangementError::TooManyPieces {
+                limit: self.max_pieces,
+            });
+        }
+        if vertices > self.max_vertices {
+            return Err(ArrangementError::TooManyVertices {
+                limit: self.max_vertices,
+            });
+        }
+        Ok(())
+    }
+
+    fn add(&mut self, piece: &[Vec3]) -> Result<(), ArrangementError> {
+        self.check(self.pieces + 1, self.vertices + piece.len())?;
+        self.pieces += 1;
+        self.vertices += piece.len();
+        Ok(())
+    }
+}
+
+/// For each polygon, whether an earlier one has the same vertices in the same cyclic order
+/// (an exact copy, facing the same way). Polygons are sorted by a hash of their vertices
+/// (starting at the smallest), and only those with equal hashes are compared.
+fn exact_duplicates<P: AsRef<[Vec3]>>(polygons: &[P]) -> Vec<bool> {
+    let hash = |p: &[Vec3]| {
+        rotated(p).flatten().fold(0xcbf2_9ce4_8422_2325u64, |h, bits| {
+            (h ^ bits as u64).wrapping_mul(0x0100_0000_01b3)
+        })
+    };
+    let mut order: Vec<(u64, usize)> = polygons
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (hash(p.as_ref()), i))
+        .collect();
+    order.sort_unstable();
+    let mut duplicate = vec![false; polygons.len()];
+    for run in order.chunk_by(|a, b| a.0 == b.0).filter(|run| run.len() > 1) {
+        for (k, &(_, i)) in run.iter().enumerate() {
+            let p = polygons[i].as_ref();
+            duplicate[i] = run.iter().enumerate().any(|(m, &(_, j))| {
+                let q = polygons[j].as_ref();
+                m != k && j < i && q.len() == p.len() && rotated(q).eq(rotated(p))
+            });
+        }
+    }
+    duplicate
+}
+
+/// The vertices of `p` as bits, starting at the smallest, in order.
+fn rotated(p: &[Vec3]) -> impl Iterator<Item = [u32; 3]> + '_ {
+    let start = (0..p.len())
+        .min_by_key(|&i| p[i].to_array().map(f32::to_bits))
+        .unwrap_or(0);
+    (0..p.len()).map(move |k| p[(start + k) % p.len()].to_array().map(f32::to_bits))
+}
+
+/// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.
+fn face_of(polygon: &[Vec3], pad: f32) -> Option<Face<'_>> {
+    if polygon.len() < 3 || polygon.iter().any(|p| !p.is_finite()) {
+        return None;
+    }
+    let normal = polygon_vector_area(polygon).try_normalize()?;
+    let bounds = Aabb::from_points(polygon);
+    let pad = Vec3::splat(pad);
+    Some(Face {
+        vertices: polygon,
+        normal,
+        offset: normal.dot(polygon[0]),
+        bounds: Aabb::new(bounds.min - pad, bounds.max + pad),
+    })
+}
+
+/// Calls `f(i, j)`, `i < j`, for every pair of faces whose padded bounds overlap, in a fixed
+/// order, through a bounding-volume hierarchy over the bounds.
+fn for_each_candidate_pair(faces: &[Option<Face>], mut f: impl FnMut(usize, usize)) {
+    let live: Vec<(usize, Aabb)> = faces
+        .iter()
+        .enumerate()
+        .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
+        .collect();
+    let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
+    let bvh = BoundsBvh::build(&boxes);
+    let mut partners: Vec<u32> = Vec::new();
+    for (n, &(i, bounds)) in live.iter().enumerate() {
+        partners.clear();
+        bvh.for_each_candidate(&bounds, |m| {
+            if m as usize > n && bounds.overlaps(&boxes[m as usize]) {
+                partners.push(m);
+            }
+        });
+        partners.sort_unstable();
+        for &m in &partners {
+            f(i, live[m as usize].0);
+        }
+    }
+}
+
+/// Inserts every vertex of a cut face's pieces into each edge of any piece it lies inside, so
+/// that the pieces on both sides of a cut, and the faces next to a cut face, share vertices.
+fn resolve_t_junctions(
+    pieces: &mut [Vec<Vec3>],
+    source: &[usize],
+    was_cut: &[bool],
+    tolerance: f32,
+    budget: &mut Budget,
+) -> Result<(), ArrangementError> {
+    let points: Vec<Vec3> = pieces
+        .iter()
+        .zip(source)
+        .filter(|(_, s)| was_cut[**s])
+        .flat_map(|(p, _)| p.iter().copied())
+        .collect();
+    let pad = Vec3::splat(tolerance);
+    let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p - pad, p + pad)).collect();
+    let all = boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x));
+    let bvh = BoundsBvh::build(&boxes);
+    let mut found: Vec<Vec3> = Vec::new();
+    for piece in pieces.iter_mut() {
+        let bounds = Aabb::from_points(piece);
+        let bounds = Aabb::new(bounds.min - pad, bounds.max + pad);
+        if !bounds.overlaps(&all) {
+            continue;
+        }
+        found.clear();
+        let n = piece.len();
+        for i in 0..n {
+            let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
+            let edge = Aabb::new(edge.min - pad, edge.max + pad);
+            bvh.for_each_candidate(&edge, |k| {
+                if boxes[k as usize].overlaps(&edge) {
+                    found.push(points[k as usize]);
+                }
+            });
+        }
+        if found.is_empty() {
+            continue;
+        }
+        let before = piece.len();
+        insert_points_on_edges(piece, &found, tolerance);
+        budget.check(budget.pieces, budget.vertices + piece.len() - before)?;
+        budget.vertices += piece.len() - before;
+    }
+    Ok(())
+}
+
+/// Whether `piece` lies in (or within `gap` of) `cover`'s plane and inside its outline.
+fn covered_by(piece: &[Vec3], cover: &Face, tolerance: f32, gap: f32) -> bool {
+    let centroid = piece.iter().copied().sum::<Vec3>() / piece.len() as f32;
+    let distance = cover.normal.dot(centroid) - cover.offset;
+    if distance.abs() > gap {
+        return false;
+    }
+    let c = centroid - cover.normal * distance;
+    let n = cover.vertices.len();
+    (0..n).all(|i| {
+        let (a, b) = (cover.vertices[i], cover.vertices[(i + 1) % n]);
+        cover.normal.cross(b - a).normalize_or_zero().dot(c - a) >= -tolerance
+    })
+}

@@ -1,0 +1,396 @@
+//! How two convex faces meet: the segments along which each must be cut, found from the signed
+//! distances of each face's vertices to the other's plane (piercing, an edge lying in the other
+//! face, an overlap in one plane, or a near-contact closer than the gap tolerance).
+
+use crate::Aabb;
+use glam::Vec3;
+
+/// Faces whose normals are closer than this (in `1 − |cos|`, about 0.8°) count as parallel.
+const PARALLEL: f32 = 1e-4;
+
+/// One input face: its vertices, unit normal, plane offset and bounds padded by the gap.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Face<'a> {
+    pub(super) vertices: &'a [Vec3],
+    pub(super) normal: Vec3,
+    pub(super) offset: f32,
+    pub(super) bounds: Aabb,
+}
+
+impl Face<'_> {
+    fn distance(&self, p: Vec3) -> f32 {
+        self.normal.dot(p) - self.offset
+    }
+
+    fn project(&self, p: Vec3) -> Vec3 {
+        p - self.normal * self.distance(p)
+    }
+
+    /// Distance from `p` (in or near the face's plane) to the face's border.
+    fn distance_to_border(&self, p: Vec3) -> f32 {
+        let n = self.vertices.len();
+        (0..n)
+            .map(|i| distance_to_segment(p, self.vertices[i], self.vertices[(i + 1) % n]))
+            .fold(f32::INFINITY, f32::min)
+    }
+}
+
+/// What kind of meeting a cut comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Meeting {
+    /// The faces pass through each other: the segment is inside both.
+    Piercing,
+    /// An edge of one face lies in the other's plane, across its inside (a wall standing on a
+    /// floor).
+    InPlane,
+    /// The faces lie in one plane and overlap.
+    CoplanarOverlap,
+    /// The faces do not meet but come closer than the gap tolerance.
+    NearContact,
+}
+
+/// A segment along which one face is cut; `barrier` when no photon map may cross it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Constraint {
+    pub(super) a: Vec3,
+    pub(super) b: Vec3,
+    pub(super) barrier: bool,
+}
+
+/// What one pair gave: cuts on each face, the kind of meeting, and for coplanar faces facing
+/// the same way, that the second overlaps the first (its overlapped pieces are duplicates).
+#[derive(Debug, Default)]
+pub(super) struct PairOutcome {
+    pub(super) on_first: Vec<Constraint>,
+    pub(super) on_second: Vec<Constraint>,
+    pub(super) meeting: Option<Meeting>,
+    /// Same-facing overlap in one plane: `Some(true)` when the first face's overlapped part is
+    /// hidden by the second, `Some(false)` the other way round.
+    pub(super) first_hidden: Option<bool>,
+}
+
+/// Reusable buffers for [`meet`].
+#[derive(Debug, Default)]
+pub(super) struct PairScratch {
+    da: Vec<f32>,
+    db: Vec<f32>,
+    clip: Vec<Vec3>,
+    clip_next: Vec<Vec3>,
+    section_a: Vec<Vec3>,
+    section_b: Vec<Vec3>,
+}
+
+/// Finds how faces `a` and `b` meet, with `tolerance` the distance under which points coincide
+/// and `gap` (≥ `tolerance`) the distance under which faces count as touching.
+pub(super) fn meet(
+    a: &Face,
+    b: &Face,
+    tolerance: f32,
+    gap: f32,
+    scratch: &mut PairScratch,
+    out: &mut PairOutcome,
+) {
+    out.on_first.clear();
+    out.on_second.clear();
+    out.meeting = None;
+    out.first_hidden = None;
+    scratch.da.clear();
+    scratch.da.extend(a.vertices.iter().map(|&p| b.distance(p)));
+    scratch.db.clear();
+    scratch.db.extend(b.vertices.iter().map(|&p| a.distance(p)));
+    let beyond = |d: &[f32]| d.iter().all(|&x| x > gap) || d.iter().all(|&x| x < -gap);
+    if beyond(&scratch.da) || beyond(&scratch.db) {
+        return;
+    }
+    let cos = a.normal.dot(b.normal);
+    let max_a = scratch.da.iter().fold(0.0f32, |m, d| m.max(d.abs()));
+    let max_b = scratch.db.iter().fold(0.0f32, |m, d| m.max(d.abs()));
+    if 1.0 - cos.abs() <= PARALLEL && max_a <= gap && max_b <= gap {
+        meet_in_plane(a, b, cos, max_a.max(max_b), tolerance, scratch, out);
+        return;
+    }
+    section(a.vertices, &scratch.da, b, tolerance, &mut scratch.section_a);
+    section(b.vertices, &scratch.db, a, tolerance, &mut scratch.section_b);
+    match (scratch.section_a.is_empty(), scratch.section_b.is_empty()) {
+        (false, false) => meet_across(a, b, tolerance, scratch, out),
+        (true, _) => near_contact(
+            a,
+            &scratch.da,
+            b,
+            tolerance,
+            gap,
+            &mut out.on_second,
+            &mut out.meeting,
+        ),
+        (false, true) => near_contact(
+            b,
+            &scratch.db,
+            a,
+            tolerance,
+            gap,
+            &mut out.on_first,
+            &mut out.meeting,
+        ),
+    }
+}
+
+/// Faces in planes that cross: the common part of each face's section by the other's plane.
+fn meet_across(a: &Face, b: &Face, tolerance: f32, scratch: &PairScratch, out: &mut PairOutcome) {
+    let Some(line) = a.normal.cross(b.normal).try_normalize() else {
+        return;
+    };
+    let extent = |points: &[Vec3]| {
+        let (mut lo, mut hi) = ((f32::INFINITY, Vec3::ZERO), (f32::NEG_INFINITY, Vec3::ZERO));
+        for &p in points {
+            let t = line.dot(p);
+            if t < lo.0 {
+                lo = (t, p);
+            }
+            if t > hi.0 {
+                hi = (t, p);
+            }
+        }
+        (lo, hi)
+    };
+    let ((a0, pa0), (a1, pa1)) = extent(&scratch.section_a);
+    let ((b0, pb0), (b1, pb1)) = extent(&scratch.section_b);
+    let (s0, p0) = if a0 >= b0 { (a0, pa0) } else { (b0, pb0) };
+    let (s1, p1) = if a1 <= b1 { (a1, pa1) } else { (b1, pb1) };
+    if s1 - s0 <= tolerance {
+        return;
+    }
+    let middle = (p0 + p1) * 0.5;
+    let on_border_a = a.distance_to_border(middle) <= tolerance;
+    let on_border_b = b.distance_to_border(middle) <= tolerance;
+    if on_border_a && on_border_b {
+        // Edge against edge: the faces share (part of) an edge, which welding links.
+        return;
+    }
+    let constraint = Constraint {
+        a: p0,
+        b: p1,
+        barrier: true,
+    };
+    if !on_border_a {
+        out.on_first.push(constraint);
+    }
+    if !on_border_b {
+        out.on_second.push(constraint);
+    }
+    out.meeting = Some(if on_border_a || on_border_b {
+        Meeting::InPlane
+    } else {
+        Meeting::Piercing
+    });
+}
+
+/// Parallel faces within the gap of each other: their overlap, and the overlap's edges that
+/// run inside each face as cuts of that face.
+fn meet_in_plane(
+    a: &Face,
+    b: &Face,
+    cos: f32,
+    separation: f32,
+    tolerance: f32,
+    scratch: &mut PairScratch,
+    out: &mut PairOutcome,
+) {
+    if cos > 0.0 && separation > tolerance {
+        // A panel or a lamp mounted a little in front of a wall, facing the same way: the
+        // slit behind it is left alone (light barely enters it, and nothing shows it).
+        return;
+    }
+    if separated(a, b, tolerance) || separated(b, a, tolerance) {
+        return; // side by side in one plane (neighbours across a shared edge, most often)
+    }
+    // A projected into B's plane, clipped to B's inward half-planes.
+    scratch.clip.clear();
+    scratch.clip.extend(a.vertices.iter().map(|&p| b.project(p)));
+    let n = b.vertices.len();
+    for i in 0..n {
+        let (p, q) = (b.vertices[i], b.vertices[(i + 1) % n]);
+        let Some(inward) = b.normal.cross(q - p).try_normalize() else {
+            continue;
+        };
+        clip_by_half_plane(&scratch.clip, inward, inward.dot(p), &mut scratch.clip_next);
+        std::mem::swap(&mut scratch.clip, &mut scratch.clip_next);
+        if scratch.clip.len() < 3 {
+            return;
+        }
+    }
+    let overlap = &scratch.clip;
+    let area = crate::polygon_area(overlap);
+    let size = Aabb::from_points(overlap).diagonal();
+    if area <= tolerance * size {
+        return; // touching along an edge or at a point
+    }
+    let barrier = cos < 0.0;
+    let m = overlap.len();
+    for i in 0..m {
+        let (p, q) = (overlap[i], overlap[(i + 1) % m]);
+        if p.distance(q) <= tolerance {
+            continue;
+        }
+        let middle = (p + q) * 0.5;
+        if b.distance_to_border(middle) > tolerance {
+            out.on_second.push(Constraint { a: p, b: q, barrier });
+        }
+        let (pa, qa) = (a.project(p), a.project(q));
+        if a.distance_to_border(a.project(middle)) > tolerance {
+            out.on_first.push(Constraint {
+                a: pa,
+                b: qa,
+                barrier,
+            });
+        }
+    }
+    out.meeting = Some(if separation <= tolerance {
+        Meeting::CoplanarOverlap
+    } else {
+        Meeting::NearContact
+    });
+    if !barrier {
+        // Copies in one plane facing the same way: the later one's overlapped part is hidden.
+        out.first_hidden = Some(false);
+    }
+}
+
+/// Whether some edge of `b` has all of `a`'s vertices on its outer side (in `b`'s plane): then
+/// the two do not overlap.
+fn separated(a: &Face, b: &Face, tolerance: f32) -> bool {
+    let n = b.vertices.len();
+    (0..n).any(|i| {
+        let (p, q) = (b.vertices[i], b.vertices[(i + 1) % n]);
+        let inward = b.normal.cross(q - p).normalize_or_zero();
+        a.vertices.iter().all(|&v| inward.dot(v - p) <= tolerance)
+    })
+}
+
+/// Face `far` does not reach `near`'s plane: each of its edges within the gap of that plane is
+/// projected onto it, and the part across `near`'s inside becomes a cut of `near`.
+fn near_contact(
+    far: &Face,
+    distances: &[f32],
+    near: &Face,
+    tolerance: f32,
+    gap: f32,
+    cuts: &mut Vec<Constraint>,
+    meeting: &mut Option<Meeting>,
+) {
+    let n = far.vertices.len();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if distances[i].abs() > gap || distances[j].abs() > gap {
+            continue;
+        }
+        let (p, q) = (near.project(far.vertices[i]), near.project(far.vertices[j]));
+        if let Some((c0, c1)) = segment_inside(p, q, near, tolerance) {
+            cuts.push(Constraint {
+                a: c0,
+                b: c1,
+                barrier: true,
+            });
+            *meeting = Some(Meeting::NearContact);
+        }
+    }
+}
+
+/// The points where `polygon` meets the plane of `other`: vertices within the tolerance of it
+/// (projected onto it) and crossings of edges from one side to the other.
+fn section(polygon: &[Vec3], distances: &[f32], other: &Face, tolerance: f32, out: &mut Vec<Vec3>) {
+    out.clear();
+    let n = polygon.len();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let (di, dj) = (distances[i], distances[j]);
+        if di.abs() <= tolerance {
+            out.push(other.project(polygon[i]));
+        } else if (di > tolerance && dj < -tolerance) || (di < -tolerance && dj > tolerance) {
+            out.push(polygon[i].lerp(polygon[j], di / (di - dj)));
+        }
+    }
+}
+
+/// The part of segment `pq` (in `face`'s plane) inside `face`, when it runs across its inside
+/// for more than the tolerance and not only along its border.
+pub(super) fn segment_inside(p: Vec3, q: Vec3, face: &Face, tolerance: f32) -> Option<(Vec3, Vec3)> {
+    let length = p.distance(q);
+    if length <= tolerance {
+        return None;
+    }
+    // Clip the parameter range against every edge's inward half-plane, once exactly (for the
+    // end points) and once shrunk by the tolerance (to require the inside).
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    let (mut s0, mut s1) = (0.0f32, 1.0f32);
+    let polygon = face.vertices;
+    for i in 0..polygon.len() {
+        let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
+        let Some(inward) = face.normal.cross(b - a).try_normalize() else {
+            continue;
+        };
+        let (fp, fq) = (inward.dot(p - a), inward.dot(q - a));
+        clip_range(fp, fq, &mut t0, &mut t1);
+        clip_range(fp - tolerance, fq - tolerance, &mut s0, &mut s1);
+    }
+    if t1 <= t0 || (s1 - s0) * length <= tolerance {
+        return None;
+    }
+    Some((p.lerp(q, t0), p.lerp(q, t1)))
+}
+
+/// Narrows `[t0, t1]` to where the linear function from `fp` (t = 0) to `fq` (t = 1) is ≥ 0.
+fn clip_range(fp: f32, fq: f32, t0: &mut f32, t1: &mut f32) {
+    if fp < 0.0 && fq < 0.0 {
+        *t1 = -1.0;
+    } else if fp < 0.0 {
+        *t0 = t0.max(fp / (fp - fq));
+    } else if fq < 0.0 {
+        *t1 = t1.min(fp / (fp - fq));
+    }
+}
+
+/// Sutherland–Hodgman against one half-plane `normal · p ≥ offset`, into `out`.
+fn clip_by_half_plane(polygon: &[Vec3], normal: Vec3, offset: f32, out: &mut Vec<Vec3>) {
+    out.clear();
+    let n = polygon.len();
+    for i in 0..n {
+        let (p, q) = (polygon[i], polygon[(i + 1) % n]);
+        let (dp, dq) = (normal.dot(p) - offset, normal.dot(q) - offset);
+        if dp >= 0.0 {
+            out.push(p);
+        }
+        if (dp >= 0.0) != (dq >= 0.0) {
+            out.push(p.lerp(q, dp / (dp - dq)));
+        }
+    }
+}
+
+/// Distance from `p` to the segment `ab`.
+pub(super) fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
+/// A barrier that stops within the gap of `face`'s border (along its own line) runs on to the
+/// border: a slit narrower than the gap counts as closed, so no map joins around its end (the
+/// strip of a back wall under a dividing wall that stops just short of the floor).
+pub(super) fn close_barrier_ends(c: Constraint, face: &Face, tolerance: f32, gap: f32) -> Constraint {
+    let Some(direction) = (c.b - c.a).try_normalize() else {
+        return c;
+    };
+    let reach = face.bounds.diagonal();
+    let Some((start, end)) =
+        segment_inside(c.a - direction * reach, c.b + direction * reach, face, tolerance)
+    else {
+        return c;
+    };
+    let a = if c.a.distance(start) <= gap { start } else { c.a };
+    let b = if c.b.distance(end) <= gap { end } else { c.b };
+    Constraint { a, b, ..c }
+}

@@ -1,0 +1,298 @@
+//! The arrangement against brute force and closed forms: piercing faces, coplanar overlaps,
+//! near-contacts, solids, random boxes and quads (pieces tile their faces, meeting segments are
+//! edges on both sides, no piece crosses another face), and the bounds on overlapping copies.
+
+use super::*;
+use crate::polygon_area;
+use glam::vec3;
+use proptest::prelude::*;
+
+const TOL: f32 = 1e-5;
+
+fn options(gap: f32) -> ArrangementOptions {
+    ArrangementOptions::new(TOL, gap)
+}
+
+/// The six outward quads of the box `[lo, hi]`.
+fn box_faces(lo: Vec3, hi: Vec3) -> Vec<Vec<Vec3>> {
+    let c = |i: u32| {
+        vec3(
+            if i & 1 != 0 { hi.x } else { lo.x },
+            if i & 2 != 0 { hi.y } else { lo.y },
+            if i & 4 != 0 { hi.z } else { lo.z },
+        )
+    };
+    [
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [4, 5, 7, 6],
+        [0, 2, 3, 1],
+    ]
+    .iter()
+    .map(|f| f.iter().map(|&i| c(i)).collect())
+    .collect()
+}
+
+fn area_of_source(split: &Arrangement, source: usize) -> f32 {
+    split
+        .polygons
+        .iter()
+        .zip(&split.source)
+        .filter(|(_, s)| **s == source)
+        .map(|(p, _)| polygon_area(p))
+        .sum()
+}
+
+fn floor(size: f32) -> Vec<Vec3> {
+    vec![
+        vec3(0.0, 0.0, 0.0),
+        vec3(0.0, 0.0, size),
+        vec3(size, 0.0, size),
+        vec3(size, 0.0, 0.0),
+    ]
+}
+
+#[test]
+fn wall_through_a_floor_cuts_both_and_keeps_their_areas() {
+    let wall = vec![
+        vec3(1.0, -0.5, 0.0),
+        vec3(1.0, 0.5, 0.0),
+        vec3(1.0, 0.5, 2.0),
+        vec3(1.0, -0.5, 2.0),
+    ];
+    let input = vec![floor(2.0), wall];
+    let split = split_polygons_at_intersections(&input, &[], &options(TOL)).unwrap();
+    assert_eq!(split.counts.piercing, 1);
+    assert_eq!(split.source, vec![0, 0, 1, 1]);
+    assert!((area_of_source(&split, 0) - 4.0).abs() < 1e-5);
+    assert!((area_of_source(&split, 1) - 2.0).abs() < 1e-5);
+    assert_eq!(split.barriers.len(), 2, "the same segment on each face");
+    let barriers = BarrierSet::new(split.barriers.clone(), TOL);
+    assert!(barriers.covers_edge(vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 2.0)));
+}
+
+#[test]
+fn duplicated_faces_keep_one_copy() {
+    let input = vec![floor(1.0); 50];
+    let split = split_polygons_at_intersections(&input, &[], &options(TOL)).unwrap();
+    assert_eq!(split.polygons.len(), 1);
+    assert_eq!(split.counts.duplicate_pieces, 49);
+    assert!(split.barriers.is_empty());
+}
+
+#[test]
+fn overlapping_coplanar_faces_resolve_into_pieces_that_do_not_overlap() {
+    // Two 2 × 2 floors facing up, the second shifted by (1, 0, 1): the overlap is 1 × 1.
+    let a = floor(2.0);
+    let b: Vec<Vec3> = a.iter().map(|p| *p + vec3(1.0, 0.0, 1.0)).collect();
+    let split = split_polygons_at_intersections(&[a, b], &[], &options(TOL)).unwrap();
+    assert_eq!(split.counts.coplanar_overlap, 1);
+    assert_eq!(split.counts.duplicate_pieces, 1);
+    // Total area is the union's: 4 + 4 − 1.
+    let total: f32 = split.polygons.iter().map(|p| polygon_area(p)).sum();
+    assert!((total - 7.0).abs() < 1e-5, "{total}");
+    assert!(split.barriers.is_empty(), "same-facing overlaps are not barriers");
+}
+
+#[test]
+fn box_resting_on_a_floor_is_an_opposite_facing_overlap_with_barriers() {
+    let mut input = vec![floor(3.0)];
+    input.extend(box_faces(vec3(1.0, 0.0, 1.0), vec3(2.0, 1.0, 2.0)));
+    let solids: Vec<Option<u32>> = std::iter::once(None)
+        .chain(std::iter::repeat_n(Some(1), 6))
+        .collect();
+    let split = split_polygons_at_intersections(&input, &solids, &options(TOL)).unwrap();
+    assert_eq!(split.counts.coplanar_overlap, 1);
+    assert_eq!(split.counts.in_plane, 4);
+    assert!((area_of_source(&split, 0) - 9.0).abs() < 1e-5);
+    // The floor under the box is sealed inside the box; the floor around it is not.
+    let under: Vec<bool> = split
+        .polygons
+        .iter()
+        .zip(&split.source)
+        .zip(&split.sealed)
+        .filter(|((_, s), _)| **s == 0)
+        .map(|((p, _), sealed)| {
+            let c = p.iter().copied().sum::<Vec3>() / p.len() as f32;
+            assert_eq!(*sealed, c.x > 1.0 && c.x < 2.0 && c.z > 1.0 && c.z < 2.0, "{c}");
+            *sealed
+        })
+        .collect();
+    assert_eq!(under.iter().filter(|&&s| s).count(), 1);
+    assert_eq!(split.counts.sealed_pieces, 1);
+}
+
+#[test]
+fn gap_below_the_tolerance_cuts_and_above_it_does_not() {
+    let wall = |y0: f32| {
+        vec![
+            vec3(1.0, y0, 0.0),
+            vec3(1.0, y0 + 1.0, 0.0),
+            vec3(1.0, y0 + 1.0, 2.0),
+            vec3(1.0, y0, 2.0),
+        ]
+    };
+    for (y0, gap, cut) in [(0.002, 0.003, true), (0.002, 0.001, false), (0.0, TOL, true)] {
+        let split = split_polygons_at_intersections(&[floor(2.0), wall(y0)], &[], &options(gap)).unwrap();
+        let floor_pieces = split.source.iter().filter(|&&s| s == 0).count();
+        assert_eq!(floor_pieces == 2, cut, "gap {y0} with tolerance {gap}");
+        if cut && y0 > 0.0 {
+            assert_eq!(split.counts.near_contact, 1);
+        }
+    }
+}
+
+#[test]
+fn fifty_overlapping_triangles_end_fast_within_bounds() {
+    // Fifty copies of one triangle, each turned a little about its centre: every pair overlaps.
+    let input: Vec<Vec<Vec3>> = (0..50)
+        .map(|i| {
+            let angle = i as f32 * 0.013;
+            (0..3)
+                .map(|k| {
+                    let a = angle + k as f32 * std::f32::consts::TAU / 3.0;
+                    vec3(a.cos(), 0.0, a.sin())
+                })
+                .collect()
+        })
+        .collect();
+    let split = split_polygons_at_intersections(&input, &[], &options(TOL)).unwrap();
+    assert_eq!(split.counts.coplanar_overlap, 50 * 49 / 2);
+    // Only the first copy and the parts of later ones outside all earlier ones survive.
+    let total: f32 = split.polygons.iter().map(|p| polygon_area(p)).sum();
+    assert!(total < 2.0, "{total}");
+    let tight = ArrangementOptions {
+        max_pieces: 1000,
+        ..options(TOL)
+    };
+    assert!(matches!(
+        split_polygons_at_intersections(&input, &[], &tight),
+        Err(ArrangementError::TooManyPieces { limit: 1000 })
+    ));
+}
+
+#[test]
+fn thousand_copies_of_a_small_mesh() {
+    // Exact copies are dropped before any pair is examined; shifted copies pass the pair bound.
+    let cube = box_faces(Vec3::ZERO, Vec3::ONE);
+    let copies: Vec<Vec<Vec3>> = (0..1000).flat_map(|_| cube.clone()).collect();
+    let split = split_polygons_at_intersections(&copies, &[], &options(TOL)).unwrap();
+    assert_eq!(split.polygons.len(), 6);
+    let shifted: Vec<Vec<Vec3>> = (0..1000)
+        .flat_map(|i| {
+            let offset = Vec3::splat(i as f32 * 1e-3);
+            cube.iter()
+                .map(move |f| f.iter().map(|p| *p + offset).collect::<Vec<Vec3>>())
+        })
+        .collect();
+    let bounded = ArrangementOptions {
+        max_pairs: 100_000,
+        ..options(TOL)
+    };
+    assert!(matches!(
+        split_polygons_at_intersections(&shifted, &[], &bounded),
+        Err(ArrangementError::TooManyPairs { limit: 100_000 })
+    ));
+}
+
+#[test]
+fn nothing_meets_nothing_changes() {
+    let mut input = box_faces(Vec3::ZERO, Vec3::ONE);
+    input.extend(box_faces(Vec3::splat(2.0), Vec3::splat(3.0)));
+    let split = split_polygons_at_intersections(&input, &[], &options(0.01)).unwrap();
+    assert_eq!(split.polygons, input);
+    assert_eq!(split.counts, IntersectionCounts::default());
+}
+
+/// Whether segment `pq` is covered by edges of the pieces of `source` (sampled along it).
+fn is_edge_of_pieces(split: &Arrangement, source: usize, p: Vec3, q: Vec3) -> bool {
+    (1..8).all(|k| {
+        let x = p.lerp(q, k as f32 / 8.0);
+        split.polygons.iter().zip(&split.source).any(|(poly, &s)| {
+            s == source
+                && (0..poly.len())
+                    .any(|i| pair::distance_to_segment(x, poly[i], poly[(i + 1) % poly.len()]) <= 1e-4)
+        })
+    })
+}
+
+/// Whether the open segment `pq` passes through the inside of convex planar `poly`.
+fn crosses_inside(poly: &[Vec3], p: Vec3, q: Vec3) -> bool {
+    let n = polygon_vector_area(poly).normalize();
+    (1..16).any(|k| {
+        let x = p.lerp(q, k as f32 / 16.0);
+        (0..poly.len()).all(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            n.cross(b - a).normalize().dot(x - a) > 1e-3
+        })
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// Random boxes and quads through each other: the pieces of every face tile it, every
+    /// barrier runs along edges of the pieces, and no piece is crossed inside by another face's
+    /// piece.
+    #[test]
+    fn random_boxes_and_quads_are_cut_into_tiles(
+        boxes in prop::collection::vec((0.0f32..2.0, 0.0f32..2.0, 0.0f32..2.0, 0.3f32..1.5, 0.3f32..1.5, 0.3f32..1.5), 1..4),
+        quads in prop::collection::vec((0.0f32..3.0, -1.0f32..1.0, -1.0f32..1.0, 0.5f32..2.0), 0..3),
+    ) {
+        let mut input: Vec<Vec<Vec3>> = Vec::new();
+        for &(x, y, z, w, h, d) in &boxes {
+            input.extend(box_faces(vec3(x, y, z), vec3(x + w, y + h, z + d)));
+        }
+        for &(x, tilt_y, tilt_z, size) in &quads {
+            // A quad across the scene, tilted about x = const.
+            let c = vec3(x, 1.0, 1.0);
+            let u = vec3(tilt_y * 0.3, 1.0, 0.0).normalize() * size;
+            let v = vec3(tilt_z * 0.3, 0.0, 1.0).normalize() * size;
+            input.push(vec![c - u - v, c + u - v, c + u + v, c - u + v]);
+        }
+        let split = split_polygons_at_intersections(&input, &[], &options(TOL)).unwrap();
+        for (index, polygon) in input.iter().enumerate() {
+            let area = area_of_source(&split, index);
+            let dropped = split.counts.duplicate_pieces > 0;
+            prop_assert!(dropped || (area - polygon_area(polygon)).abs() <= 1e-4 * polygon_area(polygon).max(1.0),
+                "face {index}: pieces {area} of {}", polygon_area(polygon));
+        }
+        for &[p, q] in &split.barriers {
+            let on: Vec<usize> = (0..input.len())
+                .filter(|&f| split.polygons.iter().zip(&split.source).any(|(poly, &s)| s == f && {
+                    let n = polygon_vector_area(poly).normalize();
+                    (n.dot(p - poly[0])).abs() < 1e-4 && (n.dot(q - poly[0])).abs() < 1e-4
+                        && crosses_inside(&input[f], p, q)
+                }))
+                .collect();
+            for f in on {
+                prop_assert!(is_edge_of_pieces(&split, f, p, q), "barrier {p}–{q} crosses face {f}");
+            }
+        }
+        for (piece, &s) in split.polygons.iter().zip(&split.source) {
+            for (t, other) in input.iter().enumerate() {
+                prop_assert!(s == t || !cuts_through(other, piece), "a piece of face {s} is crossed by face {t}");
+            }
+        }
+    }
+}
+
+/// Whether face `other` passes through the inside of `piece` along a segment: the section of
+/// `other` by the piece's plane runs across the piece's inside (a margin away from its border).
+fn cuts_through(other: &[Vec3], piece: &[Vec3]) -> bool {
+    let n = polygon_vector_area(piece).normalize();
+    let d: Vec<f32> = other.iter().map(|&a| n.dot(a - piece[0])).collect();
+    if d.iter().all(|x| x.abs() < 1e-4) {
+        return false; // coplanar: resolved by the overlap pass
+    }
+    let mut section = Vec::new();
+    for i in 0..other.len() {
+        let j = (i + 1) % other.len();
+        if (d[i] > 1e-6 && d[j] < -1e-6) || (d[i] < -1e-6 && d[j] > 1e-6) {
+            section.push(other[i].lerp(other[j], d[i] / (d[i] - d[j])));
+        }
+    }
+    section.len() >= 2 && crosses_inside(piece, section[0], section[1])
+}
