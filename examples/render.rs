@@ -42,7 +42,9 @@ use report::{Record, contacts_json, contacts_summary, json_number, json_object, 
 #[command(version, about)]
 struct Args {
     /// A built-in scene (cornell-box, lit-unlit-rooms, colored-rooms, accordion,
-    /// touching-rooms), a scale scene (split-rooms-N: lit-unlit-rooms with every face split
+    /// touching-rooms; the rooms built from solid boxes: solid-rooms-stand, solid-rooms-pierce,
+    /// solid-rooms-gap, solid-rooms-sunk-box, solid-rooms-double-floor, solid-rooms-tee), a scale
+    /// scene (split-rooms-N: lit-unlit-rooms with every face split
     /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,

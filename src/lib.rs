@@ -4,7 +4,7 @@
 //! This facade re-exports the four crates of the workspace:
 //!
 //! - [`geom`]: polygons, clipping to a cube and a ball, exact areas, the half-edge mesh, and
-//!   contact splitting;
+//!   the arrangement that cuts faces where they meet;
 //! - [`kdtree`]: 20-byte compact photons and a kd-tree with k-nearest queries in a sphere or a
 //!   cube;
 //! - [`trace`]: scenes, lights, the watertight BVH, deterministic photon tracing, photon-map

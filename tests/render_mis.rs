@@ -133,10 +133,18 @@ fn mis_agrees_with_shadow_rays_alone_and_has_less_variance() {
         "MIS and shadow rays alone differ by {z} standard errors"
     );
     assert!(v1 < 0.8 * v2, "MIS should lower the variance: {v1} vs {v2}");
-    // The final gather, with and without MIS, against the path tracer (1 % at this noise).
+    // The final gather, with and without MIS, against the path tracer (2 % at this noise),
+    // and its pixel variance.
+    let mut variances = Vec::new();
     for (scene, label) in [(&with, "with MIS"), (&without, "without")] {
-        let fg = render(scene, Mode::FinalGather, 8, 20).mean().element_sum() as f64 / 3.0;
-        eprintln!("final gather {label}: {fg:.5}");
+        let images: Vec<Image> = (20..24).map(|s| render(scene, Mode::FinalGather, 2, s)).collect();
+        let (fg, se, v) = replicates(&images);
+        eprintln!("final gather {label}: {fg:.5} ± {se:.5} (pixel variance {v:.6})");
         assert!((fg / m1 - 1.0).abs() < 0.02, "final gather {label}: {fg} vs {m1}");
+        variances.push(v);
     }
+    assert!(
+        variances[0] < variances[1],
+        "MIS should not add variance to the final gather: {variances:?}"
+    );
 }

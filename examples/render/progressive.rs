@@ -3,7 +3,7 @@
 //! the single-pass command line.
 
 use super::files::{NamedFile, check_run_outputs, scene_input};
-use super::{Args, ModeChoice, json_number, json_string, load_scene, say};
+use super::{Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, say};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
@@ -71,7 +71,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
-    let (image, stats, range, identity) = if sppm {
+    let (image, stats, range, identity, contacts) = if sppm {
         let scene = load_scene(&args.scene, args.light_units.into())?.0;
         let s = SppmSettings {
             passes,
@@ -90,7 +90,14 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             args.seed,
             light_units_applied(args)
         );
-        (out.image, out.stats.clone(), 0..out.stats.passes, identity)
+        let contacts = (String::new(), "null".to_owned());
+        (
+            out.image,
+            out.stats.clone(),
+            0..out.stats.passes,
+            identity,
+            contacts,
+        )
     } else {
         let partition = args.maps().partitioner();
         let scene = partition
@@ -111,7 +118,8 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         let a = &out.accumulation;
         let shard = Shard::from_accumulation(a, &scene_id, &identity).map_err(|e| e.to_string())?;
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
-        (a.mean(), out.stats, a.pass_range(), identity)
+        let contacts = (contacts_summary(&scene), contacts_json(&scene));
+        (a.mean(), out.stats, a.pass_range(), identity, contacts)
     };
     let heap_peak = crate::tracking_allocator::peak().saturating_sub(heap_before);
     image
@@ -128,12 +136,13 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         String::new()
     };
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
         count(stats.passes, "pass", "passes"),
         stats.photons_emitted,
+        contacts.0,
         stats.pilot.as_secs_f64(),
         stats.trace.as_secs_f64(),
         stats.precompute.as_secs_f64(),
@@ -156,7 +165,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             &scene_id,
             &identity,
             range,
-            Some((&stats, heap_peak)),
+            Some((&stats, heap_peak, &contacts.1)),
             m.to_array(),
         );
         write_atomically(path, |w| w.write_all(json.as_bytes()))
@@ -264,7 +273,7 @@ fn stats_json(
     scene: &str,
     settings: &str,
     range: std::ops::Range<u64>,
-    stats: Option<(&ProgressiveStats, usize)>,
+    stats: Option<(&ProgressiveStats, usize, &str)>,
     mean: [f32; 3],
 ) -> String {
     let mut o = String::from("{");
@@ -278,7 +287,8 @@ fn stats_json(
         range.end,
         range.end - range.start,
     );
-    if let Some((s, heap_peak)) = stats {
+    if let Some((s, heap_peak, contacts)) = stats {
+        let _ = write!(o, "\"contacts\": {contacts}, ");
         let _ = write!(
             o,
             "\"memory_bytes\": {{\"peak_heap\": {heap_peak}, \"pass_trees\": {}, \"pilot\": {}, \"accumulation\": {}}}, ",

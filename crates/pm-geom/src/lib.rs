@@ -6,8 +6,10 @@
 //! volume" for a cube ([`Aabb`], Sutherland–Hodgman clipping) and a ball ([`Ball`], exact
 //! polygon ∩ disc area) through one trait, [`GatherVolume`]; finds the candidate polygons
 //! fast ([`PolygonSet`], with a bounding-volume hierarchy, its coplanar polygons merged by
-//! [`CoplanarMerger`]); and tells which faces may share
-//! a photon map ([`HalfEdgeMesh`]: twins, non-manifold edges, crease angles).
+//! [`CoplanarMerger`]); tells which faces may share a photon map ([`HalfEdgeMesh`]: twins,
+//! non-manifold edges, crease angles); and cuts faces where they pierce, stand on, overlap or
+//! nearly touch each other ([`split_polygons_at_intersections`], a mesh arrangement), so that no
+//! map spans both sides of a wall built as a solid box through a floor slab.
 //!
 //! # Conventions
 //!
@@ -53,6 +55,10 @@
 //! - H. Hey and W. Purgathofer, *Advanced Radiance Estimation for Photon Map Global
 //!   Illumination*, Computer Graphics Forum 21(3), 2002: gather in a cube and divide by the
 //!   surface area actually inside it, so that edges are not darkened.
+//! - Q. Zhou, E. Grinspun, D. Zorin and A. Jacobson, *Mesh Arrangements for Solid Geometry*,
+//!   ACM Transactions on Graphics 35(4), 2016, and libigl's `remesh_self_intersections`: every
+//!   intersection of a mesh's faces made an edge of the faces on all its sides; here with one
+//!   scene-relative tolerance instead of exact constructions.
 //! - Ball and Stejko's project report, which combines the three and whose scenes (the Cornell
 //!   box, the lit and unlit rooms, the coloured rooms, the accordion), four variants (basic,
 //!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the

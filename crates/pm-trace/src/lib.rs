@@ -4,11 +4,14 @@
 //! A [`Scene`] is built with [`Scene::builder`] from meshes (through
 //! [`pm_geom::HalfEdgeMesh`]), analytic shapes (sphere, ring), [`Light`]s and a [`Camera`].
 //! Every mesh face, sphere and ring side is a *part* ([`PartId`]); a [`Partitioner`]
-//! ([`SingleMap`], [`CreaseAngle`]) assigns each part a photon map. [`trace_photons`] shoots
+//! ([`SingleMap`], [`CreaseAngle`], and [`Contact`], the one to use unless you reproduce the
+//! report: crease-angle maps that never join across a line where faces pierce, stand on,
+//! overlap or nearly touch each other) assigns each part a photon map. [`trace_photons`] shoots
 //! photons from the lights and stores them per map; [`PhotonMaps::build`] turns them into
 //! kd-trees plus each map's polygons for the geometry-based estimators (coplanar, edge-connected
 //! faces merged into larger convex polygons, so a finely split wall costs one clip). Ball & Stejko's
-//! scenes, and scale scenes for measuring how cost grows, are in [`scenes`].
+//! scenes, the same rooms built from solid boxes, and scale scenes for measuring how cost grows,
+//! are in [`scenes`].
 //!
 //! # Conventions
 //!
