@@ -94,8 +94,9 @@ struct Args {
     /// The progressive renderer's direct light.
     #[arg(long, value_enum, default_value_t = Direct::ShadowRays)]
     direct: Direct,
-    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball (the per-pass tables
-    /// always show the progressive ones and SPPM).
+    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball, and (not by default)
+    /// final-gather and progressive-gather (the per-pass tables always show the progressive
+    /// ones and SPPM).
     #[arg(long, default_value = "path-trace,sppm,disc,cube,ball")]
     methods: String,
     /// k of the progressive renderer's pilot extents (SPPM's initial radius keeps k = 100).
@@ -179,6 +180,7 @@ fn run(args: &Args) -> Result<(), String> {
             let m = m.trim();
             Method::ALL
                 .into_iter()
+                .chain(Method::EXTRA)
                 .find(|x| x.name() == m)
                 .ok_or_else(|| format!("--methods: unknown method {m:?}"))
         })

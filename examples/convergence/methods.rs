@@ -7,7 +7,7 @@ use photon_maps::render::glam::DVec3;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, Scene, SingleMap};
 use std::ops::ControlFlow;
 
@@ -20,6 +20,13 @@ pub enum Method {
     Sppm,
     /// The progressive renderer with crease maps and this fixed-volume estimator.
     Progressive(EstimatorKind),
+    /// The final gather (crease maps, cube estimator, 16 gather rays at one sample per pixel),
+    /// rendered again with fresh photons and seeds per batch and averaged: its noise falls,
+    /// its bias stays.
+    FinalGather,
+    /// The progressive renderer with a final gather per pass (crease maps, cube estimator, 16
+    /// gather rays): consistent.
+    ProgressiveGather,
 }
 
 impl Method {
@@ -32,6 +39,13 @@ impl Method {
         Method::Progressive(EstimatorKind::GeometryBall),
     ];
 
+    /// The methods the study can run besides [`Method::ALL`] (its default), chosen by name
+    /// with `--methods`.
+    pub const EXTRA: [Method; 2] = [Method::FinalGather, Method::ProgressiveGather];
+
+    /// Gather rays per camera sample of the final-gather methods.
+    const GATHER_RAYS: u32 = 16;
+
     /// The name `--methods` takes.
     pub fn name(self) -> &'static str {
         match self {
@@ -40,6 +54,8 @@ impl Method {
             Method::Progressive(EstimatorKind::Disc) => "disc",
             Method::Progressive(EstimatorKind::GeometryCube) => "cube",
             Method::Progressive(EstimatorKind::GeometryBall) => "ball",
+            Method::FinalGather => "final-gather",
+            Method::ProgressiveGather => "progressive-gather",
         }
     }
 
@@ -51,6 +67,8 @@ impl Method {
             Method::Progressive(EstimatorKind::Disc) => "progressive disc",
             Method::Progressive(EstimatorKind::GeometryCube) => "progressive cube",
             Method::Progressive(EstimatorKind::GeometryBall) => "progressive ball",
+            Method::FinalGather => "final gather",
+            Method::ProgressiveGather => "progressive final gather",
         }
     }
 }
@@ -190,10 +208,48 @@ pub fn run(
                 })
                 .map_err(|e| e.to_string())?;
         }
-        Method::Progressive(estimator) => {
+        Method::FinalGather => {
+            let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
+            for batch in 0u64.. {
+                let settings = RenderSettings {
+                    mode: Mode::FinalGather,
+                    samples_per_pixel: 1,
+                    seed: base.seed.wrapping_add(batch),
+                    final_gather: FinalGatherOptions {
+                        gather_rays: Method::GATHER_RAYS,
+                        ..FinalGatherOptions::default()
+                    },
+                    ..base
+                };
+                let image = Renderer::new(EstimatorKind::GeometryCube, settings)
+                    .render(scene, &CreaseAngle::default(), &())
+                    .map_err(|e| e.to_string())?
+                    .image;
+                for (s, p) in sum.iter_mut().zip(image.pixels()) {
+                    *s += p.as_dvec3();
+                }
+                let n = (batch + 1) as f64;
+                let mean = || {
+                    let pixels = sum.iter().map(|s| (*s / n).as_vec3()).collect();
+                    Image::from_pixels(base.width, base.height, pixels).map_err(|e| e.to_string())
+                };
+                if record(&mut clock, batch + 1, &mean).is_break() {
+                    break;
+                }
+            }
+        }
+        Method::Progressive(_) | Method::ProgressiveGather => {
+            let (estimator, mode) = match method {
+                Method::Progressive(estimator) => (estimator, progressive.direct),
+                _ => (EstimatorKind::GeometryCube, Mode::FinalGather),
+            };
             let render = RenderSettings {
-                mode: progressive.direct,
+                mode,
                 k: progressive.k,
+                final_gather: FinalGatherOptions {
+                    gather_rays: Method::GATHER_RAYS,
+                    ..FinalGatherOptions::default()
+                },
                 ..base
             };
             let settings = ProgressiveSettings {
