@@ -16,6 +16,9 @@ use pm_render::Image;
 use pm_render::progressive::{MAX_PASS, PassSums, Shard, ShardError};
 use std::path::{Path, PathBuf};
 
+/// Held for writing by the memory measurement and for reading by every other test.
+static ALONE: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("pm-shard-files-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -95,6 +98,7 @@ fn write_plain(path: &Path, first: &str, passes: &str, value: f64) {
 
 #[test]
 fn the_format_read_here_is_the_format_written() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("format");
     let path = dir.join("a.exr");
     write_plain(&path, "3", "2", 5.0);
@@ -106,6 +110,7 @@ fn the_format_read_here_is_the_format_written() {
 
 #[test]
 fn pass_ranges_that_wrap_or_reach_the_pilot_are_refused_naming_the_shard() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("wrap");
     let max = MAX_PASS.to_string();
     let cases: [(&str, &str); 4] = [
@@ -150,6 +155,7 @@ fn pass_ranges_that_wrap_or_reach_the_pilot_are_refused_naming_the_shard() {
 
 #[test]
 fn non_finite_sums_are_refused_naming_the_shard_and_pixel() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("nan");
     let good = dir.join("good.exr");
     write_plain(&good, "0", "1", 1.0);
@@ -194,6 +200,7 @@ fn non_finite_sums_are_refused_naming_the_shard_and_pixel() {
 
 #[test]
 fn a_shard_given_twice_is_named_as_the_duplicate_not_as_a_gap() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("twice");
     let (a, c) = (dir.join("a.exr"), dir.join("c.exr"));
     write_plain(&a, "0", "2", 1.0);
@@ -219,6 +226,7 @@ fn a_shard_given_twice_is_named_as_the_duplicate_not_as_a_gap() {
 #[cfg(unix)]
 #[test]
 fn a_fifo_named_as_a_shard_is_refused_without_blocking() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("fifo");
     let fifo = dir.join("f.exr");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
@@ -247,6 +255,7 @@ fn shard_of(value: f32, first: u64, passes: u64, w: u32, h: u32) -> Shard {
 
 #[test]
 fn a_shard_file_has_the_same_bytes_every_time_it_is_written() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("bytes");
     let shard = shard_of(0.3, 7, 3, 16, 8);
     let first = dir.join("first.exr");
@@ -264,6 +273,8 @@ fn a_shard_file_has_the_same_bytes_every_time_it_is_written() {
 
 #[test]
 fn merging_files_holds_one_running_sum_not_every_shard() {
+    // The peak counts every thread's allocations: run alone among this file's tests.
+    let _alone = ALONE.write().unwrap_or_else(|e| e.into_inner());
     let dir = scratch("stream");
     let (w, h) = (256u32, 256u32);
     let paths: Vec<PathBuf> = (0..6)
@@ -286,6 +297,7 @@ fn merging_files_holds_one_running_sum_not_every_shard() {
 
 #[test]
 fn pixel_state_is_counted_against_its_limit_at_both_ends() {
+    let _shared = ALONE.read().unwrap_or_else(|e| e.into_inner());
     use pm_render::image::{MAX_PIXEL_STATE_BYTES, check_pixel_state};
     use pm_render::progressive::{ProgressiveSettings, SppmSettings};
     use pm_render::{RenderError, RenderSettings};

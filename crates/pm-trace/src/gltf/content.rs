@@ -3,22 +3,22 @@
 
 use std::path::Path;
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
-use glam::{Mat3, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use gltf::json;
 
 use super::GltfOptions;
 use super::accessor::AccessorReader;
 use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
-use super::compact::{gather, keep_referenced};
-use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
+use super::decoded::{Decoded, decode_primitive};
+use super::emissive::{TextureCache, TextureSources};
 use super::error::GltfError;
 use super::graph::{root_nodes, walk};
 use super::light::{GltfLight, place_light};
-use super::material::{GltfMaterial, map_material};
-use super::primitive::{PrimitiveGeometry, read_primitive};
+use super::material::GltfMaterial;
 use super::source::{guard, parse, read_bounded};
 use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
@@ -148,10 +148,6 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
         .saturating_add(triangles.saturating_mul(per_triangle))
 }
 
-use json::accessor::Type;
-use json::mesh::Semantic;
-use json::validation::Checked;
-
 fn flatten(
     file: &Path,
     root: &json::Root,
@@ -167,6 +163,7 @@ fn flatten(
     let mut content = GltfContent::default();
     let mut triangle_count = 0u64;
     let mut textures = TextureCache::default();
+    let mut decoded_cache: HashMap<(usize, usize), Decoded> = HashMap::new();
     let sources = TextureSources {
         file,
         root,
@@ -187,21 +184,15 @@ fn flatten(
                 .get(mesh_index)
                 .ok_or_else(|| missing("mesh", mesh_index, root.meshes.len()))?;
             for (primitive, prim) in mesh.primitives.iter().enumerate() {
-                let material_index = prim.material.map(|m| m.value());
-                let material = match material_index {
-                    Some(i) => Some(root.materials.get(i).ok_or_else(|| GltfError::Primitive {
-                        file: file.to_path_buf(),
-                        mesh: mesh_index,
-                        primitive,
-                        reason: format!(
-                            "material {i} does not exist (the file has {})",
-                            root.materials.len()
-                        ),
-                    })?),
-                    None => None,
+                let at = (mesh_index, primitive);
+                // The first placement decodes the accessors (counted from their declared
+                // counts, before decoding); the others reuse the decode and count what they add.
+                let bytes = match decoded_cache.get(&at) {
+                    Some(Decoded::Triangles(local)) => local.placement_bytes(),
+                    Some(_) => 0,
+                    None => placement_bytes(root, prim, buffer_bytes),
                 };
-                // Every placement decodes its vertices again: count them, before decoding.
-                scene_bytes = scene_bytes.saturating_add(placement_bytes(root, prim, buffer_bytes));
+                scene_bytes = scene_bytes.saturating_add(bytes);
                 if scene_bytes > options.max_scene_bytes {
                     return Err(GltfError::SceneTooLarge {
                         file: file.to_path_buf(),
@@ -211,10 +202,24 @@ fn flatten(
                         needed: scene_bytes,
                     });
                 }
-                match read_primitive(file, &reader, (mesh_index, primitive), prim, p.world)? {
-                    PrimitiveGeometry::Triangles { positions, triangles } => {
-                        // Each placement decodes its accessors again: count what instancing adds.
-                        triangle_count += triangles.len() as u64;
+                let decoded = match decoded_cache.get(&at) {
+                    Some(d) => d.clone(),
+                    None => {
+                        let d = decode_primitive(
+                            &sources,
+                            &mut textures,
+                            &mut scene_bytes,
+                            &mut content.warnings,
+                            at,
+                            prim,
+                        )?;
+                        decoded_cache.insert(at, d.clone());
+                        d
+                    }
+                };
+                match decoded {
+                    Decoded::Triangles(local) => {
+                        triangle_count += local.triangle_count() as u64;
                         if triangle_count > options.max_triangles {
                             return Err(GltfError::Node {
                                 file: file.to_path_buf(),
@@ -225,117 +230,10 @@ fn flatten(
                                 ),
                             });
                         }
-                        let material =
-                            map_material(material, options).map_err(|reason| GltfError::Primitive {
-                                file: file.to_path_buf(),
-                                mesh: mesh_index,
-                                primitive,
-                                reason: match material_index {
-                                    Some(i) => format!("material {i}: {reason}"),
-                                    None => reason,
-                                },
-                            })?;
-                        let attribute = |semantic: Semantic| {
-                            prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value())
-                        };
-                        let n = positions.len();
-                        let mut base_color_texture = None;
-                        let mut uvs: Option<Vec<Vec2>> = None;
-                        if let Some(reference) = material.base_color_texture {
-                            let texture = reference.index;
-                            let loaded = cached_texture(&sources, &mut textures, texture, &mut scene_bytes)?;
-                            uvs = reference.read_uvs(&reader, prim)?;
-                            if uvs.is_some() {
-                                base_color_texture = Some(loaded);
-                            } else {
-                                content.warnings.push(format!(
-                                    "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{}, base-colour texture ignored",
-                                    reference.tex_coord
-                                ));
-                            }
-                        }
-                        let emission_texture = emission_texture(
-                            &sources,
-                            &mut textures,
-                            &mut scene_bytes,
-                            &mut content.warnings,
-                            (mesh_index, primitive),
-                            prim,
-                            &material,
-                        )?;
-                        let colors = match attribute(Semantic::Colors(0)) {
-                            Some(a) => Some(reader.read_colors(a)?),
-                            None => None,
-                        };
-                        let normals = match attribute(Semantic::Normals) {
-                            Some(a) => {
-                                let to_world = Mat3::from_mat4(p.world).inverse().transpose();
-                                Some(
-                                    reader
-                                        .read_vec(a, &[Type::Vec3])?
-                                        .iter()
-                                        .map(|v| {
-                                            (to_world * v.truncate()).try_normalize().unwrap_or(Vec3::ZERO)
-                                        })
-                                        .collect::<Vec<Vec3>>(),
-                                )
-                            }
-                            None => None,
-                        };
-                        let wrong = |what: &str, len: usize| GltfError::Primitive {
-                            file: file.to_path_buf(),
-                            mesh: mesh_index,
-                            primitive,
-                            reason: format!("{len} {what} for {n} positions"),
-                        };
-                        if let Some(u) = &uvs
-                            && u.len() != n
-                        {
-                            return Err(wrong("texture coordinates", u.len()));
-                        }
-                        if let Some(e) = &emission_texture
-                            && e.uvs.len() != n
-                        {
-                            return Err(wrong("emissive texture coordinates", e.uvs.len()));
-                        }
-                        if let Some(c) = &colors
-                            && c.len() != n
-                        {
-                            return Err(wrong("colours", c.len()));
-                        }
-                        if let Some(v) = &normals
-                            && v.len() != n
-                        {
-                            return Err(wrong("normals", v.len()));
-                        }
-                        // Only the vertices the triangles use are kept (and later welded).
-                        let mut triangles = triangles;
-                        let kept = keep_referenced(&mut triangles, n);
-                        let positions = gather(&positions, &kept);
-                        let uvs = uvs.map(|u| gather(&u, &kept));
-                        let colors = colors.map(|c| gather(&c, &kept));
-                        let normals = normals.map(|v| gather(&v, &kept));
-                        let emission_texture = emission_texture.map(|e| EmissionTexture {
-                            uvs: gather(&e.uvs, &kept),
-                            ..e
-                        });
-                        content.meshes.push(GltfMesh {
-                            node: p.index,
-                            mesh: mesh_index,
-                            primitive,
-                            material_index,
-                            positions,
-                            triangles,
-                            material,
-                            uvs,
-                            colors,
-                            normals,
-                            base_color_texture,
-                            emission_texture,
-                        })
+                        content.meshes.push(local.place(file, p.index, at, p.world)?);
                     }
-                    PrimitiveGeometry::NotTriangles => content.skipped_non_triangle += 1,
-                    PrimitiveGeometry::NoPositions => content.skipped_without_positions += 1,
+                    Decoded::NotTriangles => content.skipped_non_triangle += 1,
+                    Decoded::NoPositions => content.skipped_without_positions += 1,
                 }
             }
         }

@@ -106,6 +106,7 @@ mod build;
 mod camera;
 mod compact;
 mod content;
+mod decoded;
 mod emissive;
 mod error;
 mod graph;
@@ -161,10 +162,11 @@ pub struct GltfOptions {
     pub max_triangles: u64,
     /// The most bytes loading may take (4 GiB by default): the buffers held, plus
     /// [`Self::BYTES_PER_VERTEX`] for every vertex decoded and [`Self::BYTES_PER_TRIANGLE`] for
-    /// every triangle, counted from the accessors' declared counts *before* each placement of a
-    /// mesh is decoded. Instancing decodes a mesh's vertices once per placing node, so a
-    /// placement of 100,000 vertices and one triangle costs its 100,000 vertices each time.
-    /// Past the budget loading stops with [`GltfError::SceneTooLarge`].
+    /// every triangle, and the decoded images (each checked from its header before it is
+    /// decoded). A primitive is decoded once, at its first placement, counted from its
+    /// accessors' declared counts *before* decoding; it keeps only the vertices its triangles
+    /// use, and every further placement counts those and its triangles. Past the budget
+    /// loading stops with [`GltfError::SceneTooLarge`] (an image, [`GltfError::Image`]).
     pub max_scene_bytes: u64,
     /// The most texels one image may have (2²⁶ = 8192 × 8192 by default, 3 bytes a texel
     /// once decoded). Checked from the image's header before its pixels are allocated.

@@ -1,0 +1,226 @@
+//! A mesh primitive decoded once, in its mesh's own space, and placed by every node that
+//! names it: its accessors are read, its material mapped and its textures looked up at the
+//! first placement; each placement only transforms the vertices its triangles use.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use gltf::json;
+use json::accessor::Type;
+use json::mesh::Semantic;
+use json::validation::Checked;
+
+use super::GltfOptions;
+use super::compact::{gather, keep_referenced};
+use super::content::GltfMesh;
+use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
+use super::error::GltfError;
+use super::material::{GltfMaterial, map_material};
+use super::primitive::{PrimitiveGeometry, read_primitive};
+use crate::emission::EmissionTexture;
+use crate::texture::{Sampler, Texture};
+
+/// A triangle primitive in its mesh's space, only the vertices its triangles use.
+#[derive(Debug)]
+pub(super) struct LocalPrimitive {
+    material_index: Option<usize>,
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    material: GltfMaterial,
+    uvs: Option<Vec<Vec2>>,
+    colors: Option<Vec<Vec3>>,
+    /// Normals as the file gives them (transformed per placement).
+    normals: Option<Vec<Vec3>>,
+    base_color_texture: Option<(Arc<Texture>, Sampler)>,
+    emission_texture: Option<EmissionTexture>,
+}
+
+/// What a primitive decodes to.
+#[derive(Clone, Debug)]
+pub(super) enum Decoded {
+    /// Triangles, shared by every placement.
+    Triangles(Arc<LocalPrimitive>),
+    /// Points or lines: nothing to render.
+    NotTriangles,
+    /// No `POSITION` attribute.
+    NoPositions,
+}
+
+/// Decodes primitive `prim` (mesh and primitive indices `at`) in its mesh's space: positions
+/// and triangles, the material, the base-colour and emissive textures (through `textures`,
+/// their bytes added to `scene_bytes`), texture coordinates, colours and normals; then keeps
+/// only the vertices the triangles use.
+pub(super) fn decode_primitive(
+    sources: &TextureSources<'_>,
+    textures: &mut TextureCache,
+    scene_bytes: &mut u64,
+    warnings: &mut Vec<String>,
+    at: (usize, usize),
+    prim: &json::mesh::Primitive,
+) -> Result<Decoded, GltfError> {
+    let (file, root, reader, options) = (sources.file, sources.root, sources.reader, sources.options);
+    let (mesh_index, primitive) = at;
+    let error = |reason: String| GltfError::Primitive {
+        file: file.to_path_buf(),
+        mesh: mesh_index,
+        primitive,
+        reason,
+    };
+    let material_index = prim.material.map(|m| m.value());
+    let json_material = match material_index {
+        Some(i) => Some(root.materials.get(i).ok_or_else(|| {
+            error(format!(
+                "material {i} does not exist (the file has {})",
+                root.materials.len()
+            ))
+        })?),
+        None => None,
+    };
+    let (positions, triangles) = match read_primitive(file, reader, at, prim, Mat4::IDENTITY)? {
+        PrimitiveGeometry::Triangles { positions, triangles } => (positions, triangles),
+        PrimitiveGeometry::NotTriangles => return Ok(Decoded::NotTriangles),
+        PrimitiveGeometry::NoPositions => return Ok(Decoded::NoPositions),
+    };
+    let material = map_material(json_material, options).map_err(|reason| {
+        error(match material_index {
+            Some(i) => format!("material {i}: {reason}"),
+            None => reason,
+        })
+    })?;
+    let attribute = |semantic: Semantic| prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value());
+    let n = positions.len();
+    let mut base_color_texture = None;
+    let mut uvs: Option<Vec<Vec2>> = None;
+    if let Some(reference) = material.base_color_texture {
+        let loaded = cached_texture(sources, textures, reference.index, scene_bytes)?;
+        uvs = reference.read_uvs(reader, prim)?;
+        if uvs.is_some() {
+            base_color_texture = Some(loaded);
+        } else {
+            warnings.push(format!(
+                "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{}, base-colour texture ignored",
+                reference.tex_coord
+            ));
+        }
+    }
+    let emission = emission_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
+    let colors = match attribute(Semantic::Colors(0)) {
+        Some(a) => Some(reader.read_colors(a)?),
+        None => None,
+    };
+    let normals = match attribute(Semantic::Normals) {
+        Some(a) => Some(
+            reader
+                .read_vec(a, &[Type::Vec3])?
+                .iter()
+                .map(|v| v.truncate())
+                .collect::<Vec<Vec3>>(),
+        ),
+        None => None,
+    };
+    let lengths = [
+        ("texture coordinates", uvs.as_ref().map(Vec::len)),
+        (
+            "emissive texture coordinates",
+            emission.as_ref().map(|e| e.uvs.len()),
+        ),
+        ("colours", colors.as_ref().map(Vec::len)),
+        ("normals", normals.as_ref().map(Vec::len)),
+    ];
+    for (what, len) in lengths {
+        if let Some(len) = len.filter(|&len| len != n) {
+            return Err(error(format!("{len} {what} for {n} positions")));
+        }
+    }
+    // Only the vertices the triangles use are kept (and later welded).
+    let mut triangles = triangles;
+    let kept = keep_referenced(&mut triangles, n);
+    Ok(Decoded::Triangles(Arc::new(LocalPrimitive {
+        material_index,
+        positions: gather(&positions, &kept),
+        triangles,
+        material,
+        uvs: uvs.map(|u| gather(&u, &kept)),
+        colors: colors.map(|c| gather(&c, &kept)),
+        normals: normals.map(|v| gather(&v, &kept)),
+        base_color_texture,
+        emission_texture: emission.map(|e| EmissionTexture {
+            uvs: gather(&e.uvs, &kept),
+            ..e
+        }),
+    })))
+}
+
+impl LocalPrimitive {
+    /// Triangles of one placement.
+    pub(super) fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The bytes one more placement takes: [`GltfOptions::BYTES_PER_VERTEX`] for each vertex
+    /// kept and [`GltfOptions::BYTES_PER_TRIANGLE`] (and, for an emitter, its area light's
+    /// share) for each triangle.
+    pub(super) fn placement_bytes(&self) -> u64 {
+        let per_triangle = if self.material.emission.max_element() > 0.0 {
+            GltfOptions::BYTES_PER_TRIANGLE + GltfOptions::BYTES_PER_EMITTING_TRIANGLE
+        } else {
+            GltfOptions::BYTES_PER_TRIANGLE
+        };
+        (self.positions.len() as u64)
+            .saturating_mul(GltfOptions::BYTES_PER_VERTEX)
+            .saturating_add((self.triangles.len() as u64).saturating_mul(per_triangle))
+    }
+
+    /// The primitive placed by node `node` with world transform `world`: positions (checked
+    /// finite) and normals transformed, the winding flipped back under a mirroring transform.
+    pub(super) fn place(
+        &self,
+        file: &Path,
+        node: usize,
+        at: (usize, usize),
+        world: Mat4,
+    ) -> Result<GltfMesh, GltfError> {
+        let mut positions = Vec::with_capacity(self.positions.len());
+        for (i, p) in self.positions.iter().enumerate() {
+            let w = world.transform_point3(*p);
+            if !w.is_finite() {
+                return Err(GltfError::Primitive {
+                    file: file.to_path_buf(),
+                    mesh: at.0,
+                    primitive: at.1,
+                    reason: format!("position {i} is not finite in the world: {w} (local {p})"),
+                });
+            }
+            positions.push(w);
+        }
+        let mut triangles = self.triangles.clone();
+        // A mirroring transform flips the winding; flip it back so front faces stay front.
+        if world.determinant() < 0.0 {
+            for t in &mut triangles {
+                t.swap(1, 2);
+            }
+        }
+        let to_world = Mat3::from_mat4(world).inverse().transpose();
+        let normals = self.normals.as_ref().map(|normals| {
+            normals
+                .iter()
+                .map(|v| (to_world * *v).try_normalize().unwrap_or(Vec3::ZERO))
+                .collect()
+        });
+        Ok(GltfMesh {
+            node,
+            mesh: at.0,
+            primitive: at.1,
+            material_index: self.material_index,
+            positions,
+            triangles,
+            material: self.material,
+            uvs: self.uvs.clone(),
+            colors: self.colors.clone(),
+            normals,
+            base_color_texture: self.base_color_texture.clone(),
+            emission_texture: self.emission_texture.clone(),
+        })
+    }
+}
