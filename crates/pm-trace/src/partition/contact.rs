@@ -13,7 +13,8 @@ use pm_geom::{
 };
 
 /// Crease-angle maps over all meshes of a scene welded together, after cutting faces where
-/// other faces meet them. The default partition of the renderers.
+/// other faces meet them. The render example's default, and the partition to use unless you
+/// reproduce the report's crease-angle maps.
 ///
 /// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) finds
 /// every pair of mesh faces that pierce each other, where an edge of one lies in the other (a
