@@ -7,7 +7,9 @@
 //! (from independent replicates) it also prints.
 //!
 //! `cargo run --release --example floor_band -- [SCENE.gltf]` (default: the Cornell box of the
-//! shared glTF corpus, `../shared/gltf-corpus/cornell/007Renderer/cornell_box.gltf`).
+//! shared glTF corpus, `../shared/gltf-corpus/cornell/007Renderer/cornell_box.gltf`). For
+//! replicates: `FLOOR_BAND_SEEDS=8,9,10` (progressive seeds, default 7), `FLOOR_BAND_MAPS=contact`
+//! (default both), and `FLOOR_BAND_TRUTH=MEAN,SE` to reuse a reference printed before.
 
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
@@ -46,7 +48,70 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..RenderSettings::default()
     };
 
-    // Reference: independent path-traced replicates.
+    let (truth, truth_se) = match std::env::var("FLOOR_BAND_TRUTH") {
+        Ok(given) => {
+            let (m, e) = given.split_once(',').ok_or("FLOOR_BAND_TRUTH=MEAN,SE")?;
+            (m.parse::<f64>()?, e.parse::<f64>()?)
+        }
+        Err(_) => reference(&scene, settings, &pixels)?,
+    };
+    println!(
+        "path-traced band luminance {truth:.5} ± {truth_se:.5} ({:.2} %)",
+        100.0 * truth_se / truth
+    );
+    let seeds: Vec<u64> = std::env::var("FLOOR_BAND_SEEDS")
+        .unwrap_or_else(|_| "7".to_owned())
+        .split(',')
+        .map(str::parse)
+        .collect::<Result<_, _>>()?;
+    let wanted = std::env::var("FLOOR_BAND_MAPS").unwrap_or_else(|_| "crease,contact".to_owned());
+    let partitions: [(&str, Box<dyn Partitioner>); 2] = [
+        ("crease", Box::new(CreaseAngle::default())),
+        ("contact", Box::new(Contact::default())),
+    ];
+    println!("| maps | seed | passes | band error | in reference SEs |");
+    println!("|---|---|---|---|---|");
+    for (name, partition) in partitions {
+        if !wanted.split(',').any(|w| w == name) {
+            continue;
+        }
+        let prepared = partition.prepare_scene(scene.clone())?;
+        for &seed in &seeds {
+            let settings = RenderSettings { seed, ..settings };
+            let mut sum = vec![DVec3::ZERO; (SIZE * SIZE) as usize];
+            for w in CHECKPOINTS.windows(2) {
+                let progressive = ProgressiveSettings {
+                    first_pass: w[0],
+                    ..ProgressiveSettings::new(settings, w[1] - w[0])
+                };
+                let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, progressive).render(
+                    &prepared,
+                    &*partition,
+                    &(),
+                )?;
+                for (s, x) in sum.iter_mut().zip(out.accumulation.sums().parts().0) {
+                    *s += *x;
+                }
+                let mean = band_luminance(sum.iter().map(|s| *s / w[1] as f64), &pixels);
+                let error = mean / truth - 1.0;
+                println!(
+                    "| {name} | {seed} | {} | {:+.2} % | {:+.1} |",
+                    w[1],
+                    100.0 * error,
+                    (mean - truth) / truth_se
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The band's path-traced luminance and its standard error, from independent replicates.
+fn reference(
+    scene: &Scene,
+    settings: RenderSettings,
+    pixels: &[usize],
+) -> Result<(f64, f64), Box<dyn std::error::Error>> {
     let mut replicates = Vec::new();
     for r in 0..REFERENCE_REPLICATES {
         let s = RenderSettings {
@@ -56,56 +121,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ..settings
         };
         let image = Renderer::new(EstimatorKind::GeometryCube, s)
-            .render(&scene, &CreaseAngle::default(), &())?
+            .render(scene, &CreaseAngle::default(), &())?
             .image;
         replicates.push(band_luminance(
             image.pixels().iter().map(|p| p.as_dvec3()),
-            &pixels,
+            pixels,
         ));
     }
     let truth = replicates.iter().sum::<f64>() / replicates.len() as f64;
     let spread =
         (replicates.iter().map(|x| (x - truth).powi(2)).sum::<f64>() / (replicates.len() - 1) as f64).sqrt();
-    let truth_se = spread / (replicates.len() as f64).sqrt();
-    println!(
-        "path-traced band luminance {truth:.5} ± {truth_se:.5} ({:.2} %, {} × {REFERENCE_SPP} spp)",
-        100.0 * truth_se / truth,
-        REFERENCE_REPLICATES
-    );
-
-    let partitions: [(&str, Box<dyn Partitioner>); 2] = [
-        ("crease", Box::new(CreaseAngle::default())),
-        ("contact", Box::new(Contact::default())),
-    ];
-    println!("| maps | passes | band error | in reference SEs |");
-    println!("|---|---|---|---|");
-    for (name, partition) in partitions {
-        let prepared = partition.prepare_scene(scene.clone())?;
-        let mut sum = vec![DVec3::ZERO; (SIZE * SIZE) as usize];
-        for w in CHECKPOINTS.windows(2) {
-            let progressive = ProgressiveSettings {
-                first_pass: w[0],
-                ..ProgressiveSettings::new(settings, w[1] - w[0])
-            };
-            let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, progressive).render(
-                &prepared,
-                &*partition,
-                &(),
-            )?;
-            for (s, x) in sum.iter_mut().zip(out.accumulation.sums().parts().0) {
-                *s += *x;
-            }
-            let mean = band_luminance(sum.iter().map(|s| *s / w[1] as f64), &pixels);
-            let error = mean / truth - 1.0;
-            println!(
-                "| {name} | {} | {:+.2} % | {:+.1} |",
-                w[1],
-                100.0 * error,
-                (mean - truth) / truth_se
-            );
-        }
-    }
-    Ok(())
+    Ok((truth, spread / (replicates.len() as f64).sqrt()))
 }
 
 /// Pixels whose centre ray hits the floor within `band` of the base of something standing on

@@ -215,3 +215,66 @@ fn touching_rooms_leak_through_the_shared_floor_map_with_crease_maps() {
     let lit = dark.iter().filter(|&&i| out.pixels()[i].x > 0.0).count();
     assert!(lit > dark.len() / 10, "{lit} of {} dark pixels lit", dark.len());
 }
+
+#[test]
+fn bad_final_gather_settings_are_typed_errors() {
+    use photon_maps::render::{EstimatorOptions, RadianceCache, RenderError};
+    let scene = scenes::build("cornell-box").unwrap();
+    for options in [
+        FinalGatherOptions {
+            gather_rays: 0,
+            ..FinalGatherOptions::default()
+        },
+        FinalGatherOptions {
+            gather_rays: FinalGatherOptions::MAX_GATHER_RAYS + 1,
+            ..FinalGatherOptions::default()
+        },
+        FinalGatherOptions {
+            cache_every: 0,
+            ..FinalGatherOptions::default()
+        },
+        FinalGatherOptions {
+            corner_distance: f32::NAN,
+            ..FinalGatherOptions::default()
+        },
+        FinalGatherOptions {
+            corner_distance: -1.0,
+            ..FinalGatherOptions::default()
+        },
+    ] {
+        let settings = RenderSettings {
+            final_gather: options,
+            ..settings(Mode::FinalGather, 1, 1)
+        };
+        let result =
+            Renderer::new(EstimatorKind::Disc, settings).render(&scene, &CreaseAngle::default(), &());
+        assert!(
+            matches!(result, Err(RenderError::BadFinalGather(_))),
+            "{options:?}"
+        );
+        // The other modes do not read them.
+        let other = RenderSettings {
+            mode: Mode::PathTrace,
+            ..settings
+        };
+        assert!(other.validate().is_ok(), "{options:?}");
+    }
+    // The cache on its own refuses every 0th photon.
+    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
+    let traced = photon_maps::trace::trace_photons(
+        &scene,
+        &assignment,
+        &photon_maps::trace::TraceOptions {
+            photons: 1000,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let maps = photon_maps::trace::PhotonMaps::build(&scene, &assignment, traced).unwrap();
+    let options = EstimatorOptions::for_scene(&scene.bounds());
+    assert!(matches!(
+        RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 0),
+        Err(RenderError::BadFinalGather(_))
+    ));
+    assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 1).is_ok());
+}

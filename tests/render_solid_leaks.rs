@@ -159,3 +159,72 @@ fn gap_lets_through_no_more_than_three_times_the_path_traced_light() {
         );
     }
 }
+
+#[test]
+fn contact_maps_are_bit_identical_across_thread_counts() {
+    let (scene, contact) = contact_scene("solid-rooms-tee");
+    let render = |threads| {
+        let image = Renderer::new(
+            EstimatorKind::GeometryBall,
+            RenderSettings {
+                threads,
+                ..settings(Mode::PhotonMap)
+            },
+        )
+        .render(&scene, &contact, &())
+        .unwrap()
+        .image;
+        image
+            .pixels()
+            .iter()
+            .flat_map(|p| p.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    let one = render(1);
+    assert_eq!(one, render(2));
+    assert_eq!(one, render(5));
+}
+
+/// The table of `docs/results.md`: each solid-room scene's dark-room mean (red channel) under
+/// the crease and the contact maps (cube estimator, 100,000 photons) and path traced (1,024
+/// samples per pixel). `cargo test --release --test render_solid_leaks -- --ignored --nocapture`
+#[test]
+#[ignore = "prints a table for docs/results.md (about a minute)"]
+fn print_dark_room_table() {
+    let base = RenderSettings {
+        photons: 100_000,
+        ..settings(Mode::PhotonMap)
+    };
+    println!("| scene | crease maps | contact maps | path-traced | image mean (contact) |");
+    println!("|---|---|---|---|---|");
+    for name in scenes::SOLID_NAMES {
+        let (scene, contact) = contact_scene(name);
+        let crease_scene = scenes::build(name).unwrap();
+        let dark = dark_room::dark_room_pixels(&scene, W, H);
+        let crease = Renderer::new(EstimatorKind::GeometryCube, base)
+            .render(&crease_scene, &CreaseAngle::default(), &())
+            .unwrap()
+            .image;
+        let contact_image = Renderer::new(EstimatorKind::GeometryCube, base)
+            .render(&scene, &contact, &())
+            .unwrap()
+            .image;
+        let traced = Renderer::new(
+            EstimatorKind::GeometryCube,
+            RenderSettings {
+                samples_per_pixel: 1024,
+                ..settings(Mode::PathTrace)
+            },
+        )
+        .render(&scene, &contact, &())
+        .unwrap()
+        .image;
+        println!(
+            "| `{name}` | {:.2e} | {:.2e} | {:.2e} | {:.2} |",
+            dark_mean(&crease, &dark),
+            dark_mean(&contact_image, &dark),
+            dark_mean(&traced, &dark),
+            contact_image.mean().x
+        );
+    }
+}
