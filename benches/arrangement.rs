@@ -8,7 +8,7 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::geom::glam::{Vec3, vec3};
-use photon_maps::geom::{ArrangementOptions, split_polygons_at_intersections};
+use photon_maps::geom::{Aabb, ArrangementOptions, split_polygons_at_intersections};
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, scenes};
 use std::hint::black_box;
 
@@ -39,23 +39,7 @@ fn boxes(count: usize) -> Vec<Vec<Vec3>> {
             (j as f32 + 0.3) / per_row as f32,
         );
         let hi = lo + vec3(0.02, 0.01, 0.02);
-        let c = |m: u32| {
-            vec3(
-                if m & 1 != 0 { hi.x } else { lo.x },
-                if m & 2 != 0 { hi.y } else { lo.y },
-                if m & 4 != 0 { hi.z } else { lo.z },
-            )
-        };
-        for f in [
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [4, 5, 7, 6],
-            [0, 2, 3, 1],
-        ] {
-            out.push(f.iter().map(|&m| c(m)).collect());
-        }
+        out.extend(Aabb::new(lo, hi).face_quads().iter().map(|q| q.to_vec()));
     }
     out
 }

@@ -77,6 +77,28 @@ impl Aabb {
         self.max - self.min
     }
 
+    /// The six faces as quads wound counter-clockwise seen from outside (normals pointing out):
+    /// y min, y max, x min, x max, z min, z max.
+    pub fn face_quads(&self) -> [[Vec3; 4]; 6] {
+        let (lo, hi) = (self.min, self.max);
+        let c = |i: u32| {
+            Vec3::new(
+                if i & 1 != 0 { hi.x } else { lo.x },
+                if i & 2 != 0 { hi.y } else { lo.y },
+                if i & 4 != 0 { hi.z } else { lo.z },
+            )
+        };
+        [
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ]
+        .map(|f| f.map(c))
+    }
+
     /// Length of the diagonal (0 for an empty box).
     pub fn diagonal(&self) -> f32 {
         if self.is_empty() {

@@ -70,3 +70,20 @@ fn incident_pdf_is_the_density_of_sample_incident() {
     let point = PointLight::new(Vec3::ZERO, Vec3::ONE);
     assert!(point.supports_mis() && point.incident_pdf(Vec3::Y, Vec3::NEG_Y).is_none());
 }
+
+#[test]
+fn large_emitting_meshes_keep_shadow_rays_alone() {
+    // incident_pdf scans every triangle: past the limit the light opts out of MIS.
+    let strip = |n: usize| -> Vec<[Vec3; 3]> {
+        (0..n)
+            .map(|i| {
+                let x = i as f32 * 0.01;
+                [vec3(x, 1.0, 0.0), vec3(x, 1.0, 0.1), vec3(x + 0.01, 1.0, 0.0)]
+            })
+            .collect()
+    };
+    let small = AreaLight::from_triangles(&strip(AreaLight::MIS_MAX_TRIANGLES), Vec3::ONE);
+    let large = AreaLight::from_triangles(&strip(AreaLight::MIS_MAX_TRIANGLES + 1), Vec3::ONE);
+    assert!(small.supports_mis());
+    assert!(!large.supports_mis());
+}

@@ -15,24 +15,11 @@ fn options(gap: f32) -> ArrangementOptions {
 
 /// The six outward quads of the box `[lo, hi]`.
 fn box_faces(lo: Vec3, hi: Vec3) -> Vec<Vec<Vec3>> {
-    let c = |i: u32| {
-        vec3(
-            if i & 1 != 0 { hi.x } else { lo.x },
-            if i & 2 != 0 { hi.y } else { lo.y },
-            if i & 4 != 0 { hi.z } else { lo.z },
-        )
-    };
-    [
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [4, 5, 7, 6],
-        [0, 2, 3, 1],
-    ]
-    .iter()
-    .map(|f| f.iter().map(|&i| c(i)).collect())
-    .collect()
+    Aabb::new(lo, hi)
+        .face_quads()
+        .iter()
+        .map(|q| q.to_vec())
+        .collect()
 }
 
 fn area_of_source(split: &Arrangement, source: usize) -> f32 {

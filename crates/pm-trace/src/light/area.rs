@@ -24,6 +24,10 @@ pub struct AreaLight {
 }
 
 impl AreaLight {
+    /// The most triangles of a light that offers multiple importance sampling
+    /// ([`Light::supports_mis`]).
+    pub const MIS_MAX_TRIANGLES: usize = 64;
+
     /// The parallelogram `corner + s·edge_u + t·edge_v`, `(s, t) ∈ [0,1]²`, front side along
     /// `edge_u × edge_v`.
     pub fn quad(corner: Vec3, edge_u: Vec3, edge_v: Vec3, radiance: Vec3) -> Self {
@@ -145,8 +149,11 @@ impl Light for AreaLight {
         }
     }
 
+    /// True up to [`AreaLight::MIS_MAX_TRIANGLES`] triangles: [`Light::incident_pdf`] tests
+    /// every triangle, and a renderer asks at every diffuse bounce, so a large emitting mesh
+    /// keeps shadow rays alone.
     fn supports_mis(&self) -> bool {
-        true
+        self.triangles.len() <= Self::MIS_MAX_TRIANGLES
     }
 
     /// The nearest of the light's triangles the ray meets on an emitting side, and the density

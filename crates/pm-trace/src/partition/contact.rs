@@ -184,6 +184,19 @@ impl Contact {
     }
 }
 
+impl Contact {
+    /// Whether the faces on the two sides of `he` may share a map: a crease below `max_angle`
+    /// and no segment where faces meet along the edge.
+    fn joins(&self, mesh: &HalfEdgeMesh, he: pm_geom::HalfEdgeId, barriers: &BarrierSet) -> bool {
+        let positions = mesh.positions();
+        mesh.crease_angle(he).is_some_and(|a| a < self.max_angle)
+            && !barriers.covers_edge(
+                positions[mesh.origin(he).0 as usize],
+                positions[mesh.target(he).0 as usize],
+            )
+    }
+}
+
 impl Partitioner for Contact {
     /// Splits the scene where its faces meet ([`Contact::split_scene`]); a scene split already
     /// is returned as it is.
@@ -215,7 +228,6 @@ impl Partitioner for Contact {
         // segment where faces meet nor into a sealed piece.
         for m in scene.meshes() {
             let mesh = m.half_edge_mesh();
-            let positions = mesh.positions();
             for face in mesh.faces() {
                 let part = m.part_of_face(face);
                 if sealed(part) {
@@ -223,14 +235,7 @@ impl Partitioner for Contact {
                 }
                 for (he, other) in mesh.neighbours(face) {
                     let other_part = m.part_of_face(other);
-                    if other_part.0 > part.0
-                        && !sealed(other_part)
-                        && mesh.crease_angle(he).is_some_and(|a| a < self.max_angle)
-                        && !barriers.covers_edge(
-                            positions[mesh.origin(he).0 as usize],
-                            positions[mesh.target(he).0 as usize],
-                        )
-                    {
+                    if other_part.0 > part.0 && !sealed(other_part) && self.joins(mesh, he, barriers) {
                         groups.union(part.0, other_part.0);
                     }
                 }
@@ -262,19 +267,11 @@ impl Partitioner for Contact {
             polygons.is_empty(),
             HalfEdgeMesh::build(&positions, &polygons, &options),
         ) {
-            let welded_positions = welded.positions();
             for face in welded.faces() {
                 let part = parts[welded.source_face(face)];
                 for (he, other) in welded.neighbours(face) {
                     let other_part = parts[welded.source_face(other)];
-                    if !sealed(part)
-                        && !sealed(other_part)
-                        && welded.crease_angle(he).is_some_and(|a| a < self.max_angle)
-                        && !barriers.covers_edge(
-                            welded_positions[welded.origin(he).0 as usize],
-                            welded_positions[welded.target(he).0 as usize],
-                        )
-                    {
+                    if !sealed(part) && !sealed(other_part) && self.joins(&welded, he, barriers) {
                         groups.union(part.0, other_part.0);
                     }
                 }
