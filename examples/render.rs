@@ -34,7 +34,7 @@ mod report;
 mod tracking_allocator;
 
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
-use files::{NamedFile, check_run_outputs, load_scene, say, scene_input, scene_name};
+use files::{check_run_outputs, load_scene, say, scene_dependencies, scene_inputs, scene_name};
 use report::{Record, contacts_json, contacts_summary, json_number, json_object, json_string, summary};
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
@@ -204,7 +204,8 @@ fn run(args: &Args) -> Result<(), String> {
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
     // Fail on an unwritable or clashing output before spending time on the scene or render.
-    let inputs: Vec<NamedFile<'_>> = scene_input(&args.scene).into_iter().collect();
+    let dependencies = scene_dependencies(&args.scene);
+    let inputs = scene_inputs(&args.scene, &dependencies);
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
 

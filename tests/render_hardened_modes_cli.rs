@@ -314,6 +314,28 @@ fn no_output_may_name_another_or_an_input_in_any_mode() {
         assert_eq!(keep(&scene), scene_bytes);
     }
 
+    // The files a .gltf reads besides itself: its buffer and its image.
+    let deps = Scratch::new("deps");
+    let gltf = deps.path("s.gltf");
+    std::fs::write(
+        &gltf,
+        r#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"data.bin"}],"images":[{"uri":"tex.png"}]}"#,
+    )
+    .unwrap();
+    std::fs::write(deps.path("data.bin"), b"abcd").unwrap();
+    std::fs::write(deps.path("tex.png"), b"not really a png").unwrap();
+    let (bin, tex) = (deps.path("data.bin"), deps.path("tex.png"));
+    for extra in [
+        ["--out", g.as_str(), "--stats-json", bin.as_str()],
+        ["--out", tex.as_str(), "--stats-json", json.as_str()],
+    ] {
+        let args = with(&with(&SMALL, &["--scene", &gltf]), &extra);
+        let output = run(&args).unwrap();
+        assert_refused(&args, &output, "input");
+    }
+    assert_eq!(std::fs::read(&bin).unwrap(), b"abcd");
+    assert_eq!(std::fs::read(&tex).unwrap(), b"not really a png");
+
     // A dangling link naming the image as --stats-json: the file it would create is the
     // image.
     #[cfg(unix)]

@@ -187,3 +187,25 @@ pub fn scene_input(scene: &str) -> Option<NamedFile<'_>> {
         path,
     })
 }
+
+/// The files a glTF scene reads besides itself (its buffer and image files, as the loader
+/// resolves them), which no output may replace either; none for a built-in scene, a `.glb`
+/// whose URIs name none, or a file that does not parse (its load reports that).
+pub fn scene_dependencies(scene: &str) -> Vec<PathBuf> {
+    match scene_input(scene) {
+        Some(input) => {
+            photon_maps::trace::gltf::external_files(input.path, &Default::default()).unwrap_or_default()
+        }
+        None => Vec::new(),
+    }
+}
+
+/// Every file the scene reads, as inputs for [`check_outputs`]; `dependencies` from
+/// [`scene_dependencies`].
+pub fn scene_inputs<'a>(scene: &'a str, dependencies: &'a [PathBuf]) -> Vec<NamedFile<'a>> {
+    let files = dependencies.iter().map(|path| NamedFile {
+        option: "scene's buffer or image",
+        path,
+    });
+    scene_input(scene).into_iter().chain(files).collect()
+}

@@ -2,7 +2,7 @@
 //! merge has the bits of one run of all their passes, and the SPPM baseline. Kept apart from
 //! the single-pass command line.
 
-use super::files::{NamedFile, check_run_outputs, scene_input};
+use super::files::{NamedFile, check_run_outputs, scene_dependencies, scene_input, scene_inputs};
 use super::{Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, say};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
@@ -67,7 +67,8 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
-    let inputs: Vec<NamedFile<'_>> = scene_input(&args.scene).into_iter().collect();
+    let dependencies = scene_dependencies(&args.scene);
+    let inputs = scene_inputs(&args.scene, &dependencies);
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
