@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let settings = RenderSettings {
         width: SIZE,
         height: SIZE,
-        photons: 20_000,
+        photons: RenderSettings::default().photons,
         seed: 7,
         ..RenderSettings::default()
     };
