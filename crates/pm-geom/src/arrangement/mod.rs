@@ -13,8 +13,10 @@
 mod barrier;
 #[cfg(test)]
 mod contact_tests;
+mod copies;
 mod cut;
 mod inside;
+mod junctions;
 mod pair;
 #[cfg(test)]
 mod tests;
@@ -23,8 +25,10 @@ pub use barrier::BarrierSet;
 
 use crate::bounds_bvh::BoundsBvh;
 use crate::{Aabb, polygon_vector_area};
-use cut::{Cut, add_cut, apply_cut, insert_points_on_edges};
+use copies::{covered_by, exact_duplicates};
+use cut::{Cut, add_cut, apply_cut};
 use glam::Vec3;
+use junctions::resolve_t_junctions;
 use pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
 
 /// Tolerances and bounds of [`split_polygons_at_intersections`].
@@ -320,9 +324,9 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
 }
 
 /// Counts pieces and vertices against the bounds before they are kept.
-struct Budget {
-    pieces: usize,
-    vertices: usize,
+pub(super) struct Budget {
+    pub(super) pieces: usize,
+    pub(super) vertices: usize,
     max_pieces: usize,
     max_vertices: usize,
 }
@@ -337,7 +341,7 @@ impl Budget {
         }
     }
 
-    fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
+    pub(super) fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
         if pieces > self.max_pieces {
             return Err(ArrangementError::TooManyPieces {
                 limit: self.max_pieces,
@@ -357,42 +361,6 @@ impl Budget {
         self.vertices += piece.len();
         Ok(())
     }
-}
-
-/// For each polygon, whether an earlier one has the same vertices in the same cyclic order
-/// (an exact copy, facing the same way). Polygons are sorted by a hash of their vertices
-/// (starting at the smallest), and only those with equal hashes are compared.
-fn exact_duplicates<P: AsRef<[Vec3]>>(polygons: &[P]) -> Vec<bool> {
-    let hash = |p: &[Vec3]| {
-        rotated(p).flatten().fold(0xcbf2_9ce4_8422_2325u64, |h, bits| {
-            (h ^ bits as u64).wrapping_mul(0x0100_0000_01b3)
-        })
-    };
-    let mut order: Vec<(u64, usize)> = polygons
-        .iter()
-        .enumerate()
-        .map(|(i, p)| (hash(p.as_ref()), i))
-        .collect();
-    order.sort_unstable();
-    let mut duplicate = vec![false; polygons.len()];
-    for run in order.chunk_by(|a, b| a.0 == b.0).filter(|run| run.len() > 1) {
-        for (k, &(_, i)) in run.iter().enumerate() {
-            let p = polygons[i].as_ref();
-            duplicate[i] = run.iter().enumerate().any(|(m, &(_, j))| {
-                let q = polygons[j].as_ref();
-                m != k && j < i && q.len() == p.len() && rotated(q).eq(rotated(p))
-            });
-        }
-    }
-    duplicate
-}
-
-/// The vertices of `p` as bits, starting at the smallest, in order.
-fn rotated(p: &[Vec3]) -> impl Iterator<Item = [u32; 3]> + '_ {
-    let start = (0..p.len())
-        .min_by_key(|&i| p[i].to_array().map(f32::to_bits))
-        .unwrap_or(0);
-    (0..p.len()).map(move |k| p[(start + k) % p.len()].to_array().map(f32::to_bits))
 }
 
 /// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.
@@ -434,67 +402,4 @@ fn for_each_candidate_pair(faces: &[Option<Face>], mut f: impl FnMut(usize, usiz
             f(i, live[m as usize].0);
         }
     }
-}
-
-/// Inserts every vertex of a cut face's pieces into each edge of any piece it lies inside, so
-/// that the pieces on both sides of a cut, and the faces next to a cut face, share vertices.
-fn resolve_t_junctions(
-    pieces: &mut [Vec<Vec3>],
-    source: &[usize],
-    was_cut: &[bool],
-    tolerance: f32,
-    budget: &mut Budget,
-) -> Result<(), ArrangementError> {
-    let points: Vec<Vec3> = pieces
-        .iter()
-        .zip(source)
-        .filter(|(_, s)| was_cut[**s])
-        .flat_map(|(p, _)| p.iter().copied())
-        .collect();
-    let pad = Vec3::splat(tolerance);
-    let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p - pad, p + pad)).collect();
-    let all = boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x));
-    let bvh = BoundsBvh::build(&boxes);
-    let mut found: Vec<Vec3> = Vec::new();
-    for piece in pieces.iter_mut() {
-        let bounds = Aabb::from_points(piece);
-        let bounds = Aabb::new(bounds.min - pad, bounds.max + pad);
-        if !bounds.overlaps(&all) {
-            continue;
-        }
-        found.clear();
-        let n = piece.len();
-        for i in 0..n {
-            let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
-            let edge = Aabb::new(edge.min - pad, edge.max + pad);
-            bvh.for_each_candidate(&edge, |k| {
-                if boxes[k as usize].overlaps(&edge) {
-                    found.push(points[k as usize]);
-                }
-            });
-        }
-        if found.is_empty() {
-            continue;
-        }
-        let before = piece.len();
-        insert_points_on_edges(piece, &found, tolerance);
-        budget.check(budget.pieces, budget.vertices + piece.len() - before)?;
-        budget.vertices += piece.len() - before;
-    }
-    Ok(())
-}
-
-/// Whether `piece` lies in (or within `gap` of) `cover`'s plane and inside its outline.
-fn covered_by(piece: &[Vec3], cover: &Face, tolerance: f32, gap: f32) -> bool {
-    let centroid = piece.iter().copied().sum::<Vec3>() / piece.len() as f32;
-    let distance = cover.normal.dot(centroid) - cover.offset;
-    if distance.abs() > gap {
-        return false;
-    }
-    let c = centroid - cover.normal * distance;
-    let n = cover.vertices.len();
-    (0..n).all(|i| {
-        let (a, b) = (cover.vertices[i], cover.vertices[(i + 1) % n]);
-        cover.normal.cross(b - a).normalize_or_zero().dot(c - a) >= -tolerance
-    })
 }
