@@ -39,6 +39,7 @@
 //! The passes are independent given their index, so a run can be split into shards of passes
 //! rendered anywhere and merged ([`Shard::merge`]).
 
+mod accumulation;
 mod pass_maps;
 mod pass_sum;
 mod pilot;
@@ -49,6 +50,7 @@ mod shard;
 mod shard_exr;
 mod sppm;
 
+pub use accumulation::{Accumulation, ProgressiveRendered, ProgressiveStats};
 pub use pass_sum::PassSums;
 pub use schedule::{MAX_PASS, radius_scale};
 pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
@@ -56,7 +58,7 @@ pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
 use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
 use crate::{
-    EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, Image, MapView, Mode, Progress, RadianceCache,
+    EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, Mode, Progress, RadianceCache,
     RenderError, RenderSettings,
 };
 use glam::Vec3;
@@ -66,7 +68,7 @@ use pm_kdtree::PhotonTree;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use radiance::PassLighting;
 use rayon::prelude::*;
-use std::ops::{ControlFlow, Range};
+use std::ops::ControlFlow;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -178,101 +180,6 @@ impl ProgressiveSettings {
             self.alpha
         ) + &gather
     }
-}
-
-/// The running sum of a progressive render's passes, kept exactly (see [`PassSums`]): the
-/// merge of shards of passes gives the same bits as one run of them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Accumulation {
-    sums: PassSums,
-    first_pass: u64,
-    passes: u64,
-}
-
-impl Accumulation {
-    /// An empty sum starting at pass `first_pass`.
-    pub fn new(width: u32, height: u32, first_pass: u64) -> Result<Self, RenderError> {
-        Ok(Accumulation {
-            sums: PassSums::new(width, height)?,
-            first_pass,
-            passes: 0,
-        })
-    }
-
-    /// The passes summed.
-    pub fn pass_range(&self) -> Range<u64> {
-        self.first_pass..self.first_pass + self.passes
-    }
-
-    /// Number of passes summed.
-    pub fn passes(&self) -> u64 {
-        self.passes
-    }
-
-    /// The per-pixel sums of the passes' radiance.
-    pub fn sums(&self) -> &PassSums {
-        &self.sums
-    }
-
-    /// The mean of the passes: the progressive estimate (black before any pass).
-    pub fn mean(&self) -> Image {
-        self.sums.mean(self.passes)
-    }
-}
-
-/// Counts and timings of a progressive render.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ProgressiveStats {
-    /// Passes rendered.
-    pub passes: u64,
-    /// Photon paths emitted over all passes (not counting the pilot).
-    pub photons_emitted: u64,
-    /// Photons stored over all passes.
-    pub photons_stored: u64,
-    /// The share of the emitted power whose first hit lay within 1 mm of its light, averaged
-    /// over the passes ([`crate::RenderStats::near_light_fraction`]): near 1 when a light faces
-    /// into the wall or ceiling it sits on.
-    pub near_light_fraction: f64,
-    /// Number of photon maps.
-    pub map_count: u32,
-    /// Worker threads used.
-    pub threads: usize,
-    /// Partitioning the scene and tracing and building the pilot maps.
-    pub pilot: Duration,
-    /// Photon tracing and map building, summed over passes.
-    pub trace: Duration,
-    /// Rendering, summed over passes.
-    pub render: Duration,
-    /// Precomputing the final gather's irradiance caches, summed over passes (zero in the
-    /// other modes).
-    pub precompute: Duration,
-    /// Wall time of the whole run.
-    pub total: Duration,
-    /// Heap bytes of the largest pass's photon trees: the photons one pass holds (earlier
-    /// passes' are dropped before the next is traced; tracing needs about twice this while
-    /// the photons are sorted into trees).
-    pub pass_tree_bytes: u64,
-    /// Heap bytes of the pilot's photon trees and sites (zero for SPPM, which has no pilot).
-    pub pilot_bytes: u64,
-    /// Heap bytes of the running sum (SPPM: its per-pixel state).
-    pub accumulation_bytes: u64,
-}
-
-impl ProgressiveStats {
-    /// Folds pass number `done` (counting from 0) into the mean near-light fraction; every
-    /// pass emits the same number of photon paths, so each weighs the same.
-    pub(crate) fn add_near_light(&mut self, done: u64, fraction: f64) {
-        self.near_light_fraction += (fraction - self.near_light_fraction) / (done + 1) as f64;
-    }
-}
-
-/// A progressive render's sum and figures.
-#[derive(Clone, Debug)]
-pub struct ProgressiveRendered {
-    /// The sum of the passes (its [`Accumulation::mean`] is the image).
-    pub accumulation: Accumulation,
-    /// Counts and timings.
-    pub stats: ProgressiveStats,
 }
 
 /// Renders progressively with one fixed-volume estimator.
