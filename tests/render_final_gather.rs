@@ -1,7 +1,7 @@
 //! The final gather against the path tracer (the repository's independent truth): image and
 //! region means (surfaces by orientation, and the accordion's crease bands) on the Cornell box,
-//! the lit/unlit rooms and the accordion; the dark room
-//! exactly black; the same image on any number of threads.
+//! the lit/unlit rooms and the accordion; the dark room exactly black; the same image on any
+//! number of threads.
 
 #[path = "support/dark_room.rs"]
 mod dark_room;
@@ -76,7 +76,7 @@ fn mark_crease_bands(scene: &Scene, regions: &mut [Option<usize>]) {
         };
         let fold = (hit.position.x / step).round();
         if (1.0..=7.0).contains(&fold) && (hit.position.x - fold * step).abs() < 0.03 {
-            *region = Some(if fold as u32 % 2 == 0 { 6 } else { 7 });
+            *region = Some(if (fold as u32).is_multiple_of(2) { 6 } else { 7 });
         }
     }
 }
