@@ -23,6 +23,8 @@ struct Node {
 /// Binary BVH over item boxes, built by median splits on the widest centroid axis.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BoundsBvh {
+    /// Most items per leaf.
+    leaf: usize,
     nodes: Vec<Node>,
     order: Vec<u32>,
 }
@@ -30,8 +32,16 @@ pub(crate) struct BoundsBvh {
 impl BoundsBvh {
     /// Builds over `boxes` (item `i` has box `boxes[i]`; boxes must be non-empty and finite).
     pub(crate) fn build(boxes: &[Aabb]) -> Self {
+        Self::build_with_leaves(boxes, MAX_LEAF)
+    }
+
+    /// [`Self::build`] with up to `leaf` items per leaf (at least 1): larger leaves suit many
+    /// small queries of a whole set against itself (the arrangement's candidate pairs).
+    pub(crate) fn build_with_leaves(boxes: &[Aabb], leaf: usize) -> Self {
+        let leaf = leaf.max(1);
         let mut bvh = BoundsBvh {
-            nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
+            leaf,
+            nodes: Vec::with_capacity(2 * boxes.len() / leaf + 1),
             order: Vec::new(),
         };
         if boxes.is_empty() {
@@ -60,7 +70,7 @@ impl BoundsBvh {
             first: offset as u32,
             count: items.len() as u32,
         });
-        if items.len() <= MAX_LEAF {
+        if items.len() <= self.leaf {
             return index as u32;
         }
         let centroids = items.iter().fold(Aabb::EMPTY, |b, &(_, c)| b.grow(c));

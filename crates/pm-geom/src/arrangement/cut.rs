@@ -30,37 +30,178 @@ pub(super) fn add_cut(cuts: &mut Vec<Cut>, c0: Vec3, c1: Vec3, tolerance: f32) {
     }
 }
 
-/// Cuts every piece crossed by the cut's line in two, adding the cut's contact points to the
-/// new edge on both sides.
-pub(super) fn apply_cut(
-    pieces: Vec<Vec<Vec3>>,
-    cut: &Cut,
-    face_normal: Vec3,
+/// Cuts a convex face along all its `cuts` into convex pieces: each cut splits, along its line,
+/// every piece that one of its contact segments runs through, adding the contact points to the
+/// new edge on both sides. Pieces the line crosses away from the segments are left whole (the
+/// line ends at their border, a T-junction that the junction pass resolves), so a face met
+/// along many short segments is not cut into a grid. A grid over the face finds the pieces near
+/// a segment, so the work grows with the pieces a cut touches, not with all of the face's.
+/// `check(pieces)` is asked after each cut and stops the work with its error.
+pub(super) fn cut_face<E>(
+    polygon: &[Vec3],
+    cuts: &[Cut],
+    normal: Vec3,
     tolerance: f32,
-) -> Vec<Vec<Vec3>> {
-    let Some(side) = face_normal.cross(cut.direction).try_normalize() else {
-        return pieces;
-    };
-    let offset = side.dot(cut.point);
-    let mut out = Vec::with_capacity(pieces.len() + 1);
-    for piece in pieces {
-        let distances: Vec<f32> = piece.iter().map(|&p| side.dot(p) - offset).collect();
-        let has_front = distances.iter().any(|&d| d > tolerance);
-        let has_back = distances.iter().any(|&d| d < -tolerance);
-        if !(has_front && has_back) {
-            out.push(piece);
+    mut check: impl FnMut(usize) -> Result<(), E>,
+) -> Result<Vec<Vec<Vec3>>, E> {
+    let mut pieces = vec![polygon.to_vec()];
+    let grid = PieceGrid::new(polygon, normal, cuts.len());
+    let mut cells: Vec<Vec<u32>> = vec![Vec::new(); grid.cells()];
+    grid.register(&pieces[0], 0, &mut cells);
+    let mut seen: Vec<usize> = vec![usize::MAX];
+    let mut candidates: Vec<u32> = Vec::new();
+    let mut distances: Vec<f32> = Vec::new();
+    for (k, cut) in cuts.iter().enumerate() {
+        let Some(side) = normal.cross(cut.direction).try_normalize() else {
             continue;
-        }
-        let (mut front, mut back) = (Vec::new(), Vec::new());
-        split_by_line(&piece, &distances, tolerance, &mut front, &mut back);
-        for mut half in [front, back] {
-            if half.len() >= 3 {
-                insert_points_on_edges(&mut half, &cut.contacts, tolerance);
-                out.push(half);
+        };
+        let offset = side.dot(cut.point);
+        candidates.clear();
+        for segment in cut.contacts.chunks_exact(2) {
+            for cell in grid.cells_over(segment) {
+                for &i in &cells[cell] {
+                    if seen[i as usize] != k {
+                        seen[i as usize] = k;
+                        candidates.push(i);
+                    }
+                }
             }
         }
+        candidates.sort_unstable();
+        for &index in &candidates {
+            let piece = &pieces[index as usize];
+            if !crossed_by_contacts(piece, normal, &cut.contacts, tolerance) {
+                continue;
+            }
+            distances.clear();
+            distances.extend(piece.iter().map(|&p| side.dot(p) - offset));
+            let has_front = distances.iter().any(|&d| d > tolerance);
+            let has_back = distances.iter().any(|&d| d < -tolerance);
+            if !(has_front && has_back) {
+                continue;
+            }
+            let (mut front, mut back) = (Vec::new(), Vec::new());
+            split_by_line(piece, &distances, tolerance, &mut front, &mut back);
+            if front.len() < 3 || back.len() < 3 {
+                continue;
+            }
+            insert_points_on_edges(&mut front, &cut.contacts, tolerance);
+            insert_points_on_edges(&mut back, &cut.contacts, tolerance);
+            // The front lies within the old piece's cells; the back is registered anew.
+            pieces[index as usize] = front;
+            grid.register(&back, pieces.len() as u32, &mut cells);
+            pieces.push(back);
+            seen.push(k);
+        }
+        check(pieces.len())?;
     }
-    out
+    Ok(pieces)
+}
+
+/// A uniform grid over a face's plane, about √cuts cells a side, for [`cut_face`].
+struct PieceGrid {
+    u: Vec3,
+    v: Vec3,
+    min: (f32, f32),
+    cell: (f32, f32),
+    side: usize,
+}
+
+impl PieceGrid {
+    fn new(polygon: &[Vec3], normal: Vec3, cuts: usize) -> Self {
+        let (u, v) = normal.any_orthonormal_pair();
+        let (mut lo, mut hi) = (
+            (f32::INFINITY, f32::INFINITY),
+            (f32::NEG_INFINITY, f32::NEG_INFINITY),
+        );
+        for &p in polygon {
+            let (a, b) = (u.dot(p), v.dot(p));
+            lo = (lo.0.min(a), lo.1.min(b));
+            hi = (hi.0.max(a), hi.1.max(b));
+        }
+        let side = ((cuts as f32).sqrt().ceil() as usize).clamp(1, 512);
+        let cell = (
+            ((hi.0 - lo.0) / side as f32).max(f32::MIN_POSITIVE),
+            ((hi.1 - lo.1) / side as f32).max(f32::MIN_POSITIVE),
+        );
+        PieceGrid {
+            u,
+            v,
+            min: lo,
+            cell,
+            side,
+        }
+    }
+
+    fn cells(&self) -> usize {
+        self.side * self.side
+    }
+
+    /// The cell range (inclusive) over the points' bounds, clamped to the grid.
+    fn range(&self, points: &[Vec3]) -> (usize, usize, usize, usize) {
+        let index =
+            |x: f32, lo: f32, cell: f32| (((x - lo) / cell).floor().max(0.0) as usize).min(self.side - 1);
+        let (mut i0, mut i1, mut j0, mut j1) = (usize::MAX, 0, usize::MAX, 0);
+        for &p in points {
+            let (i, j) = (
+                index(self.u.dot(p), self.min.0, self.cell.0),
+                index(self.v.dot(p), self.min.1, self.cell.1),
+            );
+            (i0, i1, j0, j1) = (i0.min(i), i1.max(i), j0.min(j), j1.max(j));
+        }
+        // One cell of margin: points within the tolerance of a cell border.
+        (
+            i0.saturating_sub(1),
+            (i1 + 1).min(self.side - 1),
+            j0.saturating_sub(1),
+            (j1 + 1).min(self.side - 1),
+        )
+    }
+
+    fn cells_over(&self, points: &[Vec3]) -> impl Iterator<Item = usize> + '_ {
+        let (i0, i1, j0, j1) = self.range(points);
+        (j0..=j1).flat_map(move |j| (i0..=i1).map(move |i| j * self.side + i))
+    }
+
+    fn register(&self, piece: &[Vec3], index: u32, cells: &mut [Vec<u32>]) {
+        for cell in self.cells_over(piece) {
+            cells[cell].push(index);
+        }
+    }
+}
+
+/// Whether one of the segments `contacts[2k]`–`contacts[2k + 1]` runs through the inside of the
+/// convex `piece` for more than the tolerance.
+fn crossed_by_contacts(piece: &[Vec3], normal: Vec3, contacts: &[Vec3], tolerance: f32) -> bool {
+    let pad = Vec3::splat(tolerance);
+    let (lo, hi) = piece
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    contacts.chunks_exact(2).any(|segment| {
+        let (a, b) = (segment[0], segment[1]);
+        if a.min(b).cmpgt(hi + pad).any() || a.max(b).cmplt(lo - pad).any() {
+            return false;
+        }
+        let length = a.distance(b);
+        let (mut t0, mut t1) = (0.0f32, 1.0f32);
+        for i in 0..piece.len() {
+            let (p, q) = (piece[i], piece[(i + 1) % piece.len()]);
+            let Some(inward) = normal.cross(q - p).try_normalize() else {
+                continue;
+            };
+            let (fa, fb) = (inward.dot(a - p) - tolerance, inward.dot(b - p) - tolerance);
+            if fa < 0.0 && fb < 0.0 {
+                return false;
+            } else if fa < 0.0 {
+                t0 = t0.max(fa / (fa - fb));
+            } else if fb < 0.0 {
+                t1 = t1.min(fa / (fa - fb));
+            }
+        }
+        (t1 - t0) * length > tolerance
+    })
 }
 
 /// Splits a convex polygon by the signed `distances` of its vertices to a plane; vertices

@@ -26,7 +26,7 @@ pub use barrier::BarrierSet;
 use crate::bounds_bvh::BoundsBvh;
 use crate::{Aabb, polygon_vector_area};
 use copies::{covered_by, exact_duplicates};
-use cut::{Cut, add_cut, apply_cut};
+use cut::{Cut, add_cut, cut_face};
 use glam::Vec3;
 use junctions::resolve_t_junctions;
 use pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
@@ -190,7 +190,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     let mut outcome = PairOutcome::default();
     let mut pair_count = 0usize;
     let mut failure = None;
-    for_each_candidate_pair(&faces, |i, j| {
+    for_each_candidate_pair(&faces, gap, |i, j| {
         if failure.is_some() {
             return;
         }
@@ -258,11 +258,10 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
         }
         match &faces[index] {
             Some(face) if !cuts[index].is_empty() => {
-                let mut current = vec![polygon.to_vec()];
-                for cut in &cuts[index] {
-                    current = apply_cut(current, cut, face.normal, tolerance);
-                    budget.check(pieces.len() + current.len(), 0)?;
-                }
+                let done = pieces.len();
+                let current = cut_face(polygon, &cuts[index], face.normal, tolerance, |made| {
+                    budget.check(done + made, 0)
+                })?;
                 was_cut[index] = current.len() > 1;
                 for piece in current {
                     budget.add(&piece)?;
@@ -379,25 +378,30 @@ fn face_of(polygon: &[Vec3], pad: f32) -> Option<Face<'_>> {
     })
 }
 
-/// Calls `f(i, j)`, `i < j`, for every pair of faces whose padded bounds overlap, in a fixed
-/// order, through a bounding-volume hierarchy over the bounds.
-fn for_each_candidate_pair(faces: &[Option<Face>], mut f: impl FnMut(usize, usize)) {
+/// Calls `f(i, j)`, `i < j`, for every pair of faces whose bounds come within `gap` of each
+/// other (one face's own bounds against the other's, padded by the gap), through a
+/// bounding-volume hierarchy over the padded bounds; the order is fixed by the faces and the
+/// tree, whatever the machine.
+fn for_each_candidate_pair(faces: &[Option<Face>], gap: f32, mut f: impl FnMut(usize, usize)) {
     let live: Vec<(usize, Aabb)> = faces
         .iter()
         .enumerate()
         .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
         .collect();
     let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
-    let bvh = BoundsBvh::build(&boxes);
+    // Every face queries the tree once: leaves of 12 halve the levels each query walks
+    // (82 against 97 ms on split-rooms-100's 120,000 quads with leaves of 4).
+    let bvh = BoundsBvh::build_with_leaves(&boxes, 12);
     let mut partners: Vec<u32> = Vec::new();
-    for (n, &(i, bounds)) in live.iter().enumerate() {
+    let pad = Vec3::splat(gap);
+    for (n, &(i, padded)) in live.iter().enumerate() {
+        let own = Aabb::new(padded.min + pad, padded.max - pad);
         partners.clear();
-        bvh.for_each_candidate(&bounds, |m| {
-            if m as usize > n && bounds.overlaps(&boxes[m as usize]) {
+        bvh.for_each_candidate(&own, |m| {
+            if m as usize > n && own.overlaps(&boxes[m as usize]) {
                 partners.push(m);
             }
         });
-        partners.sort_unstable();
         for &m in &partners {
             f(i, live[m as usize].0);
         }

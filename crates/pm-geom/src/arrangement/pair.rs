@@ -94,6 +94,15 @@ pub(super) fn meet(
     out.on_second.clear();
     out.meeting = None;
     out.first_hidden = None;
+    // Neighbours in one plane, facing the same way (a tessellated floor): most pairs of a
+    // scene, settled without the distances.
+    let cos = a.normal.dot(b.normal);
+    if 1.0 - cos <= PARALLEL
+        && (a.offset - b.offset).abs() <= tolerance
+        && (separated(a, b, tolerance) || separated(b, a, tolerance))
+    {
+        return;
+    }
     scratch.da.clear();
     scratch.da.extend(a.vertices.iter().map(|&p| b.distance(p)));
     scratch.db.clear();
@@ -102,7 +111,6 @@ pub(super) fn meet(
     if beyond(&scratch.da) || beyond(&scratch.db) {
         return;
     }
-    let cos = a.normal.dot(b.normal);
     let max_a = scratch.da.iter().fold(0.0f32, |m, d| m.max(d.abs()));
     let max_b = scratch.db.iter().fold(0.0f32, |m, d| m.max(d.abs()));
     if 1.0 - cos.abs() <= PARALLEL && max_a <= gap && max_b <= gap {
@@ -261,8 +269,13 @@ fn separated(a: &Face, b: &Face, tolerance: f32) -> bool {
     let n = b.vertices.len();
     (0..n).any(|i| {
         let (p, q) = (b.vertices[i], b.vertices[(i + 1) % n]);
-        let inward = b.normal.cross(q - p).normalize_or_zero();
-        a.vertices.iter().all(|&v| inward.dot(v - p) <= tolerance)
+        // `inward` has the edge's length; compare squares rather than normalise it.
+        let inward = b.normal.cross(q - p);
+        let reach = tolerance * tolerance * inward.length_squared();
+        a.vertices.iter().all(|&v| {
+            let d = inward.dot(v - p);
+            d <= 0.0 || d * d <= reach
+        })
     })
 }
 

@@ -224,24 +224,44 @@ impl Partitioner for Contact {
         let no_barriers = BarrierSet::default();
         let barriers = record.map_or(&no_barriers, |r| r.barriers());
         let sealed = |part: PartId| record.is_some_and(|r| r.is_sealed(part));
-        let mut groups = UnionFind::new(scene.part_count());
-        // Within each mesh: its own twins (as the crease-angle maps), but never across a
-        // segment where faces meet nor into a sealed piece.
+        // Within each mesh: a flood fill over its own twins (as the crease-angle maps), but
+        // never across a segment where faces meet nor into a sealed piece. `groups` then joins
+        // the fills of different meshes.
+        const UNSET: u32 = u32::MAX;
+        let mut fill = vec![UNSET; scene.part_count()];
+        let mut stack: Vec<FaceId> = Vec::new();
         for m in scene.meshes() {
             let mesh = m.half_edge_mesh();
-            for face in mesh.faces() {
-                let part = m.part_of_face(face);
-                if sealed(part) {
+            for seed in mesh.faces() {
+                let seed_part = m.part_of_face(seed);
+                if fill[seed_part.0 as usize] != UNSET {
                     continue;
                 }
-                for (he, other) in mesh.neighbours(face) {
-                    let other_part = m.part_of_face(other);
-                    if other_part.0 > part.0 && !sealed(other_part) && self.joins(mesh, he, barriers) {
-                        groups.union(part.0, other_part.0);
+                fill[seed_part.0 as usize] = seed_part.0;
+                if sealed(seed_part) {
+                    continue;
+                }
+                stack.push(seed);
+                while let Some(face) = stack.pop() {
+                    for (he, other) in mesh.neighbours(face) {
+                        let other_part = m.part_of_face(other);
+                        if fill[other_part.0 as usize] == UNSET
+                            && !sealed(other_part)
+                            && self.joins(mesh, he, barriers)
+                        {
+                            fill[other_part.0 as usize] = seed_part.0;
+                            stack.push(other);
+                        }
                     }
                 }
             }
         }
+        for (p, slot) in fill.iter_mut().enumerate() {
+            if *slot == UNSET {
+                *slot = p as u32; // analytic parts
+            }
+        }
+        let mut groups = UnionFind::new(scene.part_count());
         // Across meshes: the faces with an open edge, welded together, join across flat edges
         // they share.
         let mut positions = Vec::new();
@@ -273,7 +293,7 @@ impl Partitioner for Contact {
                 for (he, other) in welded.neighbours(face) {
                     let other_part = parts[welded.source_face(other)];
                     if !sealed(part) && !sealed(other_part) && self.joins(&welded, he, barriers) {
-                        groups.union(part.0, other_part.0);
+                        groups.union(fill[part.0 as usize], fill[other_part.0 as usize]);
                     }
                 }
             }
@@ -290,7 +310,7 @@ impl Partitioner for Contact {
         let mut next = 0u32;
         for (p, slot) in map_of_part.iter_mut().enumerate() {
             let root = if p < mesh_parts {
-                groups.find(p as u32) as usize
+                groups.find(fill[p]) as usize
             } else {
                 p
             };
