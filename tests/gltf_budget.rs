@@ -4,6 +4,10 @@
 //! the byte budget (`GltfOptions::max_scene_bytes`, `max_file_bytes`) or stop with a typed
 //! error naming it, never allocate past it.
 
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::{Scratch, glb};
+
 use photon_maps::trace::gltf::{BufferError, GltfError, GltfOptions, load_scene_with};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -20,47 +24,6 @@ fn peak_growth<T>(f: impl FnOnce() -> T) -> (T, usize) {
     let base = tracking_allocator::reset_peak();
     let out = f();
     (out, tracking_allocator::peak().saturating_sub(base))
-}
-
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("pm-gltf-budget-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// A GLB container of `json` and `bin` (both padded to 4 bytes).
-fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
-    let mut json = json.as_bytes().to_vec();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
-    out.extend_from_slice(&bin);
-    out
 }
 
 /// A GLB holding one mesh of `vertices` positions (at least 3 per triangle) and `triangles`

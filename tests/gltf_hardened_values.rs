@@ -2,9 +2,12 @@
 //! huge or plain integers, emitters with infinite or negative emission, and emitters far out
 //! at ±10¹⁸ m. Each file is written here, one cube room with a lamp, differing in one value.
 
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::Scratch;
+
 use pm_trace::glam::Vec3;
 use pm_trace::gltf::{GltfError, GltfOptions, load_scene_with};
-use std::path::PathBuf;
 
 fn percent(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("%{b:02X}")).collect()
@@ -102,23 +105,11 @@ fn room(offset: [f32; 3], colours: Option<&Colours>, material: &str) -> String {
 
 const GREY: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":0}}"#;
 
-struct Scratch(PathBuf);
 impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("pm-gltf-values-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
     fn load(&self, name: &str, json: &str) -> Result<pm_trace::Scene, GltfError> {
         let path = self.0.join(name);
         std::fs::write(&path, json).unwrap();
         load_scene_with(&path, &GltfOptions::default())
-    }
-}
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 

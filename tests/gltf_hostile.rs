@@ -4,6 +4,10 @@
 //! so a loader that read it would *succeed*: the refusal kind proves it was not read.
 //! `known.gltf` checks the mapping against values worked out by hand.
 
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::Scratch;
+
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
@@ -24,22 +28,6 @@ fn buffer_error(name: &str) -> BufferError {
             reason
         }
         other => panic!("{name}: expected a buffer error, got {other:?}"),
-    }
-}
-
-/// A scratch folder under the system temp dir, removed on drop.
-struct Scratch(PathBuf);
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("pm-gltf-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-}
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 

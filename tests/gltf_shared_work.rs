@@ -3,55 +3,20 @@
 //! it starts), and a primitive keeps only the vertices its triangles use, however large the
 //! accessor and however many nodes place it.
 
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::{Scratch, glb};
+
 #[path = "support/tracking_allocator.rs"]
 mod tracking_allocator;
 
 use photon_maps::trace::gltf::{GltfError, GltfOptions, load_scene_with, read_content};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// One measurement at a time: the tests of this file share the allocator's counters.
 static MEASURE: Mutex<()> = Mutex::new(());
-
-struct Scratch(PathBuf);
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("pm-gltf-shared-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-}
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// A GLB container of `json` and `bin`.
-fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
-    let mut json = json.as_bytes().to_vec();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut bin = bin.to_vec();
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
-    out.extend_from_slice(&bin);
-    out
-}
 
 /// A black `side × side` RGB PNG (compresses to a few kilobytes at any size).
 fn black_png(side: u32) -> Vec<u8> {

@@ -1,6 +1,10 @@
 //! Hostile input through the library: every case ends as a typed error naming the problem,
 //! before anything large is allocated, and a failed write leaves the file it named intact.
 
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::Scratch;
+
 use photon_maps::kdtree::{
     BuildError, Euclidean, KindMask, MAX_COORDINATE, Neighbours, Photon, PhotonKind, PhotonTree,
 };
@@ -11,24 +15,6 @@ use photon_maps::trace::{
     SpotLight, Surface, TraceError, TraceOptions, trace_photons,
 };
 use photon_maps::trace::{Partitioner, gltf};
-use std::path::PathBuf;
-
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("pm-hardened-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Scratch(dir)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 fn floor() -> [Vec3; 4] {
     [
