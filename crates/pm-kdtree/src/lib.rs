@@ -79,6 +79,7 @@
 pub mod error;
 pub mod metric;
 pub mod photon;
+mod power_code;
 pub mod query;
 pub mod tree;
 
