@@ -13,22 +13,18 @@ const SKEW: Vec3 = Vec3::new(1.31e-3, 2.87e-3, 1.73e-3);
 
 /// Sets `sealed[p]` for each piece of a cut face that lies inside a closed solid other than
 /// its own.
-pub(super) fn mark_sealed<P: AsRef<[Vec3]>>(
+pub(super) fn mark_sealed(
     pieces: &[Vec<Vec3>],
     source: &[usize],
     was_cut: &[bool],
-    polygons: &[P],
     solids: &[Option<u32>],
     faces: &[Option<Face>],
+    tolerance: f32,
     sealed: &mut [bool],
 ) {
-    let boxes: Vec<Aabb> = polygons
+    let boxes: Vec<Aabb> = faces
         .iter()
-        .zip(faces)
-        .map(|(p, f)| match f {
-            Some(_) => Aabb::from_points(p.as_ref()),
-            None => Aabb::EMPTY,
-        })
+        .map(|f| f.as_ref().map_or(Aabb::EMPTY, |f| Aabb::from_points(f.vertices)))
         .collect();
     let everything = boxes
         .iter()
@@ -60,7 +56,7 @@ pub(super) fn mark_sealed<P: AsRef<[Vec3]>>(
                 return;
             }
             let Some(face) = &faces[k] else { return };
-            if let Some(sign) = crossing(face, start, direction) {
+            if let Some(sign) = crossing(face, start, direction, tolerance) {
                 match winding.iter_mut().find(|(id, _)| *id == solid) {
                     Some((_, w)) => *w += sign,
                     None => winding.push((solid, sign)),
@@ -72,15 +68,14 @@ pub(super) fn mark_sealed<P: AsRef<[Vec3]>>(
 }
 
 /// +1 when the ray leaves through `face` (along its normal), −1 when it enters, `None` when it
-/// misses it or starts on it.
-fn crossing(face: &Face, start: Vec3, direction: Vec3) -> Option<i32> {
+/// misses it or starts on it (within `tolerance`).
+fn crossing(face: &Face, start: Vec3, direction: Vec3, tolerance: f32) -> Option<i32> {
     let along = face.normal.dot(direction);
     if along == 0.0 {
         return None;
     }
     let t = (face.offset - face.normal.dot(start)) / along;
-    let scale = start.abs().max_element().max(1.0);
-    if t <= scale * 1e-5 {
+    if t <= tolerance {
         return None;
     }
     let x = start + direction * t;

@@ -303,7 +303,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     }
     let mut sealed = vec![false; pieces.len()];
     if !solids.is_empty() && was_cut.iter().any(|&c| c) {
-        inside::mark_sealed(&pieces, &source, &was_cut, polygons, solids, &faces, &mut sealed);
+        inside::mark_sealed(&pieces, &source, &was_cut, solids, &faces, tolerance, &mut sealed);
     }
 
     let mut out = Arrangement {

@@ -283,3 +283,26 @@ fn cuts_through(other: &[Vec3], piece: &[Vec3]) -> bool {
     }
     section.len() >= 2 && crosses_inside(piece, section[0], section[1])
 }
+
+#[test]
+fn scale_and_offset_do_not_change_the_cuts() {
+    // The same box resting on a floor (4 in-plane cuts, one coplanar overlap, one sealed
+    // footprint) from millimetres to kilometres, and 100 km from the origin, with the
+    // tolerances scaled alike.
+    for (scale, offset) in [(1e-3f32, 0.0f32), (1.0, 0.0), (1e3, 0.0), (1.0, 1e5)] {
+        let at = |p: Vec3| p * scale + Vec3::splat(offset);
+        let mut input: Vec<Vec<Vec3>> = vec![floor(3.0).into_iter().map(at).collect()];
+        input.extend(box_faces(at(vec3(1.0, 0.0, 1.0)), at(vec3(2.0, 1.0, 2.0))));
+        let solids: Vec<Option<u32>> = std::iter::once(None)
+            .chain(std::iter::repeat_n(Some(1), 6))
+            .collect();
+        let options = ArrangementOptions::new(TOL * scale, 2e-3 * scale);
+        let split = split_polygons_at_intersections(&input, &solids, &options).unwrap();
+        let label = format!("scale {scale}, offset {offset}");
+        assert_eq!(split.counts.in_plane, 4, "{label}");
+        assert_eq!(split.counts.coplanar_overlap, 1, "{label}");
+        assert_eq!(split.counts.sealed_pieces, 1, "{label}");
+        let area = area_of_source(&split, 0) / (scale * scale);
+        assert!((area - 9.0).abs() < 1e-3 * 9.0, "{label}: {area}");
+    }
+}
