@@ -78,8 +78,16 @@ struct Args {
     /// Seconds of path tracing per reference [default: 600; quick: 1].
     #[arg(long)]
     reference_seconds: Option<f64>,
-    /// Where references are cached (one EXR per scene and size; delete to re-render).
-    #[arg(long, default_value = "target/convergence-reference")]
+    /// Seconds of path tracing to add to each cached reference this example path traced
+    /// (new batches into the same two halves; 0: use them as they are).
+    #[arg(long, default_value_t = 0.0)]
+    extend_references: f64,
+    /// Render (or extend) the references, report their noise, and stop.
+    #[arg(long)]
+    references_only: bool,
+    /// Where references are kept (one EXR, its first half and a note per scene and size; the
+    /// study's own are in the repository; delete to re-render).
+    #[arg(long, default_value = "docs/convergence-references")]
     reference_dir: PathBuf,
     /// Where the `results` example caches its (larger) references: one whose size is a whole
     /// multiple of `--size` (500 for 125) is box-filtered down instead of path tracing anew.
@@ -157,7 +165,13 @@ fn run(args: &Args) -> Result<(), String> {
             .unwrap_or(if q { "1,2,4" } else { "1,4,16,64" }),
         "--pass-counts",
     )?;
-    let reference_seconds = args.reference_seconds.unwrap_or(if q { 1.0 } else { 600.0 });
+    let reference_seconds = reference::Budget {
+        seconds: args.reference_seconds.unwrap_or(if q { 1.0 } else { 600.0 }),
+        extend: args.extend_references,
+    };
+    if !(reference_seconds.seconds > 0.0 && reference_seconds.extend >= 0.0) {
+        return Err("--reference-seconds must be positive and --extend-references not negative".into());
+    }
     if budgets.is_empty() || budgets.iter().any(|b| !(b.is_finite() && *b > 0.0)) {
         return Err("--budgets must be positive seconds".into());
     }
@@ -241,6 +255,9 @@ fn run(args: &Args) -> Result<(), String> {
             reference.spp,
             100.0 * mask.coverage()
         );
+        if args.references_only {
+            continue;
+        }
         let mut runs: Vec<Run> = Vec::new();
         for &method in &chosen {
             let measure = methods::Measure {
@@ -285,6 +302,9 @@ fn run(args: &Args) -> Result<(), String> {
             chart: font.is_ok().then(|| format!("images/convergence-{name}.png")),
         });
     }
+    if args.references_only {
+        return Ok(());
+    }
     if !args.no_per_pass {
         let memory_counts = [1, 10, 100].map(|n: u64| if args.quick { n.min(16) } else { n });
         let cornell = scenes::build("cornell-box").map_err(|e| e.to_string())?;
@@ -314,7 +334,7 @@ fn per_pass_tables(
     base: RenderSettings,
     progressive: Progressive,
     counts: &[u64],
-    reference_seconds: f64,
+    reference_seconds: reference::Budget,
     study: &mut Study,
 ) -> Result<(), String> {
     let size = base.width;
@@ -356,7 +376,10 @@ fn per_pass_tables(
         "accordion",
         &accordion,
         base,
-        reference_seconds,
+        reference::Budget {
+            extend: 0.0,
+            ..reference_seconds
+        },
         (&args.reference_dir, &args.results_references),
     )?;
     let creases = per_pass::Creases::new(&accordion, size, size, 0.03)?;

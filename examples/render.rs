@@ -115,7 +115,8 @@ struct Args {
     /// Final-gather mode: gather rays per camera sample [default: 64].
     #[arg(long)]
     gather_rays: Option<u32>,
-    /// Final-gather mode: irradiance is precomputed at every n-th photon [default: 4].
+    /// Final-gather mode: irradiance is precomputed at one photon in n (n ≥ 2), from the
+    /// others [default: 4].
     #[arg(long)]
     cache_every: Option<u32>,
     /// Final-gather mode: gather hits closer than this (metres) take one more bounce

@@ -1,8 +1,9 @@
-//! The path-traced reference of each scene: two independent halves rendered for a wall-time
-//! budget, their mean the reference and their difference its own noise; cached as EXR files
-//! so that later runs of the study reuse them. Where the `results` example has rendered a
-//! reference of the same scene at a whole multiple of the size (500×500 for 125×125), that one
-//! is box-filtered down instead: the same two halves, many more samples per pixel.
+//! The path-traced reference of each scene: two independent halves, their mean the reference
+//! and their difference its own noise; cached as EXR files so that later runs of the study
+//! reuse them, and extendable: a later run asked for more seconds renders further batches
+//! (new seeds) into the same two halves. Where the `results` example has rendered a reference
+//! of the same scene at a whole multiple of the size (500×500 for 125×125) and nothing is
+//! cached, that one is box-filtered down instead.
 
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::image::write_atomically;
@@ -12,8 +13,18 @@ use std::io::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-/// The reference's pixel streams start here, far from any seed the study renders with.
+/// The reference's pixel streams start here, far from any seed the study renders with; batch
+/// `b` renders with seed `REFERENCE_SEED + b`.
 const REFERENCE_SEED: u64 = 1 << 40;
+
+/// A long reference render is written out this often (seconds).
+const CHECKPOINT_SECONDS: f64 = 120.0;
+
+/// Samples per pixel of one batch.
+const BATCH_SPP: u32 = 4;
+
+/// What the cache's text file says of a reference path traced here (and so extendable).
+const PATH_TRACED: &str = "path traced by the convergence example in batches of 4 samples per pixel, batch b with seed 2^40 + b, even batches in the first half";
 
 /// A reference image and how good it is.
 pub struct Reference {
@@ -26,59 +37,147 @@ pub struct Reference {
     pub half: Image,
 }
 
+/// How long to render a reference.
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    /// Seconds of path tracing when nothing is cached.
+    pub seconds: f64,
+    /// Seconds to add to a cached reference path traced here (0: use it as it is).
+    pub extend: f64,
+}
+
 /// The reference for `scene` (named `name`) at `base`'s size, read from `cache` when a file
-/// for this scene and size is there; otherwise box-filtered down from a `results` reference in
-/// `larger` (files `{name}-{W}x{H}-{spp}-v2.exr` and `…-v2-half.exr`, `W` and `H` the same
-/// whole multiple of the size), or else path traced for `seconds`; written to `cache`.
+/// for this scene and size is there (and extended by `budget.extend` seconds when that one
+/// was path traced here); otherwise box-filtered down from a `results` reference in `larger`
+/// (files `{name}-{W}x{H}-{spp}-v2.exr` and `…-v2-half.exr`, `W` and `H` the same whole
+/// multiple of the size), or else path traced for `budget.seconds`; written to `cache`.
 pub fn reference(
     name: &str,
     scene: &Scene,
     base: RenderSettings,
-    seconds: f64,
+    budget: Budget,
     (cache, larger): (&Path, &Path),
 ) -> Result<Reference, String> {
     let stem = cache.join(format!("{name}-{}x{}", base.width, base.height));
-    let (exr, half, meta) = (
-        stem.with_extension("exr"),
-        stem.with_extension("half.exr"),
-        stem.with_extension("txt"),
-    );
+    let files = Files {
+        exr: stem.with_extension("exr"),
+        half: stem.with_extension("half.exr"),
+        meta: stem.with_extension("txt"),
+    };
     if let (Ok(image), Ok(first), Ok(text)) = (
-        Image::read_exr(&exr),
-        Image::read_exr(&half),
-        std::fs::read_to_string(&meta),
-    ) && let Some(spp) = text.split_whitespace().next().and_then(|t| t.parse().ok())
+        Image::read_exr(&files.exr),
+        Image::read_exr(&files.half),
+        std::fs::read_to_string(&files.meta),
+    ) && let Some(spp) = text.split_whitespace().next().and_then(|t| t.parse::<u64>().ok())
     {
-        return Ok(Reference {
+        let cached = Reference {
             image,
             spp,
             half: first,
-        });
+        };
+        let batches = spp / u64::from(BATCH_SPP);
+        if budget.extend <= 0.0 {
+            return Ok(cached);
+        }
+        if !text.contains(PATH_TRACED) || batches % 2 == 1 || batches == 0 {
+            return Err(format!(
+                "{}: not a reference this example path traced, so it cannot be extended",
+                files.meta.display()
+            ));
+        }
+        // Back to the halves' sums of batch means: A = 2·sum_A/n, M = (sum_A + sum_B)/n.
+        let n = batches as f64;
+        let sums = [
+            cached
+                .half
+                .pixels()
+                .iter()
+                .map(|a| a.as_dvec3() * (n / 2.0))
+                .collect(),
+            cached
+                .image
+                .pixels()
+                .iter()
+                .zip(cached.half.pixels())
+                .map(|(m, a)| m.as_dvec3() * n - a.as_dvec3() * (n / 2.0))
+                .collect(),
+        ];
+        return path_trace(scene, base, budget.extend, (sums, batches), &files);
     }
     if let Some((image, first, spp)) = downsampled(name, base.width, base.height, larger)? {
-        std::fs::create_dir_all(cache).map_err(|e| format!("{}: {e}", cache.display()))?;
-        image.write_exr(&exr).map_err(|e| e.to_string())?;
-        first.write_exr(&half).map_err(|e| e.to_string())?;
-        write_atomically(&meta, |w| writeln!(w, "{spp} samples per pixel"))
-            .map_err(|e| format!("{}: {e}", meta.display()))?;
-        return Ok(Reference {
+        let reference = Reference {
             image,
             spp,
             half: first,
-        });
+        };
+        files.write(
+            &reference,
+            "box-filtered from the results example's larger reference",
+        )?;
+        return Ok(reference);
     }
-    let start = Instant::now();
-    let mut halves = [
-        vec![DVec3::ZERO; (base.width * base.height) as usize],
-        vec![DVec3::ZERO; (base.width * base.height) as usize],
-    ];
-    let mut batches = 0u64;
-    let batch_spp = 4u32;
+    let zero = vec![DVec3::ZERO; (base.width * base.height) as usize];
+    path_trace(scene, base, budget.seconds, ([zero.clone(), zero], 0), &files)
+}
+
+/// The cache's three files for one scene and size.
+struct Files {
+    exr: std::path::PathBuf,
+    half: std::path::PathBuf,
+    meta: std::path::PathBuf,
+}
+
+impl Files {
+    fn write(&self, reference: &Reference, how: &str) -> Result<(), String> {
+        if let Some(dir) = self.exr.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        reference.image.write_exr(&self.exr).map_err(|e| e.to_string())?;
+        reference.half.write_exr(&self.half).map_err(|e| e.to_string())?;
+        write_atomically(&self.meta, |w| {
+            writeln!(w, "{} samples per pixel, {how}", reference.spp)
+        })
+        .map_err(|e| format!("{}: {e}", self.meta.display()))
+    }
+}
+
+/// Path traces batches from `start` on for `seconds` (and to an even count), adding batch `b`
+/// to half `b mod 2` of `sums`, then writes and returns the reference.
+fn path_trace(
+    scene: &Scene,
+    base: RenderSettings,
+    seconds: f64,
+    (mut halves, start): ([Vec<DVec3>; 2], u64),
+    files: &Files,
+) -> Result<Reference, String> {
+    let clock = Instant::now();
+    let mut saved = Instant::now();
+    let mut batches = start;
+    let finish = |halves: &[Vec<DVec3>; 2], batches: u64| -> Result<Reference, String> {
+        let mean_of = |sum: &[DVec3], n: f64| sum.iter().map(|s| (*s / n).as_vec3()).collect::<Vec<_>>();
+        let first = Image::from_pixels(base.width, base.height, mean_of(&halves[0], (batches / 2) as f64))
+            .map_err(|e| e.to_string())?;
+        let total: Vec<DVec3> = halves[0].iter().zip(&halves[1]).map(|(a, b)| *a + *b).collect();
+        let image = Image::from_pixels(base.width, base.height, mean_of(&total, batches as f64))
+            .map_err(|e| e.to_string())?;
+        let reference = Reference {
+            image,
+            spp: batches * u64::from(BATCH_SPP),
+            half: first,
+        };
+        files.write(&reference, PATH_TRACED)?;
+        Ok(reference)
+    };
     // Batches alternate between the halves; stop on an even count so that they are equal.
-    while batches < 2 || batches % 2 == 1 || start.elapsed().as_secs_f64() < seconds {
+    while batches < start + 2 || batches % 2 == 1 || clock.elapsed().as_secs_f64() < seconds {
+        // Long renders are saved every few minutes, so that stopping one loses little.
+        if batches % 2 == 0 && batches > start && saved.elapsed().as_secs_f64() > CHECKPOINT_SECONDS {
+            finish(&halves, batches)?;
+            saved = Instant::now();
+        }
         let settings = RenderSettings {
             mode: Mode::PathTrace,
-            samples_per_pixel: batch_spp,
+            samples_per_pixel: BATCH_SPP,
             seed: REFERENCE_SEED + batches,
             ..base
         };
@@ -91,23 +190,7 @@ pub fn reference(
         }
         batches += 1;
     }
-    let mean_of = |sum: &[DVec3], n: f64| sum.iter().map(|s| (*s / n).as_vec3()).collect::<Vec<_>>();
-    let first = Image::from_pixels(base.width, base.height, mean_of(&halves[0], (batches / 2) as f64))
-        .map_err(|e| e.to_string())?;
-    let total: Vec<DVec3> = halves[0].iter().zip(&halves[1]).map(|(a, b)| *a + *b).collect();
-    let image = Image::from_pixels(base.width, base.height, mean_of(&total, batches as f64))
-        .map_err(|e| e.to_string())?;
-    let spp = batches * u64::from(batch_spp);
-    std::fs::create_dir_all(cache).map_err(|e| format!("{}: {e}", cache.display()))?;
-    image.write_exr(&exr).map_err(|e| e.to_string())?;
-    first.write_exr(&half).map_err(|e| e.to_string())?;
-    write_atomically(&meta, |w| writeln!(w, "{spp} samples per pixel"))
-        .map_err(|e| format!("{}: {e}", meta.display()))?;
-    Ok(Reference {
-        image,
-        spp,
-        half: first,
-    })
+    finish(&halves, batches)
 }
 
 /// A `results` reference of scene `name` in `dir` whose size is a whole multiple `f` ≥ 2 of

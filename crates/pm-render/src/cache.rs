@@ -16,15 +16,41 @@ const CANDIDATES: usize = 8;
 /// one map's surface, is passed over.
 pub const NORMAL_AGREEMENT: f32 = 0.9;
 
+/// Where [`RadianceCache::build_with`] asks for an irradiance estimate, and from what.
+#[derive(Clone, Copy, Debug)]
+pub struct CachePoint<'a> {
+    /// The photon map (index into the trees given).
+    pub map: usize,
+    /// The cache point: a photon's position, with the normal and side of the surface it
+    /// landed on.
+    pub at: SurfacePoint,
+    /// The map's photons that are not cache points, to estimate from. The estimate is
+    /// scaled up by the cache for the photons set aside; estimating from these alone keeps it
+    /// independent of where the cache points are (see [`RadianceCache`]).
+    pub photons: &'a PhotonTree,
+}
+
 /// Irradiance precomputed at photon positions, per photon map: the radiance cache of a final
 /// gather.
 ///
-/// [`RadianceCache::build`] takes every `n`-th photon of each map (in the map's tree order,
-/// which is spatially stratified), finds the surface it landed on (its normal and side) and
-/// estimates the irradiance there with the renderer's own [`Estimator`] from photons of all
-/// kinds — the same estimate, with the same partition and area, that the photon maps give a
-/// camera ray. The points are kept per map in a [`PhotonTree`] (20 bytes each: the position,
-/// the irradiance as unbiased 12-bit log codes, the normal as an octahedral code).
+/// [`RadianceCache::build`] sets one photon in `n` of each map aside as a cache point (chosen
+/// by a hash of its index, so each photon independently with probability 1/n), finds the
+/// surface it landed on (its normal and side) and estimates the irradiance there with the
+/// renderer's own [`Estimator`] — the same estimate, with the same partition and area, that
+/// the photon maps give a camera ray — from the map's *other* photons, of all kinds, scaled
+/// by n/(n − 1), leaving out the k-nearest search's boundary photon
+/// ([`EstimatorOptions::leave_out_boundary`]). Both choices remove a bias of order 1/k:
+/// - a photon's own estimate counts the photon itself and the boundary photon, k/(k − 2)
+///   too bright;
+/// - a lookup answers from the *nearest* cache point, which is the nearest because no other
+///   cache point lies nearer the query: were the cache points among the photons estimated
+///   from, that empty neighbourhood would make the chosen estimate about one photon too dark
+///   (−0.9 % at k = 100 on the lit/unlit rooms, independent of the photon count). With
+///   cache points and estimating photons disjoint (independent thinnings), where the cache
+///   points lie says nothing about the photons counted.
+///
+/// The points are kept per map in a [`PhotonTree`] (20 bytes each: the position, the
+/// irradiance as unbiased 12-bit log codes, the normal as an octahedral code).
 ///
 /// [`RadianceCache::irradiance`] answers a query at a surface point of map `m` with the nearest
 /// cache point of map `m` whose normal agrees with the query's (cosine at least
@@ -70,10 +96,11 @@ pub struct RadianceCache {
 }
 
 impl RadianceCache {
-    /// Precomputes irradiance at every `every`-th photon of each of `maps` (1 = every photon)
-    /// with `estimator` and `options` (whose photon kinds are replaced by all kinds: light
-    /// leaving a surface is the sum of everything arriving there). Runs on the current rayon
-    /// pool; the result does not depend on the number of threads. `every = 0` is refused.
+    /// Precomputes irradiance at one photon in `every` of each of `maps` (at least 2), from
+    /// the others, with `estimator` and `options` (whose photon kinds are replaced by all
+    /// kinds, since light leaving a surface is the sum of everything arriving there, and
+    /// which leave out the boundary photon). Runs on the current rayon pool; the result does
+    /// not depend on the number of threads.
     pub fn build<E: Estimator>(
         scene: &Scene,
         maps: &PhotonMaps,
@@ -84,6 +111,7 @@ impl RadianceCache {
         options.validate()?;
         let options = EstimatorOptions {
             kinds: KindMask::ALL,
+            leave_out_boundary: true,
             ..*options
         };
         let trees: Vec<&PhotonTree> = maps.maps().iter().map(|m| m.tree()).collect();
@@ -93,22 +121,25 @@ impl RadianceCache {
             maps.assignment(),
             every,
             options.max_distance,
-            |map, at, scratch| {
-                let map = maps.map(map as u32);
+            |point, scratch| {
+                let map = maps.map(point.map as u32);
                 let view = MapView {
-                    tree: map.tree(),
+                    tree: point.photons,
                     polygons: map.geometry(),
                 };
-                estimator.irradiance(at, view, &options, scratch)
+                estimator.irradiance(point.at, view, &options, scratch)
             },
         )
     }
 
     /// The cache of photon trees `trees` (one per map of `assignment`, indexed by map id) with
-    /// your own irradiance estimate: `irradiance(map, at, scratch)` is called at every
-    /// `every`-th photon of each tree, `at` being the photon's position with the normal and
-    /// side of the surface it landed on. Lookups search within `max_distance`. Runs on the
-    /// current rayon pool; the result does not depend on the number of threads.
+    /// your own irradiance estimate. One photon in `every` of each tree (each with probability
+    /// 1/`every`, by a hash of its index) becomes a cache point; the others form the tree
+    /// [`CachePoint::photons`] that `irradiance(point, scratch)` estimates from, and the
+    /// result is scaled by `every/(every − 1)` for the photons set aside. Lookups search
+    /// within `max_distance`. Runs on the current rayon pool; the result does not depend on
+    /// the number of threads. `every` below 2 is refused (there would be no photons left to
+    /// estimate from).
     pub fn build_with<F>(
         scene: &Scene,
         trees: &[&PhotonTree],
@@ -118,12 +149,12 @@ impl RadianceCache {
         irradiance: F,
     ) -> Result<Self, RenderError>
     where
-        F: Fn(usize, SurfacePoint, &mut EstimatorScratch) -> Vec3 + Sync,
+        F: Fn(CachePoint<'_>, &mut EstimatorScratch) -> Vec3 + Sync,
     {
-        if every == 0 {
-            return Err(RenderError::BadFinalGather(
-                "the cache needs every n-th photon with n ≥ 1".into(),
-            ));
+        if every < 2 {
+            return Err(RenderError::BadFinalGather(format!(
+                "cache points every {every} photons: expected 2 or more (the others estimate their irradiance)"
+            )));
         }
         if !(max_distance > 0.0 && max_distance.is_finite()) {
             return Err(RenderError::BadMaxDistance(max_distance));
@@ -133,11 +164,12 @@ impl RadianceCache {
             .collect();
         // The cast that finds a photon's surface starts this far before it.
         let back = 4.0 * scene.epsilon();
+        let set_aside = f64::from(every) / f64::from(every - 1);
         let cache = trees
             .iter()
             .enumerate()
             .map(|(m, tree)| {
-                let indices: Vec<u32> = (0..tree.len() as u32).step_by(every as usize).collect();
+                let (indices, others) = split_cache_points(tree, every)?;
                 let points: Vec<Photon> = indices
                     .par_iter()
                     .map_init(EstimatorScratch::new, |scratch, &i| {
@@ -157,9 +189,14 @@ impl RadianceCache {
                             normal: scene.shading_normal_at(&hit),
                             front_face: hit.front_face,
                         };
+                        let point = CachePoint {
+                            map: m,
+                            at,
+                            photons: &others,
+                        };
                         Some(Photon {
                             position,
-                            power: irradiance(m, at, scratch),
+                            power: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
                             direction: hit.normal,
                             kind: PhotonKind::Direct,
                         })
@@ -281,4 +318,31 @@ impl RadianceCache {
             + self.caustics.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
+}
+
+/// Splits `tree` into its cache points (the indices of the photons whose hash falls in the
+/// lowest 1/`every` of its range: each photon independently, as far as a hash goes, so that
+/// the two sets are independent thinnings of the photons) and a tree of the others.
+fn split_cache_points(tree: &PhotonTree, every: u32) -> Result<(Vec<u32>, PhotonTree), RenderError> {
+    let threshold = u64::MAX / u64::from(every);
+    let scale = tree.power_scale();
+    let mut points = Vec::with_capacity(tree.len() / every as usize + 1);
+    let mut others = Vec::with_capacity(tree.len());
+    for (i, photon) in tree.iter().enumerate() {
+        if mix(i as u64) <= threshold {
+            points.push(i as u32);
+        } else {
+            others.push(photon.decode(scale));
+        }
+    }
+    let others = PhotonTree::build(others).map_err(|e| RenderError::BadFinalGather(e.to_string()))?;
+    Ok((points, others))
+}
+
+/// SplitMix64's finaliser: a well-mixed 64-bit hash of `x`.
+fn mix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }

@@ -77,7 +77,7 @@ pub mod renderer;
 pub mod settings;
 pub mod stats;
 
-pub use cache::RadianceCache;
+pub use cache::{CachePoint, RadianceCache};
 pub use error::RenderError;
 pub use estimator::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,

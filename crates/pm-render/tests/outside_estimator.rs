@@ -115,6 +115,7 @@ fn cone_filter_outside_the_crate_matches_brute_force_with_the_given_scratch() {
             max_distance: 10.0,
             reject_behind,
             kinds,
+            leave_out_boundary: false,
         };
         for _ in 0..20 {
             let at = Vec3::new(next(&mut s) * 1.2 - 0.6, 0.0, next(&mut s) * 1.2 - 0.6);
@@ -174,6 +175,7 @@ fn gather_found_decodes_the_neighbours_and_rejects_photons_from_behind() {
         max_distance: 1.0,
         reject_behind: true,
         kinds: KindMask::ALL,
+        leave_out_boundary: false,
     };
     let at = SurfacePoint::front(Vec3::ZERO, Vec3::Y);
     let mut scratch = EstimatorScratch::new();

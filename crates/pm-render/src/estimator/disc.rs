@@ -1,5 +1,6 @@
 //! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere.
 
+use super::gather::counted_neighbours;
 use super::{
     Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, find_nearest, gather_found,
 };
@@ -29,8 +30,9 @@ impl Estimator for Disc {
         } else {
             // Directions are only needed to reject photons from behind: skip decoding them,
             // sum powers relative to the map's scale and scale once.
-            let found = scratch.neighbours.as_slice();
-            let relative: Vec3 = found.iter().map(|n| map.tree.get(n.index).relative_power()).sum();
+            let counted = counted_neighbours(&scratch.neighbours, options.leave_out_boundary);
+            let found = scratch.neighbours.as_slice().iter().filter(|n| counted(n));
+            let relative: Vec3 = found.map(|n| map.tree.get(n.index).relative_power()).sum();
             relative * map.tree.power_scale().watts()
         };
         power / (PI * r * r)

@@ -62,7 +62,8 @@ impl EstimatorOptions {
 /// Decodes the neighbours found by the last [`super::find_nearest`] into
 /// [`EstimatorScratch::photons`] ([`GatheredPhoton::decode`]: powers in watts, squared
 /// distances), keeping those [`EstimatorOptions::accepts`] (the k-nearest query has already
-/// applied the kind filter; this adds back-face rejection when it is on).
+/// applied the kind filter; this adds back-face rejection when it is on). With
+/// [`EstimatorOptions::leave_out_boundary`] the boundary photon is left out.
 pub fn gather_found(
     at: SurfacePoint,
     tree: &PhotonTree,
@@ -71,7 +72,8 @@ pub fn gather_found(
 ) {
     let scale = tree.power_scale();
     scratch.photons.clear();
-    for n in scratch.neighbours.as_slice() {
+    let counted = counted_neighbours(&scratch.neighbours, options.leave_out_boundary);
+    for n in scratch.neighbours.as_slice().iter().filter(|n| counted(n)) {
         let photon = GatheredPhoton::decode(&tree.get(n.index), scale, at.position);
         // The query has applied the kind filter already.
         if !(options.reject_behind && at.arrives_from_behind(photon.direction)) {
@@ -97,4 +99,23 @@ pub(super) fn gather_within<M: pm_kdtree::Metric>(
             photons.push(photon);
         }
     });
+}
+
+/// Which of the `neighbours` of a k-nearest search an estimate counts: all of them, or, with
+/// `leave_out_boundary`, all but the boundary photon (the farthest, when the search found its
+/// k and the extent is its distance).
+pub(super) fn counted_neighbours(
+    neighbours: &pm_kdtree::Neighbours,
+    leave_out_boundary: bool,
+) -> impl Fn(&pm_kdtree::Neighbour) -> bool {
+    let boundary = (leave_out_boundary && !neighbours.is_partial())
+        .then(|| {
+            neighbours
+                .as_slice()
+                .iter()
+                .max_by(|a, b| a.distance.total_cmp(&b.distance))
+                .map(|n| n.index)
+        })
+        .flatten();
+    move |n| Some(n.index) != boundary
 }

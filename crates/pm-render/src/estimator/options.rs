@@ -19,6 +19,14 @@ pub struct EstimatorOptions {
     pub reject_behind: bool,
     /// Photon kinds gathered ([`KindMask::NOT_DIRECT`] when direct light comes from shadow rays).
     pub kinds: KindMask,
+    /// Leave out a k-nearest search's boundary photon (the k-th, whose distance is the
+    /// extent), counting only the photons strictly inside the volume. On a locally uniform
+    /// photon density that makes the estimate unbiased: the volume's expected photon count
+    /// μ is Gamma(k)-distributed and E[(k − 1)/μ] = 1, where counting all k is k/(k − 1) too
+    /// bright (1 % at k = 100). Off by default (Jensen's estimate, as Ball & Stejko have it);
+    /// the radiance cache turns it on. No effect where fewer than k photons were found
+    /// (the extent is then the maximum distance, fixed beforehand).
+    pub leave_out_boundary: bool,
 }
 
 impl EstimatorOptions {
@@ -37,6 +45,7 @@ impl EstimatorOptions {
             max_distance,
             reject_behind: false,
             kinds: KindMask::ALL,
+            leave_out_boundary: false,
         }
     }
 

@@ -20,8 +20,8 @@ pub struct FinalGatherOptions {
     /// Cosine-weighted gather rays per camera sample at its first diffuse hit (stratified over
     /// the hemisphere; default 64).
     pub gather_rays: u32,
-    /// Irradiance is precomputed at every `cache_every`-th photon of each map (default 4, as
-    /// in Christensen's paper).
+    /// Irradiance is precomputed at one photon in `cache_every` of each map, from the others
+    /// (at least 2; default 4, as in Christensen's paper).
     pub cache_every: u32,
     /// Jensen's extra bounce: a gather ray whose diffuse hit lies closer than this (metres) to
     /// its origin does not read the cache there but takes direct light, caustics and one more
@@ -44,7 +44,7 @@ impl FinalGatherOptions {
     pub const MAX_GATHER_RAYS: u32 = 1 << 14;
 
     /// Checks that there is at least one gather ray (at most [`Self::MAX_GATHER_RAYS`]), that
-    /// `cache_every` is at least 1 and that the corner distance is finite and not negative.
+    /// `cache_every` is at least 2 and that the corner distance is finite and not negative.
     pub fn validate(&self) -> Result<(), RenderError> {
         if self.gather_rays == 0 || self.gather_rays > Self::MAX_GATHER_RAYS {
             return Err(RenderError::BadFinalGather(format!(
@@ -53,10 +53,11 @@ impl FinalGatherOptions {
                 Self::MAX_GATHER_RAYS
             )));
         }
-        if self.cache_every == 0 {
-            return Err(RenderError::BadFinalGather(
-                "the cache needs every n-th photon with n ≥ 1".into(),
-            ));
+        if self.cache_every < 2 {
+            return Err(RenderError::BadFinalGather(format!(
+                "cache points every {} photons: expected 2 or more (the others estimate their irradiance)",
+                self.cache_every
+            )));
         }
         if !(self.corner_distance >= 0.0 && self.corner_distance.is_finite()) {
             return Err(RenderError::BadFinalGather(format!(

@@ -355,19 +355,20 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             assignment,
             self.settings.render.final_gather.cache_every,
             options.max_distance,
-            |map, at, scratch| {
-                let (Some(tree), Some(pilot_map)) = (trees.get(map), pilot.maps.maps().get(map)) else {
+            |point, scratch| {
+                let map = point.map;
+                let Some(pilot_map) = pilot.maps.maps().get(map) else {
                     return Vec3::ZERO;
                 };
-                let Some(extent) = pilot.extent(map, at.position, options, scratch) else {
+                let Some(extent) = pilot.extent(map, point.at.position, options, scratch) else {
                     return Vec3::ZERO;
                 };
                 let view = MapView {
-                    tree,
+                    tree: point.photons,
                     polygons: pilot_map.geometry(),
                 };
                 self.estimator
-                    .irradiance_within(at, view, extent * scale, options, scratch)
+                    .irradiance_within(point.at, view, extent * scale, options, scratch)
             },
         )
     }
