@@ -1,20 +1,20 @@
 //! The convergence study: relative RMSE against a path-traced reference versus rendering
-//! seconds for path tracing, SPPM and the progressive renderer (disc, cube and ball with crease
-//! maps) on the report's four scenes; the light leaked into the unlit room and the accordion's
-//! crease bias per pass count. Writes `docs/convergence.md` and
-//! `docs/images/convergence-<scene>.png`.
+//! seconds for path tracing, SPPM, the progressive renderer (disc, cube and ball with crease
+//! maps), the final gather and the progressive final gather on the report's four scenes; the
+//! light leaked into the unlit room and the accordion's crease bias per pass count. Writes
+//! `docs/convergence.md` and `docs/images/convergence-<scene>.png`.
 //!
 //! Each (scene, method) is run once, to the largest budget, and the accumulated image's error
 //! is read after every pass (off the clock): the error at a budget is that of the last pass
-//! that ended within it. So the study takes about scenes × methods × the largest budget, plus
-//! the references (cached in `--reference-dir`, reused by later runs). The references are the
-//! `results` example's 500×500 ones box-filtered down to 125×125 where that example has cached
-//! them (4,096–16,384 samples per pixel), or else path traced here for `--reference-seconds`.
+//! that ended within it. So the study takes about scenes × methods × the largest budget (about
+//! 30 minutes on 2 cores), plus the references. Those are kept in `--reference-dir` (the
+//! repository's `docs/convergence-references`, 125×125, made by this example) and reused;
+//! `--extend-references S` path traces S more seconds into each, `--references-only` stops
+//! after them. Without one, a `results` reference of a whole multiple of the size is
+//! box-filtered down, or else one is path traced for `--reference-seconds`.
 //!
-//! The full study (about 30 minutes on 2 cores with the `results` references cached, 70 when
-//! it path traces its own for 600 s each):
-//! `cargo run --release --example convergence`
-//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
+//! The full study: `cargo run --release --example convergence -- --clock cpu`
+//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c --reference-dir /tmp/c/ref`
 
 #[path = "convergence/chart.rs"]
 mod chart;
@@ -102,11 +102,22 @@ struct Args {
     /// The progressive renderer's direct light.
     #[arg(long, value_enum, default_value_t = Direct::ShadowRays)]
     direct: Direct,
-    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball, and (not by default)
-    /// final-gather and progressive-gather (the per-pass tables always show the progressive
-    /// ones and SPPM).
-    #[arg(long, default_value = "path-trace,sppm,disc,cube,ball")]
+    /// Methods, comma-separated, of path-trace, sppm, disc, cube, ball, final-gather and
+    /// progressive-gather (the per-pass tables always show the progressive ones and SPPM).
+    #[arg(
+        long,
+        default_value = "path-trace,sppm,disc,cube,ball,final-gather,progressive-gather"
+    )]
     methods: String,
+    /// Gather rays per camera sample of the final-gather methods (4 and 16 samples per pass
+    /// had the lowest error at 8 s of four settings tried on the Cornell box and the lit/unlit
+    /// rooms).
+    #[arg(long, default_value_t = 4)]
+    gather_rays: u32,
+    /// Camera samples per pixel per pass of the final-gather methods (a pass traces its
+    /// photons and precomputes its cache once for all of them).
+    #[arg(long, default_value_t = 16)]
+    gather_samples: u32,
     /// k of the progressive renderer's pilot extents (SPPM's initial radius keeps k = 100).
     #[arg(long, default_value_t = 100)]
     progressive_k: usize,
@@ -186,6 +197,7 @@ fn run(args: &Args) -> Result<(), String> {
         },
         k: args.progressive_k,
         alpha: args.alpha,
+        gather: (args.gather_rays, args.gather_samples),
     };
     let chosen: Vec<Method> = args
         .methods
@@ -227,6 +239,10 @@ fn run(args: &Args) -> Result<(), String> {
             },
             args.progressive_k,
             args.alpha
+        ),
+        gather: format!(
+            "{} gather rays per camera sample, {} camera samples per pixel per pass",
+            args.gather_rays, args.gather_samples
         ),
         all_pixels: args.all_pixels,
         budgets: budgets.clone(),

@@ -6,13 +6,16 @@ use photon_maps::render::image::write_atomically;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// Line colours, in [`super::methods::Method::ALL`]'s order.
-const COLOURS: [RGBColor; 5] = [
+/// Line colours, in the order of the methods run (the default order: path tracing, SPPM,
+/// progressive disc, cube and ball, final gather, progressive final gather).
+const COLOURS: [RGBColor; 7] = [
     RGBColor(0, 0, 0),
     RGBColor(214, 39, 40),
     RGBColor(31, 119, 180),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
 ];
 
 /// Registers the font the labels are drawn with (plotters draws no text without one).
@@ -74,17 +77,22 @@ pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64, seconds: &str) -
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
         }
         if floor > 0.0 {
-            let dashes = DashedLineSeries::new(
-                vec![(x0 * 0.8, floor), (x1 * 1.25, floor)],
-                6,
-                4,
-                BLACK.mix(0.5).into(),
-            );
-            chart
-                .draw_series(dashes)
-                .map_err(|e| fail(&e))?
-                .label("reference's own noise (subtracted)")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+            for (level, label, shade) in [
+                (floor, "reference's own noise σ (subtracted)", 0.5),
+                (3.0 * floor, "3σ: lower errors are not judged", 0.25),
+            ] {
+                let dashes = DashedLineSeries::new(
+                    vec![(x0 * 0.8, level), (x1 * 1.25, level)],
+                    6,
+                    4,
+                    BLACK.mix(shade).into(),
+                );
+                chart
+                    .draw_series(dashes)
+                    .map_err(|e| fail(&e))?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(shade)));
+            }
         }
         chart
             .configure_series_labels()

@@ -20,12 +20,12 @@ pub enum Method {
     Sppm,
     /// The progressive renderer with crease maps and this fixed-volume estimator.
     Progressive(EstimatorKind),
-    /// The final gather (crease maps, cube estimator, 16 gather rays at one sample per pixel),
-    /// rendered again with fresh photons and seeds per batch and averaged: its noise falls,
-    /// its bias stays.
+    /// The final gather (crease maps, cube estimator; gather rays and camera samples per batch
+    /// as [`Progressive::gather`] says), rendered again with fresh photons and seeds per batch
+    /// and averaged: its noise falls, its bias stays.
     FinalGather,
-    /// The progressive renderer with a final gather per pass (crease maps, cube estimator, 16
-    /// gather rays): consistent.
+    /// The progressive renderer with a final gather per pass (crease maps, cube estimator,
+    /// [`Progressive::gather`]): consistent.
     ProgressiveGather,
 }
 
@@ -42,9 +42,6 @@ impl Method {
     /// The methods the study can run besides [`Method::ALL`] (its default), chosen by name
     /// with `--methods`.
     pub const EXTRA: [Method; 2] = [Method::FinalGather, Method::ProgressiveGather];
-
-    /// Gather rays per camera sample of the final-gather methods.
-    const GATHER_RAYS: u32 = 16;
 
     /// The name `--methods` takes.
     pub fn name(self) -> &'static str {
@@ -83,6 +80,9 @@ pub struct Progressive {
     pub k: usize,
     /// Knaus & Zwicker's α.
     pub alpha: f32,
+    /// The final-gather methods' gather rays per camera sample, and camera samples per pixel
+    /// per pass (each pass traces its photons and builds its cache once for all of them).
+    pub gather: (u32, u32),
 }
 
 /// The error after one pass.
@@ -213,10 +213,10 @@ pub fn run(
             for batch in 0u64.. {
                 let settings = RenderSettings {
                     mode: Mode::FinalGather,
-                    samples_per_pixel: 1,
+                    samples_per_pixel: progressive.gather.1,
                     seed: base.seed.wrapping_add(batch),
                     final_gather: FinalGatherOptions {
-                        gather_rays: Method::GATHER_RAYS,
+                        gather_rays: progressive.gather.0,
                         ..FinalGatherOptions::default()
                     },
                     ..base
@@ -246,8 +246,13 @@ pub fn run(
             let render = RenderSettings {
                 mode,
                 k: progressive.k,
+                samples_per_pixel: if method == Method::ProgressiveGather {
+                    progressive.gather.1
+                } else {
+                    base.samples_per_pixel
+                },
                 final_gather: FinalGatherOptions {
-                    gather_rays: Method::GATHER_RAYS,
+                    gather_rays: progressive.gather.0,
                     ..FinalGatherOptions::default()
                 },
                 ..base
