@@ -14,7 +14,7 @@
 //! box-filtered down, or else one is path traced for `--reference-seconds`.
 //!
 //! The full study: `cargo run --release --example convergence -- --clock cpu`
-//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c --reference-dir /tmp/c/ref`
+//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
 
 #[path = "convergence/chart.rs"]
 mod chart;
@@ -85,10 +85,11 @@ struct Args {
     /// Render (or extend) the references, report their noise, and stop.
     #[arg(long)]
     references_only: bool,
-    /// Where references are kept (one EXR, its first half and a note per scene and size; the
-    /// study's own are in the repository; delete to re-render).
-    #[arg(long, default_value = "docs/convergence-references")]
-    reference_dir: PathBuf,
+    /// Where references are kept (one EXR, its first half and a note per scene and size; delete
+    /// to re-render) [default: docs/convergence-references, the study's own in the repository;
+    /// quick: target/convergence-quick-references].
+    #[arg(long)]
+    reference_dir: Option<PathBuf>,
     /// Where the `results` example caches its (larger) references: one whose size is a whole
     /// multiple of `--size` (500 for 125) is box-filtered down instead of path tracing anew.
     #[arg(long, default_value = "target/pm-references")]
@@ -150,6 +151,17 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Where the references are kept: the repository's own, or a scratch folder for quick runs.
+fn reference_dir(args: &Args) -> PathBuf {
+    args.reference_dir.clone().unwrap_or_else(|| {
+        PathBuf::from(if args.quick {
+            "target/convergence-quick-references"
+        } else {
+            "docs/convergence-references"
+        })
+    })
 }
 
 fn list<T: std::str::FromStr>(text: &str, what: &str) -> Result<Vec<T>, String> {
@@ -258,7 +270,7 @@ fn run(args: &Args) -> Result<(), String> {
             &scene,
             base,
             reference_seconds,
-            (&args.reference_dir, &args.results_references),
+            (&reference_dir(args), &args.results_references),
         )?;
         let mask = if args.all_pixels {
             mask::Mask::all(size, size)
@@ -396,7 +408,7 @@ fn per_pass_tables(
             extend: 0.0,
             ..reference_seconds
         },
-        (&args.reference_dir, &args.results_references),
+        (&reference_dir(args), &args.results_references),
     )?;
     let creases = per_pass::Creases::new(&accordion, size, size, 0.03)?;
     for method in per_pass::METHODS {
