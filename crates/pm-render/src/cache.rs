@@ -92,6 +92,11 @@ pub struct RadianceCache {
     /// Per photon map: its photons of kind caustic alone (Jensen's caustic map, split as the
     /// photon maps are), so that a caustic estimate does not wade through the others.
     caustics: Vec<PhotonTree>,
+    /// Per photon map: the photons that are not cache points (dropped by
+    /// [`RadianceCache::without_photons`]).
+    photons: Vec<PhotonTree>,
+    /// `n/(n − 1)` for one cache point in `n` photons.
+    set_aside: f32,
     max_distance: f32,
 }
 
@@ -165,11 +170,15 @@ impl RadianceCache {
         // The cast that finds a photon's surface starts this far before it.
         let back = 4.0 * scene.epsilon();
         let set_aside = f64::from(every) / f64::from(every - 1);
+        let splits = trees
+            .iter()
+            .map(|tree| split_cache_points(tree, every))
+            .collect::<Result<Vec<_>, _>>()?;
         let cache = trees
             .iter()
+            .zip(&splits)
             .enumerate()
-            .map(|(m, tree)| {
-                let (indices, others) = split_cache_points(tree, every)?;
+            .map(|(m, (tree, (indices, others)))| {
                 let points: Vec<Photon> = indices
                     .par_iter()
                     .map_init(EstimatorScratch::new, |scratch, &i| {
@@ -192,7 +201,7 @@ impl RadianceCache {
                         let point = CachePoint {
                             map: m,
                             at,
-                            photons: &others,
+                            photons: others,
                         };
                         Some(Photon {
                             position,
@@ -206,6 +215,7 @@ impl RadianceCache {
                 PhotonTree::build(points).map_err(|e| RenderError::BadFinalGather(e.to_string()))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let photons = splits.into_iter().map(|(_, others)| others).collect();
         let caustics = trees
             .iter()
             .map(|tree| {
@@ -222,6 +232,8 @@ impl RadianceCache {
             maps: cache,
             map_of_part,
             caustics,
+            photons,
+            set_aside: set_aside as f32,
             max_distance,
         })
     }
@@ -243,7 +255,8 @@ impl RadianceCache {
 
     /// [`RadianceCache::irradiance`] from a cache point within `radius` of `position` only
     /// (a consistent renderer shrinks it with its gather volumes, and estimates afresh where
-    /// no cache point is that close).
+    /// no cache point is that close: from [`RadianceCache::photons`], not from all photons,
+    /// which near a point with no cache point close by are fewer than average).
     pub fn irradiance_within(
         &self,
         position: Vec3,
@@ -274,6 +287,27 @@ impl RadianceCache {
             .map(|n| tree.get(n.index))
             .find(agrees)
             .map(|p| p.power(tree.power_scale()))
+    }
+
+    /// The photons of map `map` that are not cache points, which the cache estimated from
+    /// (`None` after [`RadianceCache::without_photons`]). An estimate from them, times
+    /// [`RadianceCache::set_aside`], does not depend on where the cache points are: the one
+    /// to take where no cache point is near enough.
+    pub fn photons(&self, map: u32) -> Option<&PhotonTree> {
+        self.photons.get(map as usize)
+    }
+
+    /// `n/(n − 1)` for one cache point in `n` photons: what an estimate from
+    /// [`RadianceCache::photons`] is scaled by for the photons set aside.
+    pub fn set_aside(&self) -> f32 {
+        self.set_aside
+    }
+
+    /// The cache without [`RadianceCache::photons`] (memory for a renderer that only looks
+    /// up cache points).
+    pub fn without_photons(mut self) -> Self {
+        self.photons = Vec::new();
+        self
     }
 
     /// The photon map of part `part` (as the assignment the cache was built with says).
@@ -316,6 +350,7 @@ impl RadianceCache {
         self.maps.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + self.map_of_part.len() * size_of::<u32>()
             + self.caustics.iter().map(PhotonTree::memory_bytes).sum::<usize>()
+            + self.photons.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
 }

@@ -140,7 +140,9 @@ impl<E: Estimator> Renderer<E> {
             &self.estimator,
             &options,
             self.settings.final_gather.cache_every,
-        )?;
+        )?
+        // The one-shot gather reads cache points only.
+        .without_photons();
         stats.precompute = start.elapsed();
         stats.cache_points = cache.len() as u64;
         stats.cache_bytes = cache.memory_bytes() as u64;

@@ -309,3 +309,89 @@ fn a_cache_point_in_every_photon_is_refused() {
         assert!(err.to_string().contains("2 or more"), "{err}");
     }
 }
+
+/// Where no cache point lies within a small radius of a point (what a consistent renderer's
+/// shrinking volumes meet more and more), a fresh fixed-volume estimate there from the
+/// cache's own photons (the non-points, scaled for those set aside) is exact on the lit
+/// sphere; from all photons it is too dark by the cache points' share 1/n (half, at n = 2),
+/// because that neighbourhood is known to hold no cache point.
+#[test]
+fn fresh_estimates_where_no_point_is_near_use_the_other_photons() {
+    use pm_render::FixedVolumeEstimator;
+    let scene = lit_sphere();
+    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
+    let options = EstimatorOptions::for_scene(&scene.bounds());
+    let every = 2;
+    let mut scratch = EstimatorScratch::new();
+    let (fresh, from_all): (Vec<f64>, Vec<f64>) = (0..12u64)
+        .map(|seed| {
+            let traced = trace_photons(
+                &scene,
+                &assignment,
+                &TraceOptions {
+                    photons: 20_000,
+                    seed,
+                    ..TraceOptions::default()
+                },
+            )
+            .unwrap();
+            let maps = PhotonMaps::build(&scene, &assignment, traced).unwrap();
+            let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
+            // About 2 photons (one cache point) per disc of this radius on the sphere's 4π m².
+            let photons = maps.maps().iter().map(|m| m.tree().len()).sum::<usize>() as f32;
+            let radius = (2.0 * 4.0 * PI / photons / PI).sqrt();
+            let mut rng = Rand(seed + 7);
+            let (mut a, mut b, mut n) = (0.0, 0.0, 0);
+            while n < 3000 {
+                let z = 2.0 * rng.next_f64() as f32 - 1.0;
+                let phi = 2.0 * PI * rng.next_f64() as f32;
+                let s = (1.0 - z * z).max(0.0).sqrt();
+                let ray = Ray {
+                    origin: Vec3::ZERO,
+                    direction: Vec3::new(s * phi.cos(), s * phi.sin(), z),
+                };
+                let hit = scene.intersect(&ray, f32::INFINITY, RayKind::Other).unwrap();
+                let map = maps.map_of(hit.part);
+                if cache
+                    .irradiance_within(hit.position, hit.normal, map, radius, &mut scratch)
+                    .is_some()
+                {
+                    continue;
+                }
+                let at = SurfacePoint {
+                    position: hit.position,
+                    normal: hit.normal,
+                    front_face: hit.front_face,
+                };
+                let geometry = maps.map(map).geometry();
+                let own = MapView {
+                    tree: cache.photons(map).unwrap(),
+                    polygons: geometry,
+                };
+                let all = MapView {
+                    tree: maps.map(map).tree(),
+                    polygons: geometry,
+                };
+                let to_radiance = 0.5 / PI;
+                a += f64::from(
+                    Disc.irradiance_within(at, own, radius, &options, &mut scratch).x
+                        * cache.set_aside()
+                        * to_radiance,
+                );
+                b += f64::from(
+                    Disc.irradiance_within(at, all, radius, &options, &mut scratch).x * to_radiance,
+                );
+                n += 1;
+            }
+            (a / f64::from(n), b / f64::from(n))
+        })
+        .unzip();
+    let (mean, se) = mean_se(&fresh);
+    let (all, all_se) = mean_se(&from_all);
+    eprintln!(
+        "fresh estimates where no point is near: {mean:.4} ± {se:.4}; from all photons {all:.4} ± {all_se:.4} (exact 1)"
+    );
+    assert!(se < 0.02, "too noisy to tell ({se})");
+    assert!((mean - 1.0).abs() < 4.0 * se, "fresh {mean} ± {se}, exact 1");
+    assert!(all < 1.0 - 4.0 * all_se, "from all photons {all} ± {all_se}");
+}

@@ -98,6 +98,35 @@ struct PassGather<'a, E> {
     options: FinalGatherOptions,
 }
 
+impl<E: FixedVolumeEstimator> PassGather<'_, E> {
+    /// Irradiance at `hit` estimated afresh, in the pass's volume there (`extent`), from the
+    /// pass's photons that are not cache points, scaled for those set aside. Not from all
+    /// photons: this estimate is taken because no cache point lies near `hit`, and the
+    /// photons there are then fewer than average (by the cache points that are not there),
+    /// while the others are as many as ever.
+    fn fresh_irradiance(&self, hit: &Hit, map_id: u32, extent: f32, scratch: &mut EstimatorScratch) -> Vec3 {
+        let l = self.lighting;
+        let (Some(tree), Some(pilot)) = (
+            self.cache.photons(map_id),
+            l.pilot.maps.maps().get(map_id as usize),
+        ) else {
+            return Vec3::ZERO;
+        };
+        let at = SurfacePoint {
+            position: hit.position,
+            normal: l.scene.shading_normal_at(hit),
+            front_face: hit.front_face,
+        };
+        let view = MapView {
+            tree,
+            polygons: pilot.geometry(),
+        };
+        l.estimator
+            .irradiance_within(at, view, extent, l.options, scratch)
+            * self.cache.set_aside()
+    }
+}
+
 impl<E: FixedVolumeEstimator> GatherSource for PassGather<'_, E> {
     fn scene(&self) -> &Scene {
         self.lighting.scene
@@ -144,7 +173,7 @@ impl<E: FixedVolumeEstimator> GatherSource for PassGather<'_, E> {
                 .irradiance_within(hit.position, hit.normal, map_id, extent * l.scale, scratch)
             {
                 Some(e) => e,
-                None => l.irradiance(hit, scratch),
+                None => self.fresh_irradiance(hit, map_id, extent * l.scale, scratch),
             };
         l.scene.albedo_at(hit) * FRAC_1_PI * e
     }
