@@ -210,7 +210,7 @@ fn the_consistent_variants_bias_falls_with_passes() {
         })
         .collect();
     let means = |im: &Image| -> Vec<f64> {
-        let mut sums = vec![(0.0f64, 0usize); 7];
+        let mut sums = [(0.0f64, 0usize); 7];
         for (p, r) in im.pixels().iter().zip(&region) {
             let v = f64::from(p.element_sum());
             sums[6].0 += v;
