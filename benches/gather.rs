@@ -2,7 +2,7 @@
 //! by one nearest-point query versus a k-nearest estimate (k = 100, disc and cube) at the same
 //! points, on the Cornell box's crease maps (100,000 photons emitted). The points are the
 //! diffuse hits of gather rays from the first diffuse hits of a 32×32 grid of camera rays,
-//! computed once; one thread. Also the cost of building the cache (every 4th photon).
+//! computed once; one thread. Also the cost of building the cache (one photon in 4).
 //!
 //! Run: `cargo bench --bench gather -- --warm-up-time 1 --measurement-time 2`. Criterion
 //! prints lookups/s as elem/s.
@@ -123,7 +123,7 @@ fn gather(c: &mut Criterion) {
     group.finish();
     let mut build = c.benchmark_group("gather cache build");
     build.sample_size(10);
-    build.bench_function("every 4th photon, cube", |b| {
+    build.bench_function("one photon in 4, cube", |b| {
         b.iter(|| RadianceCache::build(&scene, &maps, &GeometryCube, &options, 4).expect("cache"))
     });
     build.finish();

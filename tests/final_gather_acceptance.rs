@@ -6,7 +6,8 @@
 //!   4096-spp path-traced reference) of the final gather
 //!   and of the path tracer at about equal render time, on the Cornell box at 128²;
 //! - Jensen's extra bounce near corners: the final gather's region means with and without it
-//!   against the same reference.
+//!   against the same reference;
+//! - the consistent variant's image and region means against the path tracer per pass count.
 //!
 //! Measured on two shared cores (timings ±20 %; the reference's own noise is about 0.04 of
 //! each error below):
@@ -19,9 +20,16 @@
 //! | 4 spp × 64 rays, 200k | 2.24 | 0.102 | 256 spp | 3.03 | 0.158 |
 //! | 16 spp × 16 rays, 400k | 2.96 | 0.063 | 256 spp | 3.22 | 0.158 |
 //!
-//! The extra bounce (16 spp × 64 rays): corner bands +0.86 % without it, +0.76 % within
-//! 0.05 m, +0.73 % within 0.2 m, at 1.17× and 1.9× the time; the per-map, edge-true cache
-//! needs no extra bounce here.
+//! (The table was measured before the cache's 1/k biases were removed; they were under 1 %
+//! of the image, far below these errors.)
+//!
+//! The extra bounce (16 spp × 64 rays): corner bands +0.21 % without it, +0.16 % within
+//! 0.05 m, +0.18 % within 0.2 m, at 1.16× and 1.9× the time; the per-map, edge-true cache
+//! needs no extra bounce here. (Before the cache's biases were removed: +0.86 %, +0.76 %,
+//! +0.73 %.)
+//!
+//! The consistent variant's bias per pass count (`the_consistent_variants_bias_falls_with_passes`)
+//! is in `docs/convergence.md`'s notes and the README.
 
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};

@@ -1,4 +1,4 @@
-//! Precomputed irradiance (Christensen 1999): irradiance estimated once at every n-th photon of
+//! Precomputed irradiance (Christensen 1999): irradiance estimated once at one photon in n of
 //! each map, then read by a final gather's rays as one nearest-point lookup in the hit's own map.
 
 use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RenderError, SurfacePoint};

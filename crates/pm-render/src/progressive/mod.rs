@@ -337,7 +337,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
 }
 
 impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
-    /// A pass's final-gather cache: irradiance at every n-th photon of the pass, each in the
+    /// A pass's final-gather cache: irradiance at one photon in n of the pass (from the others), each in the
     /// pass's fixed volume there (the pilot's extent times the pass's shrink factor).
     fn pass_cache(
         &self,
