@@ -95,6 +95,7 @@ fn markdown(s: &Study) -> String {
             "over the pixels that see no light source (directly or through mirrors and glass) nor lie within two pixels of one: at one jittered sample per pass a pixel on a light's outline swings between the light and its surround, a noise that would swamp every method's error alike (`--all-pixels` counts them)."
         }
     );
+    summary(&mut o, s);
     for scene in &s.scenes {
         let _ = writeln!(o, "## {}\n", scene.name);
         if let Some(chart) = &scene.chart {
@@ -335,4 +336,69 @@ fn verdict(scene: &SceneResult, budgets: &[f64]) -> String {
         );
     }
     text
+}
+
+/// The headline: over the budgets from 2 s to 60 s, on how many scenes and budgets the final
+/// gather has the lowest error, and who does where it does not (⁽*⁾: below three times the
+/// reference's noise, so not judged).
+fn summary(o: &mut String, s: &Study) {
+    let budgets: Vec<f64> = s
+        .budgets
+        .iter()
+        .copied()
+        .filter(|b| (2.0..=60.0).contains(b))
+        .collect();
+    let has_gather = s
+        .scenes
+        .iter()
+        .any(|sc| sc.runs.iter().any(|r| r.method == Method::FinalGather));
+    if budgets.is_empty() || !has_gather {
+        return;
+    }
+    let (mut wins, mut cells, mut judged_wins) = (0, 0, 0);
+    let mut exceptions = Vec::new();
+    for scene in &s.scenes {
+        let judged = 3.0 * scene.reference_noise;
+        for &b in &budgets {
+            let best = scene
+                .runs
+                .iter()
+                .filter_map(|r| r.at(b).map(|x| (r.method, x.rel_rmse)))
+                .min_by(|x, y| x.1.total_cmp(&y.1));
+            let gather = scene
+                .runs
+                .iter()
+                .find(|r| r.method == Method::FinalGather)
+                .and_then(|r| r.at(b))
+                .map(|x| x.rel_rmse);
+            let (Some((method, e)), Some(g)) = (best, gather) else {
+                continue;
+            };
+            cells += 1;
+            if method == Method::FinalGather {
+                wins += 1;
+                if e >= judged {
+                    judged_wins += 1;
+                }
+            } else {
+                exceptions.push(format!(
+                    "{} at {b} s: {} {e:.4}{} against {g:.4}",
+                    scene.name,
+                    method.label(),
+                    if e < judged { "⁽*⁾" } else { "" }
+                ));
+            }
+        }
+    }
+    let _ = writeln!(o, "## Summary\n");
+    let _ = writeln!(
+        o,
+        "At equal {} from 2 s to 60 s, the final gather has the lowest error of every method in {wins} of {cells} (scene, budget) cells ({judged_wins} of them judged: above three times the reference's noise).{}\n",
+        if s.clock == "Cpu" { "CPU time" } else { "wall time" },
+        if exceptions.is_empty() {
+            String::new()
+        } else {
+            format!(" Where it does not: {}.", exceptions.join("; "))
+        }
+    );
 }
