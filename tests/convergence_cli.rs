@@ -66,6 +66,8 @@ fn quick_study_writes_tables_leak_rows_and_charts() {
             "progressive disc",
             "progressive cube",
             "progressive ball",
+            "final gather",
+            "progressive final gather",
         ] {
             assert!(header.contains(method), "{scene}: no {method} column");
         }
@@ -134,6 +136,57 @@ fn quick_study_writes_tables_leak_rows_and_charts() {
     assert!(
         peaks[2] <= peaks[0] * 1.1,
         "peak heap grew with passes: {peaks:?} MiB"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--references-only` renders a reference and stops; `--extend-references` adds batches to
+/// it (more samples, same files), and refuses a reference it did not path trace itself.
+#[test]
+fn references_render_alone_and_extend() {
+    let Some(exe) = example("convergence") else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("pm-convergence-refs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |extra: &[&str]| {
+        Command::new(&exe)
+            .args(["--references-only", "--scenes", "accordion", "--size", "8"])
+            .args(["--reference-seconds", "0.05"])
+            .args(extra)
+            .arg("--out-dir")
+            .arg(&dir)
+            .arg("--reference-dir")
+            .arg(&dir)
+            .output()
+            .expect("the example starts")
+    };
+    let spp = || -> u64 {
+        let text = std::fs::read_to_string(dir.join("accordion-8x8.txt")).unwrap();
+        text.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    assert!(run(&[]).status.success());
+    assert!(!dir.join("convergence.md").exists(), "references only: no study");
+    let first = spp();
+    let out = run(&["--extend-references", "0.05"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let second = spp();
+    assert!(
+        second > first && second % 8 == 0,
+        "{first} → {second} samples per pixel"
+    );
+    // A reference from elsewhere (no note that this example path traced it) is not extended.
+    std::fs::write(
+        dir.join("accordion-8x8.txt"),
+        format!("{second} samples per pixel\n"),
+    )
+    .unwrap();
+    let out = run(&["--extend-references", "0.05"]);
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("cannot be extended"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
