@@ -205,6 +205,34 @@ fn lit_sphere() -> Scene {
         .unwrap()
 }
 
+/// The lit sphere's photon maps from `photons` photon paths of seed `seed` (crease maps).
+fn sphere_maps(scene: &Scene, photons: u32, seed: u64) -> PhotonMaps {
+    let assignment = CreaseAngle::default().try_partition(scene).unwrap();
+    let options = TraceOptions {
+        photons,
+        seed,
+        ..TraceOptions::default()
+    };
+    PhotonMaps::build(
+        scene,
+        &assignment,
+        trace_photons(scene, &assignment, &options).unwrap(),
+    )
+    .unwrap()
+}
+
+/// Where a uniformly random direction from the centre meets the lit sphere.
+fn random_hit(scene: &Scene, rng: &mut Rand) -> pm_trace::Hit {
+    let z = 2.0 * rng.next_f64() as f32 - 1.0;
+    let phi = 2.0 * PI * rng.next_f64() as f32;
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    let ray = Ray {
+        origin: Vec3::ZERO,
+        direction: Vec3::new(s * phi.cos(), s * phi.sin(), z),
+    };
+    scene.intersect(&ray, f32::INFINITY, RayKind::Other).unwrap()
+}
+
 /// Over 12 photon seeds, the mean radiance of cache lookups at 4,000 uniform points of the
 /// lit sphere, from caches with k = 10 (a bias of one photon in k is 10 %): the cache as built,
 /// and one whose points are estimated from all photons, themselves and the other points
@@ -212,7 +240,6 @@ fn lit_sphere() -> Scene {
 #[test]
 fn cache_lookups_average_to_the_exact_radiance() {
     let scene = lit_sphere();
-    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
     // The disc: on a sphere the area within chord distance r is exactly πr².
     let options = EstimatorOptions {
         k: 10,
@@ -222,17 +249,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
     let mut scratch = EstimatorScratch::new();
     let (built, from_all): (Vec<f64>, Vec<f64>) = (0..12u64)
         .map(|seed| {
-            let traced = trace_photons(
-                &scene,
-                &assignment,
-                &TraceOptions {
-                    photons: 20_000,
-                    seed,
-                    ..TraceOptions::default()
-                },
-            )
-            .unwrap();
-            let maps = PhotonMaps::build(&scene, &assignment, traced).unwrap();
+            let maps = sphere_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
             let trees: Vec<_> = maps.maps().iter().map(|m| m.tree()).collect();
             let counting_points = RadianceCache::build_with(
@@ -256,15 +273,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
             let lookups = 4000;
             let (mut a, mut b) = (0.0, 0.0);
             for _ in 0..lookups {
-                // A uniform direction from the centre to the sphere.
-                let z = 2.0 * rng.next_f64() as f32 - 1.0;
-                let phi = 2.0 * PI * rng.next_f64() as f32;
-                let s = (1.0 - z * z).max(0.0).sqrt();
-                let ray = Ray {
-                    origin: Vec3::ZERO,
-                    direction: Vec3::new(s * phi.cos(), s * phi.sin(), z),
-                };
-                let hit = scene.intersect(&ray, f32::INFINITY, RayKind::Other).unwrap();
+                let hit = random_hit(&scene, &mut rng);
                 a += f64::from(cache.radiance(&scene, &hit, &mut scratch).x);
                 b += f64::from(counting_points.radiance(&scene, &hit, &mut scratch).x);
             }
@@ -292,17 +301,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
 #[test]
 fn a_cache_point_in_every_photon_is_refused() {
     let scene = lit_sphere();
-    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
-    let traced = trace_photons(
-        &scene,
-        &assignment,
-        &TraceOptions {
-            photons: 1_000,
-            ..TraceOptions::default()
-        },
-    )
-    .unwrap();
-    let maps = PhotonMaps::build(&scene, &assignment, traced).unwrap();
+    let maps = sphere_maps(&scene, 1_000, 0);
     let options = EstimatorOptions::for_scene(&scene.bounds());
     for every in [0, 1] {
         let err = RadianceCache::build(&scene, &maps, &GeometryCube, &options, every).unwrap_err();
@@ -319,23 +318,12 @@ fn a_cache_point_in_every_photon_is_refused() {
 fn fresh_estimates_where_no_point_is_near_use_the_other_photons() {
     use pm_render::FixedVolumeEstimator;
     let scene = lit_sphere();
-    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
     let options = EstimatorOptions::for_scene(&scene.bounds());
     let every = 2;
     let mut scratch = EstimatorScratch::new();
     let (fresh, from_all): (Vec<f64>, Vec<f64>) = (0..12u64)
         .map(|seed| {
-            let traced = trace_photons(
-                &scene,
-                &assignment,
-                &TraceOptions {
-                    photons: 20_000,
-                    seed,
-                    ..TraceOptions::default()
-                },
-            )
-            .unwrap();
-            let maps = PhotonMaps::build(&scene, &assignment, traced).unwrap();
+            let maps = sphere_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
             // About 2 photons (one cache point) per disc of this radius on the sphere's 4π m².
             let photons = maps.maps().iter().map(|m| m.tree().len()).sum::<usize>() as f32;
@@ -343,14 +331,7 @@ fn fresh_estimates_where_no_point_is_near_use_the_other_photons() {
             let mut rng = Rand(seed + 7);
             let (mut a, mut b, mut n) = (0.0, 0.0, 0);
             while n < 3000 {
-                let z = 2.0 * rng.next_f64() as f32 - 1.0;
-                let phi = 2.0 * PI * rng.next_f64() as f32;
-                let s = (1.0 - z * z).max(0.0).sqrt();
-                let ray = Ray {
-                    origin: Vec3::ZERO,
-                    direction: Vec3::new(s * phi.cos(), s * phi.sin(), z),
-                };
-                let hit = scene.intersect(&ray, f32::INFINITY, RayKind::Other).unwrap();
+                let hit = random_hit(&scene, &mut rng);
                 let map = maps.map_of(hit.part);
                 if cache
                     .irradiance_within(hit.position, hit.normal, map, radius, &mut scratch)

@@ -99,17 +99,18 @@ struct PassGather<'a, E> {
 }
 
 impl<E: FixedVolumeEstimator> PassGather<'_, E> {
-    /// Irradiance at `hit` estimated afresh, in the pass's volume there (`extent`), from the
-    /// pass's photons that are not cache points, scaled for those set aside. Not from all
-    /// photons: this estimate is taken because no cache point lies near `hit`, and the
-    /// photons there are then fewer than average (by the cache points that are not there),
-    /// while the others are as many as ever.
-    fn fresh_irradiance(&self, hit: &Hit, map_id: u32, extent: f32, scratch: &mut EstimatorScratch) -> Vec3 {
+    /// Irradiance at `hit` from `tree` (photons of `hit`'s map `map_id`) in the fixed volume
+    /// of `extent` there, on the map's pilot geometry.
+    fn within(
+        &self,
+        tree: Option<&PhotonTree>,
+        hit: &Hit,
+        map_id: u32,
+        extent: f32,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
         let l = self.lighting;
-        let (Some(tree), Some(pilot)) = (
-            self.cache.photons(map_id),
-            l.pilot.maps.maps().get(map_id as usize),
-        ) else {
+        let (Some(tree), Some(pilot)) = (tree, l.pilot.maps.maps().get(map_id as usize)) else {
             return Vec3::ZERO;
         };
         let at = SurfacePoint {
@@ -123,7 +124,15 @@ impl<E: FixedVolumeEstimator> PassGather<'_, E> {
         };
         l.estimator
             .irradiance_within(at, view, extent, l.options, scratch)
-            * self.cache.set_aside()
+    }
+
+    /// Irradiance at `hit` estimated afresh, in the pass's volume there (`extent`), from the
+    /// pass's photons that are not cache points, scaled for those set aside. Not from all
+    /// photons: this estimate is taken because no cache point lies near `hit`, and the
+    /// photons there are then fewer than average (by the cache points that are not there),
+    /// while the others are as many as ever.
+    fn fresh_irradiance(&self, hit: &Hit, map_id: u32, extent: f32, scratch: &mut EstimatorScratch) -> Vec3 {
+        self.within(self.cache.photons(map_id), hit, map_id, extent, scratch) * self.cache.set_aside()
     }
 }
 
@@ -139,26 +148,14 @@ impl<E: FixedVolumeEstimator> GatherSource for PassGather<'_, E> {
     fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
         let l = self.lighting;
         let map_id = l.pilot.maps.map_of(hit.part);
-        let (Some(tree), Some(pilot)) = (
-            self.cache.caustic_tree(map_id),
-            l.pilot.maps.maps().get(map_id as usize),
-        ) else {
+        // Most maps hold no caustic photons: no extent to look up then.
+        let tree @ Some(_) = self.cache.caustic_tree(map_id) else {
             return Vec3::ZERO;
         };
         let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
             return Vec3::ZERO;
         };
-        let at = SurfacePoint {
-            position: hit.position,
-            normal: l.scene.shading_normal_at(hit),
-            front_face: hit.front_face,
-        };
-        let view = MapView {
-            tree,
-            polygons: pilot.geometry(),
-        };
-        l.estimator
-            .irradiance_within(at, view, extent * l.scale, l.options, scratch)
+        self.within(tree, hit, map_id, extent * l.scale, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
