@@ -2,41 +2,17 @@
 //! integrator: on pbrt's closed-sphere furnace (radiance exactly 1 everywhere inside) the
 //! cache's answers, and a one-bounce final gather written here from public items only.
 
+#[path = "support/furnace.rs"]
+mod furnace;
+
+use furnace::{furnace, furnace_maps};
 use pm_render::glam::{Vec2, Vec3};
 use pm_render::{
     Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, SurfacePoint,
 };
 use pm_trace::sampling::cosine_hemisphere;
-use pm_trace::{
-    Camera, CreaseAngle, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Rng, Scene, Surface,
-    TraceOptions, trace_photons,
-};
-use std::f32::consts::{FRAC_1_PI, PI};
-
-/// A point light of intensity π at the centre of a closed diffuse sphere of albedo 0.5:
-/// irradiance π direct + π indirect, radiance 1 everywhere inside.
-fn furnace() -> Scene {
-    Scene::builder()
-        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
-        .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
-        .camera(Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z, Vec3::Y, 1.2))
-        .build()
-        .unwrap()
-}
-
-fn maps(scene: &Scene, photons: u32) -> PhotonMaps {
-    let assignment = CreaseAngle::default().try_partition(scene).unwrap();
-    let options = TraceOptions {
-        photons,
-        ..TraceOptions::default()
-    };
-    PhotonMaps::build(
-        scene,
-        &assignment,
-        trace_photons(scene, &assignment, &options).unwrap(),
-    )
-    .unwrap()
-}
+use pm_trace::{Ray, RayKind, Rng, Scene};
+use std::f32::consts::FRAC_1_PI;
 
 /// `n` hits on the sphere's inside, in random directions from its centre.
 fn hits(scene: &Scene, n: usize, rng: &mut Rng) -> Vec<pm_trace::Hit> {
@@ -55,7 +31,7 @@ fn hits(scene: &Scene, n: usize, rng: &mut Rng) -> Vec<pm_trace::Hit> {
 #[test]
 fn the_cache_answers_the_furnace_and_the_estimate_at_the_same_point() {
     let scene = furnace();
-    let maps = maps(&scene, 200_000);
+    let maps = furnace_maps(&scene, 200_000, 0);
     let options = EstimatorOptions::for_scene(&scene.bounds());
     // The estimate at the point as the cache makes its own: the boundary photon left out.
     let unbiased = EstimatorOptions {
@@ -105,7 +81,7 @@ fn a_final_gather_written_outside_the_crate_sees_the_furnace() {
     // L(x) = ρ/π · E_direct(x) by a shadow ray + ρ · (mean of the cache's radiance over
     // cosine-weighted gather rays): 0.5 + 0.5 = 1 in the furnace.
     let scene = furnace();
-    let maps = maps(&scene, 200_000);
+    let maps = furnace_maps(&scene, 200_000, 0);
     let options = EstimatorOptions::for_scene(&scene.bounds());
     let cache = RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 4).unwrap();
     let mut scratch = EstimatorScratch::new();

@@ -7,6 +7,10 @@
 //!   points, so neither a point's own photon nor the emptiness that makes it the nearest
 //!   point biases what it answers (each is about one photon in k).
 
+#[path = "support/furnace.rs"]
+mod furnace;
+
+use furnace::{furnace, furnace_maps};
 use glam::Vec3;
 use pm_geom::PolygonSet;
 use pm_kdtree::{Photon, PhotonKind, PhotonTree};
@@ -14,10 +18,7 @@ use pm_render::{
     Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, RadianceCache,
     SurfacePoint,
 };
-use pm_trace::{
-    Camera, CreaseAngle, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Scene, Surface, TraceOptions,
-    trace_photons,
-};
+use pm_trace::{Ray, RayKind, Scene};
 use std::f32::consts::PI;
 
 /// SplitMix64.
@@ -193,35 +194,7 @@ fn fewer_than_k_photons_keep_them_all() {
     assert_eq!(a, b);
 }
 
-/// A point light of power 4π² (intensity π) at the centre of a closed sphere of radius 1
-/// and albedo 1/2: direct irradiance π everywhere, and with the even interreflection
-/// E = π/(1 − 1/2) = 2π, so the outgoing radiance ρ/π · E is exactly 1.
-fn lit_sphere() -> Scene {
-    Scene::builder()
-        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
-        .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
-        .camera(Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z, Vec3::Y, 1.2))
-        .build()
-        .unwrap()
-}
-
-/// The lit sphere's photon maps from `photons` photon paths of seed `seed` (crease maps).
-fn sphere_maps(scene: &Scene, photons: u32, seed: u64) -> PhotonMaps {
-    let assignment = CreaseAngle::default().try_partition(scene).unwrap();
-    let options = TraceOptions {
-        photons,
-        seed,
-        ..TraceOptions::default()
-    };
-    PhotonMaps::build(
-        scene,
-        &assignment,
-        trace_photons(scene, &assignment, &options).unwrap(),
-    )
-    .unwrap()
-}
-
-/// Where a uniformly random direction from the centre meets the lit sphere.
+/// Where a uniformly random direction from the centre meets the furnace.
 fn random_hit(scene: &Scene, rng: &mut Rand) -> pm_trace::Hit {
     let z = 2.0 * rng.next_f64() as f32 - 1.0;
     let phi = 2.0 * PI * rng.next_f64() as f32;
@@ -239,7 +212,7 @@ fn random_hit(scene: &Scene, rng: &mut Rand) -> pm_trace::Hit {
 /// included (what the cache did before), through `build_with`.
 #[test]
 fn cache_lookups_average_to_the_exact_radiance() {
-    let scene = lit_sphere();
+    let scene = furnace();
     // The disc: on a sphere the area within chord distance r is exactly πr².
     let options = EstimatorOptions {
         k: 10,
@@ -249,7 +222,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
     let mut scratch = EstimatorScratch::new();
     let (built, from_all): (Vec<f64>, Vec<f64>) = (0..12u64)
         .map(|seed| {
-            let maps = sphere_maps(&scene, 20_000, seed);
+            let maps = furnace_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
             let trees: Vec<_> = maps.maps().iter().map(|m| m.tree()).collect();
             let counting_points = RadianceCache::build_with(
@@ -283,7 +256,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
     let (mean, se) = mean_se(&built);
     let (old, old_se) = mean_se(&from_all);
     eprintln!(
-        "cache on the lit sphere: {mean:.4} ± {se:.4}; counting its points: {old:.4} ± {old_se:.4} (exact 1)"
+        "cache on the furnace: {mean:.4} ± {se:.4}; counting its points: {old:.4} ± {old_se:.4} (exact 1)"
     );
     assert!(se < 0.01, "too noisy to tell ({se})");
     assert!(
@@ -300,8 +273,8 @@ fn cache_lookups_average_to_the_exact_radiance() {
 
 #[test]
 fn a_cache_point_in_every_photon_is_refused() {
-    let scene = lit_sphere();
-    let maps = sphere_maps(&scene, 1_000, 0);
+    let scene = furnace();
+    let maps = furnace_maps(&scene, 1_000, 0);
     let options = EstimatorOptions::for_scene(&scene.bounds());
     for every in [0, 1] {
         let err = RadianceCache::build(&scene, &maps, &GeometryCube, &options, every).unwrap_err();
@@ -317,13 +290,13 @@ fn a_cache_point_in_every_photon_is_refused() {
 #[test]
 fn fresh_estimates_where_no_point_is_near_use_the_other_photons() {
     use pm_render::FixedVolumeEstimator;
-    let scene = lit_sphere();
+    let scene = furnace();
     let options = EstimatorOptions::for_scene(&scene.bounds());
     let every = 2;
     let mut scratch = EstimatorScratch::new();
     let (fresh, from_all): (Vec<f64>, Vec<f64>) = (0..12u64)
         .map(|seed| {
-            let maps = sphere_maps(&scene, 20_000, seed);
+            let maps = furnace_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
             // About 2 photons (one cache point) per disc of this radius on the sphere's 4π m².
             let photons = maps.maps().iter().map(|m| m.tree().len()).sum::<usize>() as f32;
