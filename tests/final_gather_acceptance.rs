@@ -181,8 +181,10 @@ fn the_extra_bounce_near_corners() {
 
 /// The consistent variant's bias per pass count: on the lit/unlit rooms at 32², 20k photons
 /// and one camera sample of 4 gather rays per pass, the signed relative error of the image
-/// mean and of each wall's, floor's and ceiling's mean, averaged over 4 independent runs
-/// (seeds), against a 4 × 4096-spp path-traced reference; ± one standard error over the runs.
+/// mean and of each wall's, floor's and ceiling's mean, averaged over independent runs
+/// (seeds; `PM_CONSISTENT_RUNS`, default 4) up to `PM_CONSISTENT_PASSES` passes (default 256,
+/// at most 1,024), against a 4 × 4096-spp path-traced reference; ± one standard error over
+/// the runs.
 #[test]
 #[ignore]
 fn the_consistent_variants_bias_falls_with_passes() {
@@ -260,10 +262,21 @@ fn the_consistent_variants_bias_falls_with_passes() {
         "reference image mean: ± {:.3} % (one standard error over its 4 parts)",
         100.0 * (spread / 4.0).sqrt()
     );
-    let counts = [4u64, 16, 64, 256];
+    let env = |name: &str, default: u64| {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let runs = env("PM_CONSISTENT_RUNS", 4).max(2);
+    let last = env("PM_CONSISTENT_PASSES", 256);
+    let counts: Vec<u64> = [4u64, 16, 64, 256, 1024]
+        .into_iter()
+        .filter(|&c| c <= last)
+        .collect();
     // errors[count][seed][region]
     let mut errors = vec![Vec::new(); counts.len()];
-    for seed in 0..4u64 {
+    for seed in 0..runs {
         let settings = ProgressiveSettings {
             passes: Some(*counts.last().unwrap()),
             ..ProgressiveSettings::new(
