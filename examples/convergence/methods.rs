@@ -169,19 +169,39 @@ pub fn run(
         }
     };
     match method {
-        Method::PathTrace => {
+        // Independent images, one per batch (fresh seed, and for the final gather fresh
+        // photons), averaged.
+        Method::PathTrace | Method::FinalGather => {
             let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
             for batch in 0u64.. {
-                let settings = RenderSettings {
-                    mode: Mode::PathTrace,
-                    samples_per_pixel: 1,
-                    seed: base.seed.wrapping_add(batch),
-                    ..base
-                };
-                let image = Renderer::new(EstimatorKind::Disc, settings)
-                    .render(scene, &SingleMap, &())
-                    .map_err(|e| e.to_string())?
-                    .image;
+                let seed = base.seed.wrapping_add(batch);
+                let image = if method == Method::PathTrace {
+                    let settings = RenderSettings {
+                        mode: Mode::PathTrace,
+                        samples_per_pixel: 1,
+                        seed,
+                        ..base
+                    };
+                    Renderer::new(EstimatorKind::Disc, settings).render(scene, &SingleMap, &())
+                } else {
+                    let settings = RenderSettings {
+                        mode: Mode::FinalGather,
+                        samples_per_pixel: progressive.gather.1,
+                        seed,
+                        final_gather: FinalGatherOptions {
+                            gather_rays: progressive.gather.0,
+                            ..FinalGatherOptions::default()
+                        },
+                        ..base
+                    };
+                    Renderer::new(EstimatorKind::GeometryCube, settings).render(
+                        scene,
+                        &CreaseAngle::default(),
+                        &(),
+                    )
+                }
+                .map_err(|e| e.to_string())?
+                .image;
                 for (s, p) in sum.iter_mut().zip(image.pixels()) {
                     *s += p.as_dvec3();
                 }
@@ -207,36 +227,6 @@ pub fn run(
                     })
                 })
                 .map_err(|e| e.to_string())?;
-        }
-        Method::FinalGather => {
-            let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
-            for batch in 0u64.. {
-                let settings = RenderSettings {
-                    mode: Mode::FinalGather,
-                    samples_per_pixel: progressive.gather.1,
-                    seed: base.seed.wrapping_add(batch),
-                    final_gather: FinalGatherOptions {
-                        gather_rays: progressive.gather.0,
-                        ..FinalGatherOptions::default()
-                    },
-                    ..base
-                };
-                let image = Renderer::new(EstimatorKind::GeometryCube, settings)
-                    .render(scene, &CreaseAngle::default(), &())
-                    .map_err(|e| e.to_string())?
-                    .image;
-                for (s, p) in sum.iter_mut().zip(image.pixels()) {
-                    *s += p.as_dvec3();
-                }
-                let n = (batch + 1) as f64;
-                let mean = || {
-                    let pixels = sum.iter().map(|s| (*s / n).as_vec3()).collect();
-                    Image::from_pixels(base.width, base.height, pixels).map_err(|e| e.to_string())
-                };
-                if record(&mut clock, batch + 1, &mean).is_break() {
-                    break;
-                }
-            }
         }
         Method::Progressive(_) | Method::ProgressiveGather => {
             let (estimator, mode) = match method {

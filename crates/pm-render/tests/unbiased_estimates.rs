@@ -272,7 +272,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
 }
 
 #[test]
-fn a_cache_point_in_every_photon_is_refused() {
+fn a_cache_point_in_every_photon_is_refused_and_the_sparsest_cache_is_empty() {
     let scene = furnace();
     let maps = furnace_maps(&scene, 1_000, 0);
     let options = EstimatorOptions::for_scene(&scene.bounds());
@@ -280,6 +280,26 @@ fn a_cache_point_in_every_photon_is_refused() {
         let err = RadianceCache::build(&scene, &maps, &GeometryCube, &options, every).unwrap_err();
         assert!(err.to_string().contains("2 or more"), "{err}");
     }
+    // The other end: one point in 2 holds about half the photons; one in u32::MAX holds
+    // none (an empty cache answers nothing), with the others all kept to estimate from.
+    let photons: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    let half = RadianceCache::build(&scene, &maps, &GeometryCube, &options, 2).unwrap();
+    assert!(
+        half.len().abs_diff(photons / 2) < photons / 10,
+        "{} of {photons}",
+        half.len()
+    );
+    assert_eq!(half.set_aside(), 2.0);
+    let none = RadianceCache::build(&scene, &maps, &GeometryCube, &options, u32::MAX).unwrap();
+    assert!(none.is_empty());
+    let kept: usize = (0..maps.maps().len() as u32)
+        .filter_map(|m| none.photons(m))
+        .map(|t| t.len())
+        .sum();
+    assert_eq!(kept, photons);
+    let hit = random_hit(&scene, &mut Rand(3));
+    let mut scratch = EstimatorScratch::new();
+    assert_eq!(none.radiance(&scene, &hit, &mut scratch), Vec3::ZERO);
 }
 
 /// Where no cache point lies within a small radius of a point (what a consistent renderer's
