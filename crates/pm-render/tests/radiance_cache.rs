@@ -48,24 +48,30 @@ fn the_cache_answers_the_furnace_and_the_estimate_at_the_same_point() {
         for hit in &points {
             let l = cache.radiance(&scene, hit, &mut scratch);
             cached += l.x as f64;
-            let map = &maps.maps()[maps.map_of(hit.part) as usize];
+            let id = maps.map_of(hit.part);
             let at = SurfacePoint {
                 position: hit.position,
                 normal: hit.normal,
                 front_face: hit.front_face,
             };
+            // From the photons the cache estimates from, so that the k-nearest extent is the
+            // same (the geometry estimators' error on the sphere's polygon proxy depends on
+            // it: from all photons, a smaller extent, the cube reads 0.7 % more).
             let view = MapView {
-                tree: map.tree(),
-                polygons: map.geometry(),
+                tree: cache.photons(id).unwrap(),
+                polygons: maps.map(id).geometry(),
             };
-            direct += (kind.irradiance(at, view, &unbiased, &mut scratch).x * 0.5 * FRAC_1_PI) as f64;
+            direct += (kind.irradiance(at, view, &unbiased, &mut scratch).x
+                * cache.set_aside(id)
+                * 0.5
+                * FRAC_1_PI) as f64;
         }
         let (cached, direct) = (cached / points.len() as f64, direct / points.len() as f64);
         eprintln!("{kind}: cache {cached:.4}, estimate at the point {direct:.4}, truth 1");
         // The cache gives what its estimator gives (the nearest cache point stands in for the
         // point itself) …
         assert!(
-            (cached - direct).abs() < 0.01,
+            (cached - direct).abs() < 0.005,
             "{kind}: cache {cached} vs estimate {direct}"
         );
         // … and Jensen's disc, which needs no polygons, gives the furnace's truth. (The geometry
