@@ -3,10 +3,12 @@
 
 mod builder;
 mod checks;
+mod mesh_input;
 mod queries;
 mod shading;
 
-pub use builder::{MAX_SCENE_TRIANGLES, SceneBuilder};
+pub use builder::SceneBuilder;
+pub use mesh_input::MAX_SCENE_TRIANGLES;
 pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
