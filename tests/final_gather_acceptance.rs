@@ -40,9 +40,8 @@
 //! Against the default 4 × 4096-spp reference (± 0.026 %, from four parts, so itself rough)
 //! the same runs read 0.07 % lower. Plain progressive photon mapping on the same settings
 //! (shadow rays, no gather), against that reference: −0.05 ± 0.04 % (image) and +0.27 ±
-//! 0.14 % (region) after 256 passes. Before the cache's points
-//! were chosen afresh in every pass (by a hash of position and index, the photons kept
-//! scaled by the map's own count ratio), the image mean stayed at +0.21 ± 0.02 % after
+//! 0.14 % (region) after 256 passes. Before the cache's points were chosen afresh in every
+//! pass (by a hash of position and index), the image mean stayed at +0.21 ± 0.02 % after
 //! 1,024 passes: the same tree slots were set aside in every pass, a share off one in n by a
 //! few tenths of a percent.
 

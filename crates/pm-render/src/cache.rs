@@ -38,8 +38,8 @@ pub struct CachePoint<'a> {
 /// finds the surface it landed on (its normal and side) and estimates the irradiance there
 /// with the renderer's own [`Estimator`] — the same estimate, with the same partition and
 /// area, that the photon maps give a camera ray — from the map's *other* photons, of all
-/// kinds, scaled by the map's photons over its others ([`RadianceCache::set_aside`], about
-/// n/(n − 1)), leaving out the k-nearest search's boundary photon
+/// kinds, scaled by n/(n − 1) ([`RadianceCache::set_aside`]), leaving out the k-nearest
+/// search's boundary photon
 /// ([`EstimatorOptions::leave_out_boundary`]). Both choices remove a bias of order 1/k:
 /// - a photon's own estimate counts the photon itself and the boundary photon, k/(k − 2)
 ///   too bright;
@@ -50,12 +50,14 @@ pub struct CachePoint<'a> {
 ///   cache points and estimating photons disjoint (independent thinnings), where the cache
 ///   points lie says nothing about the photons counted.
 ///
-/// The scale is the map's own count ratio, not n/(n − 1): given how many photons were set
-/// aside, which ones is a uniformly random choice, so the ratio makes every estimate from the
-/// others exactly unbiased for the estimate from all photons. (A selection by the index
-/// alone set aside the same tree slots in every pass, a share that misses 1/n by a few tenths
-/// of a percent and is the same in every pass: a consistent renderer averaging passes kept a
-/// bias of +0.2 %.)
+/// The hash takes each photon's position, so every set of photons (every pass of a consistent
+/// renderer) gets its own, independent choice, and each photon is kept with probability
+/// (n − 1)/n whatever the others: the scale n/(n − 1) then makes an estimate from the others
+/// exactly unbiased, in every map however few its photons. (By the index alone, the same tree
+/// slots were set aside in every pass, a share off 1/n by a few tenths of a percent the same
+/// way every time: a consistent renderer averaging passes kept a bias of +0.2 %. Scaling by
+/// each map's own count ratio instead would be unbiased only given that some photon is kept,
+/// and too dark by n⁻ᴺ in a map of N photons.)
 ///
 /// The points are kept per map in a [`PhotonTree`] (20 bytes each: the position, the
 /// irradiance as unbiased 12-bit log codes, the normal as an octahedral code).
@@ -103,8 +105,8 @@ pub struct RadianceCache {
     /// Per photon map: the photons that are not cache points (dropped by
     /// [`RadianceCache::without_photons`]).
     photons: Vec<PhotonTree>,
-    /// Per photon map: its photons over those that are not cache points (1 when all are).
-    set_aside: Vec<f32>,
+    /// `n/(n − 1)` for one cache point in `n` photons.
+    set_aside: f32,
     max_distance: f32,
 }
 
@@ -149,8 +151,8 @@ impl RadianceCache {
     /// your own irradiance estimate. About one photon in `every` of each tree (each with
     /// probability 1/`every`, by a hash of its position and index) becomes a cache point; the
     /// others form the tree [`CachePoint::photons`] that `irradiance(point, scratch)`
-    /// estimates from, and the result is scaled by the tree's photons over the others
-    /// ([`RadianceCache::set_aside`]) for the photons set aside. Lookups search
+    /// estimates from, and the result is scaled by `every/(every − 1)` for the photons set
+    /// aside. Lookups search
     /// within `max_distance`. Runs on the current rayon pool; the result does not depend on
     /// the number of threads. `every` below 2 is refused (there would be no photons left to
     /// estimate from).
@@ -178,24 +180,16 @@ impl RadianceCache {
             .collect();
         // The cast that finds a photon's surface starts this far before it.
         let back = 4.0 * scene.epsilon();
+        let set_aside = f64::from(every) / f64::from(every - 1);
         let splits = trees
             .iter()
             .map(|tree| split_cache_points(tree, every))
             .collect::<Result<Vec<_>, _>>()?;
-        let set_aside: Vec<f64> = trees
-            .iter()
-            .zip(&splits)
-            .map(|(tree, (_, others))| match others.len() {
-                0 => 1.0,
-                kept => tree.len() as f64 / kept as f64,
-            })
-            .collect();
         let cache = trees
             .iter()
             .zip(&splits)
             .enumerate()
             .map(|(m, (tree, (indices, others)))| {
-                let set_aside = set_aside[m];
                 let points: Vec<Photon> = indices
                     .par_iter()
                     .map_init(EstimatorScratch::new, |scratch, &i| {
@@ -250,7 +244,7 @@ impl RadianceCache {
             map_of_part,
             caustics,
             photons,
-            set_aside: set_aside.into_iter().map(|s| s as f32).collect(),
+            set_aside: set_aside as f32,
             max_distance,
         })
     }
@@ -308,17 +302,16 @@ impl RadianceCache {
 
     /// The photons of map `map` that are not cache points, which the cache estimated from
     /// (`None` after [`RadianceCache::without_photons`]). An estimate from them, times
-    /// [`RadianceCache::set_aside`]`(map)`, does not depend on where the cache points are: the
-    /// one to take where no cache point is near enough.
+    /// [`RadianceCache::set_aside`], does not depend on where the cache points are: the one
+    /// to take where no cache point is near enough.
     pub fn photons(&self, map: u32) -> Option<&PhotonTree> {
         self.photons.get(map as usize)
     }
 
-    /// What an estimate from [`RadianceCache::photons`]`(map)` is scaled by for the photons
-    /// set aside: map `map`'s photons over those that are not cache points (about
-    /// n/(n − 1) for one cache point in n; 1 for a map with no photons left, or none at all).
-    pub fn set_aside(&self, map: u32) -> f32 {
-        self.set_aside.get(map as usize).copied().unwrap_or(1.0)
+    /// `n/(n − 1)` for one cache point in `n` photons: what an estimate from
+    /// [`RadianceCache::photons`] is scaled by for the photons set aside.
+    pub fn set_aside(&self) -> f32 {
+        self.set_aside
     }
 
     /// The cache without [`RadianceCache::photons`] (memory for a renderer that only looks
@@ -378,9 +371,8 @@ impl RadianceCache {
 /// the two sets are independent thinnings of the photons) and a tree of the others.
 ///
 /// The hash is of the photon's position as well as its index: by the index alone, the same
-/// tree slots would be set aside in every tree of a size, whatever its photons, and that
-/// fixed selection's share misses 1/`every` by a few tenths of a percent the same way in
-/// every pass.
+/// tree slots would be set aside in every tree of a size, whatever its photons, a share that
+/// misses 1/`every` by a few tenths of a percent the same way in every pass.
 fn split_cache_points(tree: &PhotonTree, every: u32) -> Result<(Vec<u32>, PhotonTree), RenderError> {
     let threshold = u64::MAX / u64::from(every);
     let scale = tree.power_scale();

@@ -61,10 +61,9 @@ fn the_cache_answers_the_furnace_and_the_estimate_at_the_same_point() {
                 tree: cache.photons(id).unwrap(),
                 polygons: maps.map(id).geometry(),
             };
-            direct += (kind.irradiance(at, view, &unbiased, &mut scratch).x
-                * cache.set_aside(id)
-                * 0.5
-                * FRAC_1_PI) as f64;
+            direct +=
+                (kind.irradiance(at, view, &unbiased, &mut scratch).x * cache.set_aside() * 0.5 * FRAC_1_PI)
+                    as f64;
         }
         let (cached, direct) = (cached / points.len() as f64, direct / points.len() as f64);
         eprintln!("{kind}: cache {cached:.4}, estimate at the point {direct:.4}, truth 1");

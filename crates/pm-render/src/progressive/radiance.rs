@@ -132,7 +132,7 @@ impl<E: FixedVolumeEstimator> PassGather<'_, E> {
     /// photons there are then fewer than average (by the cache points that are not there),
     /// while the others are as many as ever.
     fn fresh_irradiance(&self, hit: &Hit, map_id: u32, extent: f32, scratch: &mut EstimatorScratch) -> Vec3 {
-        self.within(self.cache.photons(map_id), hit, map_id, extent, scratch) * self.cache.set_aside(map_id)
+        self.within(self.cache.photons(map_id), hit, map_id, extent, scratch) * self.cache.set_aside()
     }
 }
 
