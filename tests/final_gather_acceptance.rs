@@ -34,8 +34,8 @@
 //!
 //! | passes | 4 | 16 | 64 | 256 | 1,024 |
 //! |---|---|---|---|---|---|
-//! | image | +0.32 ± 0.14 % | +0.05 ± 0.11 % | −0.11 ± 0.09 % | +0.04 ± 0.04 % | +0.05 ± 0.02 % |
-//! | region | +1.04 ± 0.60 % | −0.49 ± 0.36 % | −0.67 ± 0.31 % | +0.17 ± 0.09 % | +0.10 ± 0.05 % |
+//! | image | +0.33 ± 0.14 % | +0.05 ± 0.10 % | −0.12 ± 0.09 % | +0.04 ± 0.04 % | +0.05 ± 0.02 % |
+//! | region | +1.04 ± 0.60 % | −0.50 ± 0.35 % | −0.68 ± 0.31 % | +0.17 ± 0.09 % | +0.10 ± 0.05 % |
 //!
 //! Against the default 4 × 4096-spp reference (± 0.026 %, from four parts, so itself rough)
 //! the same runs read 0.07 % lower. Plain progressive photon mapping on the same settings
@@ -349,12 +349,12 @@ fn the_consistent_variants_bias_falls_with_passes() {
 ///
 /// | scene | k | 5 images | 40 images |
 /// |---|---|---|---|
-/// | cornell-box | 30 | 0.0326 | 0.0141 |
+/// | cornell-box | 30 | 0.0325 | 0.0141 |
 /// | cornell-box | 100 | 0.0335 | 0.0176 |
-/// | lit-unlit-rooms | 30 | 0.0227 | 0.0079 |
-/// | lit-unlit-rooms | 100 | 0.0198 | 0.0070 |
+/// | lit-unlit-rooms | 30 | 0.0228 | 0.0079 |
+/// | lit-unlit-rooms | 100 | 0.0200 | 0.0071 |
 /// | colored-rooms | 30 | 0.0376 | 0.0138 |
-/// | colored-rooms | 100 | 0.0356 | 0.0136 |
+/// | colored-rooms | 100 | 0.0357 | 0.0137 |
 ///
 /// (With the caustics' k alone lowered to 30 or 10, the Cornell box's 40-image error fell
 /// only 4–6 %: its floor is the cache's smoothing around the sphere and the ring.)
