@@ -6,7 +6,11 @@
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, Shard};
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Camera, CreaseAngle, Material, PointLight, RayKind, Scene, Surface, scenes};
+use photon_maps::trace::{CreaseAngle, Material, RayKind, Scene, scenes};
+
+#[path = "support/furnace_sphere.rs"]
+mod furnace_sphere;
+use furnace_sphere::furnace_sphere;
 
 const SIZE: u32 = 32;
 
@@ -162,17 +166,7 @@ fn the_error_against_the_path_tracer_falls_with_passes() {
 #[test]
 fn the_consistent_gather_sees_radiance_one_in_the_furnace() {
     use std::f32::consts::PI;
-    let scene = Scene::builder()
-        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
-        .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
-        .camera(Camera::new(
-            Vec3::new(0.1, 0.2, 0.6),
-            Vec3::new(-0.3, -0.1, -1.0),
-            Vec3::Y,
-            1.4,
-        ))
-        .build()
-        .unwrap();
+    let scene = furnace_sphere(Vec3::splat(4.0 * PI * PI));
     let runs: Vec<f64> = (0..12u64)
         .map(|seed| {
             let s = RenderSettings {

@@ -5,21 +5,15 @@
 
 use glam::Vec3;
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
+use photon_maps::trace::{CreaseAngle, Scene};
 use std::f32::consts::PI;
 
-fn furnace_sphere() -> Scene {
-    Scene::builder()
-        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
-        .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
-        .camera(Camera::new(
-            Vec3::new(0.1, 0.2, 0.6),
-            Vec3::new(-0.3, -0.1, -1.0),
-            Vec3::Y,
-            1.4,
-        ))
-        .build()
-        .expect("valid scene")
+#[path = "support/furnace_sphere.rs"]
+mod furnace_sphere;
+use furnace_sphere::furnace_sphere;
+
+fn furnace() -> Scene {
+    furnace_sphere(Vec3::splat(4.0 * PI * PI))
 }
 
 fn settings(mode: Mode) -> RenderSettings {
@@ -44,7 +38,7 @@ fn assert_mean_is_one(label: &str, mean: Vec3) {
 
 #[test]
 fn every_estimator_sees_radiance_one_inside_the_sphere() {
-    let scene = furnace_sphere();
+    let scene = furnace();
     for kind in EstimatorKind::ALL {
         let out = Renderer::new(kind, settings(Mode::PhotonMap))
             .render(&scene, &CreaseAngle::default(), &())
@@ -55,7 +49,7 @@ fn every_estimator_sees_radiance_one_inside_the_sphere() {
 
 #[test]
 fn path_tracer_sees_radiance_one_inside_the_sphere() {
-    let scene = furnace_sphere();
+    let scene = furnace();
     let s = RenderSettings {
         samples_per_pixel: 8,
         ..settings(Mode::PathTrace)
@@ -68,7 +62,7 @@ fn path_tracer_sees_radiance_one_inside_the_sphere() {
 
 #[test]
 fn shadow_rays_see_radiance_one_inside_the_sphere() {
-    let scene = furnace_sphere();
+    let scene = furnace();
     let out = Renderer::new(EstimatorKind::GeometryBall, settings(Mode::ShadowRays))
         .render(&scene, &CreaseAngle::default(), &())
         .unwrap();

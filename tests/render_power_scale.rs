@@ -5,8 +5,12 @@
 
 use glam::Vec3;
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Rendered, Renderer};
-use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, Surface, scenes};
+use photon_maps::trace::{CreaseAngle, Scene, scenes};
 use std::f32::consts::PI;
+
+#[path = "support/furnace_sphere.rs"]
+mod furnace_sphere;
+use furnace_sphere::furnace_sphere;
 
 const SIZE: u32 = 48;
 
@@ -92,17 +96,7 @@ fn cornell_box_matches_the_path_tracer_from_ten_thousand_to_three_million_photon
 /// pbrt's furnace: a closed diffuse sphere (albedo 0.5) around a point light; radiance is
 /// `power / (4π²)` per channel everywhere.
 fn furnace(power: Vec3) -> Scene {
-    Scene::builder()
-        .sphere(Vec3::ZERO, 1.0, Surface::diffuse(Vec3::splat(0.5)))
-        .light(PointLight::new(Vec3::ZERO, power))
-        .camera(Camera::new(
-            Vec3::new(0.1, 0.2, 0.6),
-            Vec3::new(-0.3, -0.1, -1.0),
-            Vec3::Y,
-            1.4,
-        ))
-        .build()
-        .expect("valid scene")
+    furnace_sphere(power)
 }
 
 #[test]
