@@ -41,7 +41,7 @@ mod tracking_allocator;
 
 use clap::{Parser, ValueEnum};
 use methods::{Method, Progressive, Run};
-use photon_maps::render::{Mode, RenderSettings};
+use photon_maps::render::{FinalGatherOptions, Mode, RenderSettings};
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, scenes};
 use report::{BiasRow, LeakRow, SceneResult, Study};
 use std::path::PathBuf;
@@ -119,6 +119,11 @@ struct Args {
     /// photons and precomputes its cache once for all of them).
     #[arg(long, default_value_t = 16)]
     gather_samples: u32,
+    /// Jensen's extra bounce of the final-gather methods: a gather ray whose diffuse hit lies
+    /// closer than this (metres) to its origin takes one more bounce instead of reading the
+    /// cache (0: never) [default: the renderer's, 5 % of each scene's bounding-box diagonal].
+    #[arg(long)]
+    corner_distance: Option<f32>,
     /// k of the progressive renderer's pilot extents (SPPM's initial radius keeps k = 100).
     #[arg(long, default_value_t = 100)]
     progressive_k: usize,
@@ -209,8 +214,14 @@ fn run(args: &Args) -> Result<(), String> {
         },
         k: args.progressive_k,
         alpha: args.alpha,
-        gather: (args.gather_rays, args.gather_samples),
+        final_gather: FinalGatherOptions {
+            gather_rays: args.gather_rays,
+            corner_distance: args.corner_distance,
+            ..FinalGatherOptions::default()
+        },
+        gather_samples: args.gather_samples,
     };
+    progressive.final_gather.validate().map_err(|e| e.to_string())?;
     let chosen: Vec<Method> = args
         .methods
         .split(',')
@@ -253,8 +264,17 @@ fn run(args: &Args) -> Result<(), String> {
             args.alpha
         ),
         gather: format!(
-            "{} gather rays per camera sample, {} camera samples per pixel per pass",
-            args.gather_rays, args.gather_samples
+            "{} gather rays per camera sample, {} camera samples per pixel per pass, {}",
+            args.gather_rays,
+            args.gather_samples,
+            match args.corner_distance {
+                None => format!(
+                    "an extra bounce for gather hits closer than {} % of the scene's diagonal",
+                    100.0 * FinalGatherOptions::CORNER_FRACTION
+                ),
+                Some(d) if d > 0.0 => format!("an extra bounce for gather hits closer than {d} m"),
+                Some(_) => "no extra bounce".to_owned(),
+            }
         ),
         all_pixels: args.all_pixels,
         budgets: budgets.clone(),

@@ -120,7 +120,8 @@ struct Args {
     #[arg(long)]
     cache_every: Option<u32>,
     /// Final-gather mode: gather hits closer than this (metres) take one more bounce
-    /// instead of reading the cache (Jensen's corner rule) [default: 0, never].
+    /// instead of reading the cache (Jensen's corner rule; 0: never) [default: 5 % of the
+    /// scene's bounding-box diagonal].
     #[arg(long)]
     corner_distance: Option<f32>,
 }

@@ -80,9 +80,12 @@ pub struct Progressive {
     pub k: usize,
     /// Knaus & Zwicker's α.
     pub alpha: f32,
-    /// The final-gather methods' gather rays per camera sample, and camera samples per pixel
-    /// per pass (each pass traces its photons and builds its cache once for all of them).
-    pub gather: (u32, u32),
+    /// The final-gather methods' gather rays per camera sample and corner distance (the other
+    /// options at their defaults).
+    pub final_gather: FinalGatherOptions,
+    /// The final-gather methods' camera samples per pixel per pass (each pass traces its
+    /// photons and builds its cache once for all of them).
+    pub gather_samples: u32,
 }
 
 /// The error after one pass.
@@ -186,12 +189,9 @@ pub fn run(
                 } else {
                     let settings = RenderSettings {
                         mode: Mode::FinalGather,
-                        samples_per_pixel: progressive.gather.1,
+                        samples_per_pixel: progressive.gather_samples,
                         seed,
-                        final_gather: FinalGatherOptions {
-                            gather_rays: progressive.gather.0,
-                            ..FinalGatherOptions::default()
-                        },
+                        final_gather: progressive.final_gather,
                         ..base
                     };
                     Renderer::new(EstimatorKind::GeometryCube, settings).render(
@@ -237,14 +237,11 @@ pub fn run(
                 mode,
                 k: progressive.k,
                 samples_per_pixel: if method == Method::ProgressiveGather {
-                    progressive.gather.1
+                    progressive.gather_samples
                 } else {
                     base.samples_per_pixel
                 },
-                final_gather: FinalGatherOptions {
-                    gather_rays: progressive.gather.0,
-                    ..FinalGatherOptions::default()
-                },
+                final_gather: progressive.final_gather,
                 ..base
             };
             let settings = ProgressiveSettings {

@@ -29,7 +29,7 @@ pub fn options(args: &Args) -> Result<FinalGatherOptions, String> {
     Ok(FinalGatherOptions {
         gather_rays: args.gather_rays.unwrap_or(defaults.gather_rays),
         cache_every: args.cache_every.unwrap_or(defaults.cache_every),
-        corner_distance: args.corner_distance.unwrap_or(defaults.corner_distance),
+        corner_distance: args.corner_distance.or(defaults.corner_distance),
     })
 }
 

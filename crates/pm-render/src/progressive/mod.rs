@@ -160,8 +160,11 @@ impl ProgressiveSettings {
         let gather = if s.mode == Mode::FinalGather {
             let g = &s.final_gather;
             format!(
-                " gather_rays={} cache_every={} corner_distance={:e}",
-                g.gather_rays, g.cache_every, g.corner_distance
+                " gather_rays={} cache_every={} corner_distance={}",
+                g.gather_rays,
+                g.cache_every,
+                g.corner_distance
+                    .map_or_else(|| "default".to_owned(), |d| format!("{d:e}"))
             )
         } else {
             String::new()
