@@ -263,19 +263,7 @@ fn run(args: &Args) -> Result<(), String> {
             args.progressive_k,
             args.alpha
         ),
-        gather: format!(
-            "{} gather rays per camera sample, {} camera samples per pixel per pass, {}",
-            args.gather_rays,
-            args.gather_samples,
-            match args.corner_distance {
-                None => format!(
-                    "an extra bounce for gather hits closer than {} % of the scene's diagonal",
-                    100.0 * FinalGatherOptions::CORNER_FRACTION
-                ),
-                Some(d) if d > 0.0 => format!("an extra bounce for gather hits closer than {d} m"),
-                Some(_) => "no extra bounce".to_owned(),
-            }
-        ),
+        gather: progressive.describe_gather(),
         all_pixels: args.all_pixels,
         budgets: budgets.clone(),
         scenes: Vec::new(),

@@ -272,6 +272,10 @@ fn bad_final_gather_settings_are_typed_errors() {
             corner_distance: Some(-1.0),
             ..FinalGatherOptions::default()
         },
+        FinalGatherOptions {
+            corner_distance: Some(f32::INFINITY),
+            ..FinalGatherOptions::default()
+        },
     ] {
         let settings = RenderSettings {
             final_gather: options,
@@ -318,7 +322,8 @@ fn bad_final_gather_settings_are_typed_errors() {
 /// centimetres away, where the cache's estimate is smoothed over the fold itself: with 50k
 /// photons and no extra bounce (`Some(0.0)`) the valley band reads 1.3 ± 0.3 % dark against
 /// the path tracer; with the default corner distance (5 % of the scene's diagonal) it is
-/// within the gather's noise. Four seeds each, against a reference of 2 × 2048 samples per
+/// within the gather's noise, as it is with the extra bounce for every gather ray (the top of
+/// the range). Four seeds each, against a reference of 2 × 2048 samples per
 /// pixel whose own noise is checked.
 #[test]
 fn the_extra_bounce_takes_the_bias_out_of_the_accordions_valleys() {
@@ -365,6 +370,8 @@ fn the_extra_bounce_takes_the_bias_out_of_the_accordions_valleys() {
     };
     let (without, without_se) = valley_error(Some(0.0));
     let (with, with_se) = valley_error(None);
+    // The top of the range: every gather ray takes the extra bounce (a two-bounce gather).
+    let (always, always_se) = valley_error(Some(f32::MAX));
     assert!(
         without < -0.004 && without + 3.0 * without_se < 0.0,
         "without the extra bounce the valleys should read dark: {without:+.4} ± {without_se:.4}"
@@ -372,5 +379,9 @@ fn the_extra_bounce_takes_the_bias_out_of_the_accordions_valleys() {
     assert!(
         with.abs() < 0.003_f64.max(3.0 * with_se),
         "with it they should agree with the path tracer: {with:+.4} ± {with_se:.4}"
+    );
+    assert!(
+        always.abs() < 0.003_f64.max(3.0 * always_se),
+        "with it everywhere they should agree too: {always:+.4} ± {always_se:.4}"
     );
 }

@@ -88,6 +88,25 @@ pub struct Progressive {
     pub gather_samples: u32,
 }
 
+impl Progressive {
+    /// The final-gather methods' settings in words, for the study's header.
+    pub fn describe_gather(&self) -> String {
+        let g = &self.final_gather;
+        let corner = match g.corner_distance {
+            None => format!(
+                "an extra bounce for gather hits closer than {} % of the scene's diagonal",
+                100.0 * FinalGatherOptions::CORNER_FRACTION
+            ),
+            Some(d) if d > 0.0 => format!("an extra bounce for gather hits closer than {d} m"),
+            Some(_) => "no extra bounce".to_owned(),
+        };
+        format!(
+            "{} gather rays per camera sample, {} camera samples per pixel per pass, {corner}",
+            g.gather_rays, self.gather_samples
+        )
+    }
+}
+
 /// The error after one pass.
 #[derive(Clone, Copy, Debug)]
 pub struct Sample {
