@@ -14,40 +14,10 @@ use scratch::Scratch;
 #[path = "support/example.rs"]
 mod example;
 
-use example::{example, run};
+use example::{assert_ok, assert_refused, example, run};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
-
-/// Asserts a refusal: non-zero exit, no panic, one line on stderr naming `needle`, nothing
-/// rendered (no summary line on stdout).
-fn assert_refused(args: &[&str], output: &Output, needle: &str) {
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(!output.status.success(), "{args:?} succeeded");
-    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-    assert_eq!(
-        stderr.trim().lines().count(),
-        1,
-        "{args:?}: not one line: {stderr}"
-    );
-    assert!(
-        stderr.to_lowercase().contains(&needle.to_lowercase()),
-        "{args:?}: {stderr:?} does not name {needle:?}"
-    );
-    assert!(
-        stdout.trim().is_empty(),
-        "{args:?} rendered before refusing: {stdout}"
-    );
-}
-
-fn assert_ok(args: &[&str], output: &Output) {
-    assert!(
-        output.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
 
 /// Runs the example, killing it after `limit`: `None` when it had to be killed.
 fn run_within(args: &[&str], limit: Duration) -> Option<Option<Output>> {

@@ -29,3 +29,34 @@ pub fn run(args: &[&str]) -> Option<Output> {
     let exe = example("render")?;
     Some(Command::new(exe).args(args).output().expect("the example starts"))
 }
+
+/// Asserts a refusal: non-zero exit, no panic, one line on stderr naming `needle` (in any
+/// case), nothing rendered (no summary line on stdout).
+pub fn assert_refused(args: &[&str], output: &Output, needle: &str) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(!output.status.success(), "{args:?} succeeded");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    assert_eq!(
+        stderr.trim().lines().count(),
+        1,
+        "{args:?}: not one line: {stderr}"
+    );
+    assert!(
+        stderr.to_lowercase().contains(&needle.to_lowercase()),
+        "{args:?}: {stderr:?} does not name {needle:?}"
+    );
+    assert!(
+        stdout.trim().is_empty(),
+        "{args:?} rendered before refusing: {stdout}"
+    );
+}
+
+/// Asserts a run succeeded, showing its stderr otherwise.
+pub fn assert_ok(args: &[&str], output: &Output) {
+    assert!(
+        output.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
