@@ -11,7 +11,7 @@ mod example;
 #[path = "support/gltf_data_uri.rs"]
 mod gltf_data_uri;
 
-use example::run;
+use example::{assert_refused, run};
 use gltf_data_uri::{Prim, gltf};
 use std::path::PathBuf;
 use std::process::Output;
@@ -47,18 +47,7 @@ fn bad_input_exits_non_zero_with_one_line_naming_the_problem() {
     ];
     for (args, needle) in cases {
         let Some(output) = run(args) else { return };
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(!output.status.success(), "{args:?} succeeded");
-        assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-        assert_eq!(
-            stderr.trim().lines().count(),
-            1,
-            "{args:?}: not one line: {stderr}"
-        );
-        assert!(
-            stderr.to_lowercase().contains(needle),
-            "{args:?}: {stderr:?} does not name {needle:?}"
-        );
+        assert_refused(args, &output, needle);
     }
     std::fs::remove_dir_all(&dir).ok();
 }
