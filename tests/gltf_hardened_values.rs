@@ -4,6 +4,8 @@
 
 #[path = "support/scratch.rs"]
 mod scratch;
+#[path = "support/unit_cube_room.rs"]
+mod unit_cube_room;
 use scratch::Scratch;
 
 use pm_trace::glam::Vec3;
@@ -24,27 +26,18 @@ struct Colours {
 /// A unit cube room (inward, 8 vertices) offset by `offset`, a point lamp inside it, and
 /// `colours` as its `COLOR_0`, with `material` as its material (JSON).
 fn room(offset: [f32; 3], colours: Option<&Colours>, material: &str) -> String {
-    let positions: Vec<u8> = (0..8)
-        .flat_map(|i: u32| {
-            [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32]
-                .into_iter()
+    let positions: Vec<u8> = unit_cube_room::corners()
+        .into_iter()
+        .flat_map(|c| {
+            c.into_iter()
                 .zip(offset)
                 .map(|(v, o)| v + o)
                 .collect::<Vec<f32>>()
         })
         .flat_map(f32::to_le_bytes)
         .collect();
-    let quads = [
-        [0u32, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [4, 6, 7, 5],
-        [0, 1, 3, 2],
-    ];
-    let indices: Vec<u8> = quads
-        .iter()
-        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
+    let indices: Vec<u8> = unit_cube_room::triangle_indices()
+        .into_iter()
         .flat_map(u32::to_le_bytes)
         .collect();
     let mut bin = positions.clone();

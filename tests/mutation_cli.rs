@@ -16,6 +16,8 @@ mod example;
 mod mutation_gltf;
 #[path = "support/mutation_shard.rs"]
 mod mutation_shard;
+#[path = "support/unit_cube_room.rs"]
+mod unit_cube_room;
 
 use mutation_gltf::gltf_mutant;
 use mutation_shard::{header_of, write_shard};

@@ -28,24 +28,11 @@ struct Buffers {
 }
 
 fn room_buffers() -> Buffers {
-    let corners: Vec<[f32; 3]> = (0..8)
-        .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
-        .collect();
+    let corners = super::unit_cube_room::corners();
     let normals: Vec<[f32; 3]> = corners.iter().map(|c| c.map(|v| 0.5 - v)).collect();
     let uvs: Vec<[f32; 2]> = corners.iter().map(|c| [c[0], c[2]]).collect();
     let colours: Vec<[f32; 4]> = corners.iter().map(|c| [c[0], 0.5, c[2], 1.0]).collect();
-    let quads = [
-        [0u32, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [4, 6, 7, 5],
-        [0, 1, 3, 2],
-    ];
-    let indices: Vec<u32> = quads
-        .iter()
-        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
-        .collect();
+    let indices = super::unit_cube_room::triangle_indices();
     let mut bin = Vec::new();
     let mut blocks = Vec::new();
     let mut push = |name, bytes: Vec<u8>| {
@@ -79,6 +66,19 @@ struct Accessor {
     count: i64,
     ty: &'static str,
     offset: i64,
+}
+
+impl Accessor {
+    /// `count` unnormalized 32-bit floats of type `ty` from the start of their view.
+    fn float(count: i64, ty: &'static str) -> Self {
+        Accessor {
+            component: 5126,
+            normalized: false,
+            count,
+            ty,
+            offset: 0,
+        }
+    }
 }
 
 fn scene_json(b: &Buffers, accessors: &[Accessor], image_uri: &str, tex_coord: u32) -> String {
@@ -176,40 +176,13 @@ pub struct Mutant {
 pub fn gltf_mutant(rng: &mut Rng) -> Mutant {
     let mut b = room_buffers();
     let mut accessors = vec![
-        Accessor {
-            component: 5126,
-            normalized: false,
-            count: 8,
-            ty: "VEC3",
-            offset: 0,
-        },
-        Accessor {
-            component: 5126,
-            normalized: false,
-            count: 8,
-            ty: "VEC3",
-            offset: 0,
-        },
-        Accessor {
-            component: 5126,
-            normalized: false,
-            count: 8,
-            ty: "VEC2",
-            offset: 0,
-        },
-        Accessor {
-            component: 5126,
-            normalized: false,
-            count: 8,
-            ty: "VEC4",
-            offset: 0,
-        },
+        Accessor::float(8, "VEC3"),
+        Accessor::float(8, "VEC3"),
+        Accessor::float(8, "VEC2"),
+        Accessor::float(8, "VEC4"),
         Accessor {
             component: 5125,
-            normalized: false,
-            count: 36,
-            ty: "SCALAR",
-            offset: 0,
+            ..Accessor::float(36, "SCALAR")
         },
     ];
     let mut image = png(4, 4, png::ColorType::Rgb, png::BitDepth::Eight);
