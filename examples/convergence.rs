@@ -13,6 +13,11 @@
 //! after them. Without one, a `results` reference of a whole multiple of the size is
 //! box-filtered down, or else one is path traced for `--reference-seconds`.
 //!
+//! `--save-run DIR` keeps what the study measured and, per scene and method, the image each
+//! budget's error is read from; `--rescore DIR` measures those images again against the
+//! references as they are now and rewrites the Markdown and charts in seconds, so extending
+//! a reference does not need the study run again.
+//!
 //! The full study: `cargo run --release --example convergence -- --clock cpu`
 //! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
 
@@ -34,6 +39,8 @@ mod per_pass;
 mod reference;
 #[path = "convergence/report.rs"]
 mod report;
+#[path = "convergence/saved.rs"]
+mod saved;
 // Counts heap bytes for the memory table (an atomic add per allocation; the render loops do
 // not allocate once warm).
 #[path = "../tests/support/tracking_allocator.rs"]
@@ -42,8 +49,8 @@ mod tracking_allocator;
 use clap::{Parser, ValueEnum};
 use methods::{Method, Progressive, Run};
 use photon_maps::render::{FinalGatherOptions, Mode, RenderSettings};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, scenes};
-use report::{BiasRow, LeakRow, SceneResult, Study};
+use photon_maps::trace::scenes;
+use report::{SceneResult, Study};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -143,6 +150,20 @@ struct Args {
     /// Output folder: writes convergence.md there and the charts in its images/ folder.
     #[arg(long, default_value = "docs")]
     out_dir: PathBuf,
+    /// Keep what the study measured in this folder (`study.json`, and per scene and method
+    /// the image each budget's error is read from) so that `--rescore` can measure it again.
+    #[arg(long)]
+    save_run: Option<PathBuf>,
+    /// Measure a run kept by `--save-run` in this folder again, against the references in
+    /// `--reference-dir` as they are now (after `--extend-references`, say), and write the
+    /// Markdown and charts to `--out-dir`, rendering nothing.
+    #[arg(long, conflicts_with_all = [
+        "quick", "size", "photons", "budgets", "pass_counts", "reference_seconds",
+        "extend_references", "references_only", "results_references", "scenes", "threads",
+        "direct", "methods", "gather_rays", "gather_samples", "corner_distance",
+        "progressive_k", "alpha", "clock", "all_pixels", "no_per_pass", "save_run",
+    ])]
+    rescore: Option<PathBuf>,
     /// TrueType font for the charts' labels.
     #[arg(long, default_value = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")]
     font: PathBuf,
@@ -176,6 +197,20 @@ fn list<T: std::str::FromStr>(text: &str, what: &str) -> Result<Vec<T>, String> 
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    if let Some(record) = &args.rescore {
+        let charts = chart::register_font(&args.font);
+        if let Err(e) = &charts {
+            eprintln!("convergence: {e}; charts are not drawn");
+        }
+        saved::rescore(&saved::Rescore {
+            record,
+            references: &reference_dir(args),
+            out_dir: &args.out_dir,
+            charts: charts.is_ok(),
+        })?;
+        eprintln!("wrote {}", args.out_dir.join("convergence.md").display());
+        return Ok(());
+    }
     let q = args.quick;
     let size = args.size.unwrap_or(if q { 24 } else { 125 });
     let photons = args.photons.unwrap_or(if q { 4_000 } else { 50_000 });
@@ -270,6 +305,7 @@ fn run(args: &Args) -> Result<(), String> {
         leaks: Vec::new(),
         creases: Vec::new(),
         memory: Vec::new(),
+        rescored: None,
     };
     for name in args.scenes.split(',').map(str::trim) {
         let scene = scenes::build(name).map_err(|e| e.to_string())?;
@@ -301,6 +337,7 @@ fn run(args: &Args) -> Result<(), String> {
                 mask: &mask,
                 max_seconds: max_budget,
                 clock: args.clock,
+                keep: args.save_run.as_deref().map(|dir| (dir, name, &budgets[..])),
             };
             let mut run = methods::run(method, &scene, base, progressive, &measure)?;
             // The error against the noisy reference, less the reference's own noise in
@@ -323,10 +360,7 @@ fn run(args: &Args) -> Result<(), String> {
         }
         let chart = images.join(format!("convergence-{name}.png"));
         if font.is_ok() {
-            let axis = match args.clock {
-                clock::ClockKind::Wall => format!("rendering seconds, wall time ({} threads)", args.threads),
-                clock::ClockKind::Cpu => format!("rendering seconds, CPU time / {} threads", args.threads),
-            };
+            let axis = chart::seconds_axis(&study.clock, args.threads);
             chart::draw(&chart, name, &runs, noise, &axis)?;
         }
         study.scenes.push(SceneResult {
@@ -355,89 +389,24 @@ fn run(args: &Args) -> Result<(), String> {
             direct: Mode::PhotonMap,
             ..progressive
         };
-        per_pass_tables(args, base, photons_only, &counts, reference_seconds, &mut study)?;
+        let accordion = reference::reference(
+            "accordion",
+            &scenes::build("accordion").map_err(|e| e.to_string())?,
+            base,
+            reference::Budget {
+                extend: 0.0,
+                ..reference_seconds
+            },
+            (&reference_dir(args), &args.results_references),
+        )?;
+        per_pass::tables(base, photons_only, &counts, &accordion.image, &mut study)?;
     }
     let path = args.out_dir.join("convergence.md");
     report::write(&path, &study)?;
     eprintln!("wrote {}", path.display());
-    Ok(())
-}
-
-/// The leak table (lit-unlit-rooms with crease maps, touching-rooms with contact maps) and
-/// the accordion's crease table, at `counts` passes.
-fn per_pass_tables(
-    args: &Args,
-    base: RenderSettings,
-    progressive: Progressive,
-    counts: &[u64],
-    reference_seconds: reference::Budget,
-    study: &mut Study,
-) -> Result<(), String> {
-    let size = base.width;
-    for (name, partitioner) in [
-        (
-            "lit-unlit-rooms",
-            Box::new(CreaseAngle::default()) as Box<dyn Partitioner>,
-        ),
-        ("touching-rooms", Box::new(Contact::default())),
-    ] {
-        let scene = partitioner
-            .prepare_scene(scenes::build(name).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())?;
-        let rooms = per_pass::Rooms::new(&scene, size, size);
-        for method in per_pass::METHODS {
-            per_pass::at_pass_counts(
-                method,
-                &scene,
-                &*partitioner,
-                base,
-                progressive,
-                counts,
-                &mut |passes, image| {
-                    let (max, ratio) = rooms.leak(image);
-                    study.leaks.push(LeakRow {
-                        scene: name,
-                        method: per_pass::label(method),
-                        passes,
-                        dark_max: max,
-                        ratio,
-                    });
-                },
-            )?;
-        }
-        eprintln!("{name}: leaks measured");
+    if let Some(dir) = &args.save_run {
+        saved::save(dir, &study)?;
+        eprintln!("kept the run in {}", dir.display());
     }
-    let accordion = scenes::build("accordion").map_err(|e| e.to_string())?;
-    let reference = reference::reference(
-        "accordion",
-        &accordion,
-        base,
-        reference::Budget {
-            extend: 0.0,
-            ..reference_seconds
-        },
-        (&reference_dir(args), &args.results_references),
-    )?;
-    let creases = per_pass::Creases::new(&accordion, size, size, 0.03)?;
-    for method in per_pass::METHODS {
-        per_pass::at_pass_counts(
-            method,
-            &accordion,
-            &CreaseAngle::default(),
-            base,
-            progressive,
-            counts,
-            &mut |passes, image| {
-                let (crease, interior) = creases.bias(image, &reference.image);
-                study.creases.push(BiasRow {
-                    method: per_pass::label(method),
-                    passes,
-                    crease,
-                    interior,
-                });
-            },
-        )?;
-    }
-    eprintln!("accordion: crease bias measured");
     Ok(())
 }

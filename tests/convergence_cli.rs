@@ -10,6 +10,7 @@
 mod example;
 
 use example::example;
+use photon_maps::render::Image;
 use std::process::Command;
 
 const SCENES: [&str; 4] = ["cornell-box", "lit-unlit-rooms", "colored-rooms", "accordion"];
@@ -189,4 +190,141 @@ fn references_render_alone_and_extend() {
         String::from_utf8_lossy(&out.stderr)
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--save-run` keeps the study, `--rescore` measures it again without rendering: against
+/// the same references it writes the same Markdown (one sentence more), and against an
+/// extended reference each budget's error is the kept image's, as computed here from the
+/// files (relative RMSE over every pixel, less the reference's own noise in quadrature).
+#[test]
+fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
+    let Some(exe) = example("convergence") else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("pm-convergence-rescore-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let (kept, references) = (dir.join("run"), dir.join("references"));
+    let run = |args: &[&str], out: &str| {
+        let output = Command::new(&exe)
+            .args(args)
+            .args(["--font", FONT, "--reference-dir"])
+            .arg(&references)
+            .arg("--out-dir")
+            .arg(dir.join(out))
+            .output()
+            .expect("the example starts");
+        assert!(
+            output.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        std::fs::read_to_string(dir.join(out).join("convergence.md")).unwrap_or_default()
+    };
+    let study = [
+        "--quick",
+        "--size",
+        "16",
+        "--budgets",
+        "0.02,0.05",
+        "--scenes",
+        "accordion",
+        "--methods",
+        "path-trace,final-gather",
+        "--no-per-pass",
+        "--all-pixels",
+        "--reference-seconds",
+        "0.2",
+        "--save-run",
+    ];
+    let first = run(&[&study[..], &[kept.to_str().unwrap()]].concat(), "first");
+    let rescore = ["--rescore", kept.to_str().unwrap()];
+    let same = run(&rescore, "same");
+    let without_note: Vec<&str> = same.lines().filter(|l| !l.starts_with("Re-scored by")).collect();
+    let first_lines: Vec<&str> = first.lines().collect();
+    assert_eq!(
+        without_note.len(),
+        first_lines.len() + 1,
+        "one paragraph more (a sentence and its blank line)"
+    );
+    let mut rest = without_note.iter().filter(|l| !l.is_empty());
+    for line in first_lines.iter().filter(|l| !l.is_empty()) {
+        assert_eq!(
+            Some(line),
+            rest.next(),
+            "rescoring against the same references changed the study"
+        );
+    }
+
+    let out = Command::new(&exe)
+        .args(["--references-only", "--scenes", "accordion", "--size", "16"])
+        .args(["--extend-references", "0.2", "--reference-dir"])
+        .arg(&references)
+        .arg("--out-dir")
+        .arg(dir.join("first"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let extended = run(&rescore, "extended");
+    let reference = Image::read_exr(references.join("accordion-16x16.exr")).unwrap();
+    let half = Image::read_exr(references.join("accordion-16x16.half.exr")).unwrap();
+    let spp = std::fs::read_to_string(references.join("accordion-16x16.txt")).unwrap();
+    let spp = spp.split_whitespace().next().unwrap();
+    assert!(
+        extended.contains(&format!("Reference: {spp} samples per pixel")),
+        "the study names the extended reference ({spp} spp)"
+    );
+    let noise = relative_rmse(&half, &reference);
+    let mut checked = 0;
+    for row in extended.lines().filter(|l| l.starts_with("| 0.0")) {
+        // | seconds | path tracing | final gather | …: "error (passes)" per method.
+        for (cell, method) in row.split('|').skip(2).zip(["path-trace", "final-gather"]) {
+            let Some((error, passes)) = cell.trim().split_once(" (") else {
+                continue;
+            };
+            let image = Image::read_exr(
+                kept.join("accordion")
+                    .join(format!("{method}-{}.exr", passes.trim_end_matches(')'))),
+            )
+            .unwrap();
+            let measured = relative_rmse(&image, &reference);
+            let expected = (measured * measured - noise * noise).max(0.0).sqrt();
+            let error: f64 = error.trim_end_matches("⁽*⁾").parse().unwrap();
+            assert!(
+                (error - expected).abs() <= 0.000_051,
+                "{method} at {row}: {error} against {expected:.6} from its kept image"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 3, "{checked} cells checked:\n{extended}");
+
+    let refused = Command::new(&exe)
+        .args(["--rescore", kept.to_str().unwrap(), "--size", "8"])
+        .output()
+        .unwrap();
+    assert!(!refused.status.success(), "--size does not apply to --rescore");
+    let missing = Command::new(&exe)
+        .args(["--rescore"])
+        .arg(dir.join("nothing"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&missing.stderr);
+    assert!(
+        !missing.status.success() && stderr.contains("study.json") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Relative RMSE over every pixel and channel: RMSE over the reference's mean.
+fn relative_rmse(image: &Image, reference: &Image) -> f64 {
+    let (mut squares, mut sum) = (0.0f64, 0.0f64);
+    for (p, r) in image.pixels().iter().zip(reference.pixels()) {
+        for c in 0..3 {
+            squares += (f64::from(p[c]) - f64::from(r[c])).powi(2);
+            sum += f64::from(r[c]);
+        }
+    }
+    let n = 3.0 * image.pixels().len() as f64;
+    (squares / n).sqrt() / (sum / n)
 }

@@ -27,6 +27,16 @@ pub fn register_font(path: &Path) -> Result<(), String> {
         .map_err(|_| format!("font {}: not a TrueType/OpenType font", path.display()))
 }
 
+/// The time axis's label for a study whose seconds are `clock` ("Cpu": CPU time over the
+/// threads; otherwise wall time) on `threads` threads.
+pub fn seconds_axis(clock: &str, threads: usize) -> String {
+    if clock == "Cpu" {
+        format!("rendering seconds, CPU time / {threads} threads")
+    } else {
+        format!("rendering seconds, wall time ({threads} threads)")
+    }
+}
+
 /// Draws `runs` of scene `title` into `path` (800 × 500 PNG); `floor` is the reference's own
 /// noise, drawn as a dashed line; `seconds` labels the time axis.
 pub fn draw(path: &Path, title: &str, runs: &[Run], floor: f64, seconds: &str) -> Result<(), String> {

@@ -4,19 +4,24 @@
 
 use super::tracking_allocator::{peak, reset_peak};
 use photon_maps::render::progressive::{
-    ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, SppmRenderer, SppmSettings,
+    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, RenderSettings};
 use photon_maps::trace::{CreaseAngle, Scene};
 
 /// One run's figures.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct MemoryRow {
-    pub method: &'static str,
+    pub method: String,
     pub passes: u64,
     pub photons: u64,
     /// Peak heap bytes during the run, above what was live before it.
     pub peak: usize,
-    pub stats: ProgressiveStats,
+    /// The largest pass's photon trees, the pilot's trees and sites, and the running sum
+    /// (bytes, as the renderer's statistics count them).
+    pub pass_tree_bytes: u64,
+    pub pilot_bytes: u64,
+    pub accumulation_bytes: u64,
 }
 
 /// Runs progressive cube (crease maps) and SPPM for each of `counts` passes on `scene`.
@@ -38,11 +43,13 @@ pub fn rows(scene: &Scene, base: RenderSettings, counts: &[u64]) -> Result<Vec<M
                     .stats
             };
             out.push(MemoryRow {
-                method,
+                method: method.to_owned(),
                 passes,
                 photons: stats.photons_emitted,
                 peak: peak().saturating_sub(before),
-                stats,
+                pass_tree_bytes: stats.pass_tree_bytes,
+                pilot_bytes: stats.pilot_bytes,
+                accumulation_bytes: stats.accumulation_bytes,
             });
         }
     }

@@ -3,6 +3,7 @@
 
 use super::clock::{Clock, ClockKind};
 use super::mask::Mask;
+use super::saved::Keeper;
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
@@ -10,9 +11,11 @@ use photon_maps::render::progressive::{
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, Scene, SingleMap};
 use std::ops::ControlFlow;
+use std::path::Path;
 
-/// A renderer the study compares.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A renderer the study compares (kept in a run's record by its `--methods` name).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "String", try_from = "String")]
 pub enum Method {
     /// The unbiased path tracer (next-event estimation), one sample per pixel per batch.
     PathTrace,
@@ -70,6 +73,24 @@ impl Method {
     }
 }
 
+impl From<Method> for String {
+    fn from(method: Method) -> String {
+        method.name().to_owned()
+    }
+}
+
+impl TryFrom<String> for Method {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Method, String> {
+        Method::ALL
+            .into_iter()
+            .chain(Method::EXTRA)
+            .find(|m| m.name() == name)
+            .ok_or_else(|| format!("unknown method {name:?}"))
+    }
+}
+
 /// The progressive renderer's own settings (SPPM keeps pbrt-v4's).
 #[derive(Clone, Copy, Debug)]
 pub struct Progressive {
@@ -108,7 +129,7 @@ impl Progressive {
 }
 
 /// The error after one pass.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Sample {
     /// Rendering seconds when the pass ended.
     pub seconds: f64,
@@ -119,6 +140,7 @@ pub struct Sample {
 }
 
 /// The samples of one run.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct Run {
     pub method: Method,
     pub samples: Vec<Sample>,
@@ -154,6 +176,9 @@ pub struct Measure<'a> {
     pub max_seconds: f64,
     /// What the seconds count.
     pub clock: ClockKind,
+    /// Where to keep the image each budget's error is read from, for `--rescore`: the
+    /// folder, the scene's name and the budgets.
+    pub keep: Option<(&'a Path, &'a str, &'a [f64])>,
 }
 
 /// Renders `scene` with `method` until `measure.max_seconds` of rendering, reading the error
@@ -170,18 +195,29 @@ pub fn run(
         mask,
         max_seconds,
         clock,
+        keep,
     } = *measure;
+    let mut keeper = match keep {
+        Some((dir, scene, budgets)) => Some(Keeper::new(dir, scene, method.name(), budgets)?),
+        None => None,
+    };
     let mut clock = Clock::start(clock, base.threads);
     let mut samples = Vec::new();
     let mut failure = None;
     let mut record = |clock: &mut Clock, passes: u64, image: &dyn Fn() -> Result<Image, String>| {
         let seconds = clock.seconds();
         clock.exclude(|| match image() {
-            Ok(i) => samples.push(Sample {
-                seconds,
-                passes,
-                rel_rmse: mask.relative_rmse(&i, reference),
-            }),
+            Ok(i) => {
+                let sample = Sample {
+                    seconds,
+                    passes,
+                    rel_rmse: mask.relative_rmse(&i, reference),
+                };
+                samples.push(sample);
+                if let Some(Err(e)) = keeper.as_mut().map(|k| k.push(sample, i)) {
+                    failure = Some(e);
+                }
+            }
             Err(e) => failure = Some(e),
         });
         if seconds >= max_seconds || failure.is_some() {
@@ -275,8 +311,11 @@ pub fn run(
                 .map_err(|e| e.to_string())?;
         }
     }
-    match failure {
-        Some(e) => Err(e),
-        None => Ok(Run { method, samples }),
+    if let Some(e) = failure {
+        return Err(e);
     }
+    if let Some(keeper) = keeper {
+        keeper.finish()?;
+    }
+    Ok(Run { method, samples })
 }

@@ -1,15 +1,16 @@
 //! Figures per pass count rather than per second: the light leaked into the unlit room (the
 //! progressive renderer with crease or contact maps against SPPM's one map), and the signed
-//! error at the accordion's creases against inside its facets.
+//! error at the accordion's creases against inside its facets; the two tables of the study.
 
 use super::dark_room::dark_room_pixels;
 use super::methods::Progressive;
+use super::report::{BiasRow, LeakRow, Study};
 use photon_maps::render::glam::{Vec2, Vec3};
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Image, RenderSettings};
-use photon_maps::trace::{Partitioner, RayKind, Scene};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene, scenes};
 use std::ops::ControlFlow;
 
 /// The renderers of the per-pass tables: the progressive ones with the scene's leak-free
@@ -194,4 +195,73 @@ impl Creases {
         };
         (bias(&self.crease), bias(&self.interior))
     }
+}
+
+/// The leak table (lit-unlit-rooms with crease maps, touching-rooms with contact maps) and
+/// the accordion's crease table (against `reference`, the accordion's), at `counts` passes,
+/// into `study`.
+pub fn tables(
+    base: RenderSettings,
+    progressive: Progressive,
+    counts: &[u64],
+    reference: &Image,
+    study: &mut Study,
+) -> Result<(), String> {
+    let size = base.width;
+    for (name, partitioner) in [
+        (
+            "lit-unlit-rooms",
+            Box::new(CreaseAngle::default()) as Box<dyn Partitioner>,
+        ),
+        ("touching-rooms", Box::new(Contact::default())),
+    ] {
+        let scene = partitioner
+            .prepare_scene(scenes::build(name).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?;
+        let rooms = Rooms::new(&scene, size, size);
+        for method in METHODS {
+            at_pass_counts(
+                method,
+                &scene,
+                &*partitioner,
+                base,
+                progressive,
+                counts,
+                &mut |passes, image| {
+                    let (max, ratio) = rooms.leak(image);
+                    study.leaks.push(LeakRow {
+                        scene: name.to_owned(),
+                        method: label(method).to_owned(),
+                        passes,
+                        dark_max: max,
+                        ratio,
+                    });
+                },
+            )?;
+        }
+        eprintln!("{name}: leaks measured");
+    }
+    let accordion = scenes::build("accordion").map_err(|e| e.to_string())?;
+    let creases = Creases::new(&accordion, size, size, 0.03)?;
+    for method in METHODS {
+        at_pass_counts(
+            method,
+            &accordion,
+            &CreaseAngle::default(),
+            base,
+            progressive,
+            counts,
+            &mut |passes, image| {
+                let (crease, interior) = creases.bias(image, reference);
+                study.creases.push(BiasRow {
+                    method: label(method).to_owned(),
+                    passes,
+                    crease,
+                    interior,
+                });
+            },
+        )?;
+    }
+    eprintln!("accordion: crease bias measured");
+    Ok(())
 }

@@ -58,23 +58,9 @@ pub fn reference(
     budget: Budget,
     (cache, larger): (&Path, &Path),
 ) -> Result<Reference, String> {
-    let stem = cache.join(format!("{name}-{}x{}", base.width, base.height));
-    let files = Files {
-        exr: stem.with_extension("exr"),
-        half: stem.with_extension("half.exr"),
-        meta: stem.with_extension("txt"),
-    };
-    if let (Ok(image), Ok(first), Ok(text)) = (
-        Image::read_exr(&files.exr),
-        Image::read_exr(&files.half),
-        std::fs::read_to_string(&files.meta),
-    ) && let Some(spp) = text.split_whitespace().next().and_then(|t| t.parse::<u64>().ok())
-    {
-        let cached = Reference {
-            image,
-            spp,
-            half: first,
-        };
+    let files = Files::new(cache, name, base.width, base.height);
+    if let Some((cached, text)) = files.read() {
+        let spp = cached.spp;
         let batches = spp / u64::from(BATCH_SPP);
         if budget.extend <= 0.0 {
             return Ok(cached);
@@ -120,6 +106,26 @@ pub fn reference(
     path_trace(scene, base, budget.seconds, ([zero.clone(), zero], 0), &files)
 }
 
+/// The reference for scene `name` at `width × height` as cached in `cache`, neither extended
+/// nor made anew (an error when there is none).
+pub fn cached(name: &str, width: u32, height: u32, cache: &Path) -> Result<Reference, String> {
+    let files = Files::new(cache, name, width, height);
+    match files.read() {
+        Some((reference, _))
+            if [&reference.image, &reference.half]
+                .iter()
+                .all(|i| i.width() == width && i.height() == height) =>
+        {
+            Ok(reference)
+        }
+        Some(_) => Err(format!("{}: not {width}×{height} pixels", files.exr.display())),
+        None => Err(format!(
+            "no reference of {name} at {width}×{height} in {} (its .exr, .half.exr and .txt)",
+            cache.display()
+        )),
+    }
+}
+
 /// The cache's three files for one scene and size.
 struct Files {
     exr: std::path::PathBuf,
@@ -128,6 +134,24 @@ struct Files {
 }
 
 impl Files {
+    fn new(cache: &Path, name: &str, width: u32, height: u32) -> Self {
+        let stem = cache.join(format!("{name}-{width}x{height}"));
+        Files {
+            exr: stem.with_extension("exr"),
+            half: stem.with_extension("half.exr"),
+            meta: stem.with_extension("txt"),
+        }
+    }
+
+    /// The cached reference and its note, when all three files are there and readable.
+    fn read(&self) -> Option<(Reference, String)> {
+        let image = Image::read_exr(&self.exr).ok()?;
+        let half = Image::read_exr(&self.half).ok()?;
+        let text = std::fs::read_to_string(&self.meta).ok()?;
+        let spp = text.split_whitespace().next()?.parse::<u64>().ok()?;
+        Some((Reference { image, spp, half }, text))
+    }
+
     fn write(&self, reference: &Reference, how: &str) -> Result<(), String> {
         if let Some(dir) = self.exr.parent() {
             std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;

@@ -10,6 +10,7 @@ use std::io::Write as _;
 use std::path::Path;
 
 /// One scene's runs.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct SceneResult {
     pub name: String,
     pub reference_spp: u64,
@@ -22,23 +23,26 @@ pub struct SceneResult {
 }
 
 /// One row of the leak table.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct LeakRow {
-    pub scene: &'static str,
-    pub method: &'static str,
+    pub scene: String,
+    pub method: String,
     pub passes: u64,
     pub dark_max: f64,
     pub ratio: f64,
 }
 
 /// One row of the crease table.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct BiasRow {
-    pub method: &'static str,
+    pub method: String,
     pub passes: u64,
     pub crease: f64,
     pub interior: f64,
 }
 
 /// Everything the study measured.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct Study {
     pub command: String,
     pub size: u32,
@@ -56,6 +60,10 @@ pub struct Study {
     pub leaks: Vec<LeakRow>,
     pub creases: Vec<BiasRow>,
     pub memory: Vec<MemoryRow>,
+    /// Set by `--rescore`: a sentence saying how, and against which references the run
+    /// first measured its errors.
+    #[serde(default)]
+    pub rescored: Option<String>,
 }
 
 /// Writes the study to `path`.
@@ -86,6 +94,9 @@ fn markdown(s: &Study) -> String {
         s.direct,
         s.gather
     );
+    if let Some(rescored) = &s.rescored {
+        let _ = writeln!(o, "{rescored}\n");
+    }
     let _ = writeln!(
         o,
         "Each method runs once per scene to the largest budget; the accumulated image's relative RMSE (RMSE over the reference's mean) against a path-traced reference is read after every pass, off the clock, {} The error at a budget is that of the last pass that *ended* within it (— : no pass had ended). Path tracing is the renderer's unbiased path tracer (next-event estimation) at one sample per pixel per pass; SPPM is pbrt-v4's algorithm (one global map, α = 2/3, shadow rays for direct light, initial radius the 100-nearest distance at each pixel's first visible point); the progressive renderer uses crease maps (30°) and the fixed-volume estimators with the settings above (k of the pilot's extents, Knaus & Zwicker's α). The final gather (`--mode final-gather`, crease maps, cube estimator) takes direct light by shadow rays and gather rays combined by multiple importance sampling, caustics from a caustic map, and the rest through its gather rays from the precomputed irradiance of each pass's maps; each pass traces fresh photons, so its noise falls with passes and its bias stays. The progressive final gather (`--mode progressive --gather-rays N`) does the same with each pass's fixed, shrinking volumes, so it is consistent. The reference's own noise σ is estimated from its two independent halves (the RMSE of one half against their mean is the mean's own noise), and every error shown is the measured one less σ in quadrature, √(max(0, RMSE² − σ²)): the method's image and the reference are independent, so the measured square is the method's true squared error plus σ², and the difference estimates the error against the noiseless image (0.0000: not resolved). σ itself comes from one pair of halves, so errors within a few per cent of it are rough. Wall times on a loaded machine are only indicative.\n",
@@ -251,9 +262,9 @@ fn memory_table(o: &mut String, rows: &[MemoryRow]) {
             r.passes,
             r.photons,
             mib(r.peak as u64),
-            mib(r.stats.pass_tree_bytes),
-            mib(r.stats.pilot_bytes),
-            mib(r.stats.accumulation_bytes)
+            mib(r.pass_tree_bytes),
+            mib(r.pilot_bytes),
+            mib(r.accumulation_bytes)
         );
     }
 }
