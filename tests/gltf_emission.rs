@@ -13,6 +13,8 @@ use photon_maps::trace::{Partitioner, Ray, RayKind, Scene, SingleMap, TraceOptio
 
 #[path = "support/gltf_data_uri.rs"]
 mod gltf_data_uri;
+#[path = "support/unit_cube_room.rs"]
+mod unit_cube_room;
 use gltf_data_uri::{emitter_quad, gltf, png, png_image, room};
 
 const BLACK: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1],"metallicFactor":0}}"#;

@@ -10,6 +10,8 @@ mod example;
 
 #[path = "support/gltf_data_uri.rs"]
 mod gltf_data_uri;
+#[path = "support/unit_cube_room.rs"]
+mod unit_cube_room;
 
 use example::{assert_refused, run};
 use gltf_data_uri::{Prim, gltf};

@@ -110,27 +110,11 @@ pub fn gltf(
 
 /// The cube `[0,1]³ + offset` as 12 inward-facing triangles.
 pub fn room(offset: [f32; 3], material: usize) -> Prim {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                (i & 1) as f32 + offset[0],
-                ((i >> 1) & 1) as f32 + offset[1],
-                ((i >> 2) & 1) as f32 + offset[2],
-            ]
-        })
+    let positions = super::unit_cube_room::corners()
+        .into_iter()
+        .map(|c| [c[0] + offset[0], c[1] + offset[1], c[2] + offset[2]])
         .collect();
-    let quads = [
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [4, 6, 7, 5],
-        [0, 1, 3, 2],
-    ];
-    let indices = quads
-        .iter()
-        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
-        .collect();
+    let indices = super::unit_cube_room::triangle_indices();
     Prim {
         positions,
         uvs: None,

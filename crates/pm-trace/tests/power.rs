@@ -8,30 +8,12 @@ use pm_trace::{Partitioner, scenes};
 use pm_trace::{PhotonKind, PhotonMaps, PointLight, Scene, SingleMap, Surface, TraceOptions, trace_photons};
 
 fn closed_box(albedo: f32, power: Vec3) -> Scene {
-    let (corners, faces) = scenes_box();
+    let (corners, faces) = common::unit_box();
     Scene::builder()
         .mesh(&corners, &faces, Surface::diffuse(Vec3::splat(albedo)))
         .light(PointLight::new(Vec3::new(0.3, 0.6, 0.4), power))
         .build()
         .unwrap()
-}
-
-/// A unit box with inward normals.
-fn scenes_box() -> (Vec<Vec3>, Vec<[u32; 4]>) {
-    let c: Vec<Vec3> = (0..8)
-        .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
-        .collect();
-    (
-        c,
-        vec![
-            [0, 4, 5, 1],
-            [2, 3, 7, 6],
-            [0, 2, 6, 4],
-            [1, 5, 7, 3],
-            [4, 6, 7, 5],
-            [0, 1, 3, 2],
-        ],
-    )
 }
 
 #[test]
@@ -140,7 +122,7 @@ fn lossless_glass_and_mirror_spheres_pass_all_power_on_as_caustics() {
     // Black closed box: every path ends at its first diffuse hit, so the stored power is the
     // light's power exactly, whatever the specular bounces on the way.
     let power = Vec3::splat(6.0);
-    let (corners, faces) = scenes_box();
+    let (corners, faces) = common::unit_box();
     for sphere in [Surface::glass(1.5), Surface::mirror(Vec3::ONE)] {
         let scene = Scene::builder()
             .mesh(&corners, &faces, Surface::diffuse(Vec3::ZERO))
