@@ -303,6 +303,31 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         .output()
         .unwrap();
     assert!(!refused.status.success(), "--size does not apply to --rescore");
+    // A record that claims another size, or is cut short, is refused, naming what is wrong.
+    let record = std::fs::read_to_string(kept.join("study.json")).unwrap();
+    let refused_record = |text: &str, needle: &str| {
+        std::fs::write(kept.join("study.json"), text).unwrap();
+        let out = Command::new(&exe)
+            .arg("--rescore")
+            .arg(&kept)
+            .arg("--reference-dir")
+            .arg(&references)
+            .arg("--out-dir")
+            .arg(dir.join("hostile"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && stderr.contains(needle) && !stderr.contains("panicked"),
+            "{needle}: {stderr}"
+        );
+    };
+    refused_record(
+        &record.replace("\"size\":16,", "\"size\":1000000,"),
+        "no reference of accordion at 1000000×1000000",
+    );
+    refused_record(&record[..record.len() / 2], "study.json");
+    assert!(!dir.join("hostile/convergence.md").exists());
     let missing = Command::new(&exe)
         .args(["--rescore"])
         .arg(dir.join("nothing"))

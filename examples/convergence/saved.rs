@@ -113,6 +113,7 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
     std::fs::create_dir_all(&images).map_err(|e| format!("{}: {e}", images.display()))?;
     let mut before = Vec::new();
     for scene in &mut study.scenes {
+        // The reference first: its files bound the size the record claims.
         let reference = reference::cached(&scene.name, study.size, study.size, to.references)?;
         let built = scenes::build(&scene.name).map_err(|e| format!("{}: {e}", scene.name))?;
         let mask = if study.all_pixels {
@@ -147,10 +148,7 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
         scene.reference_noise = noise;
         if to.charts && scene.chart.is_some() {
             let axis = chart::seconds_axis(&study.clock, study.threads);
-            let png = to
-                .out_dir
-                .join("images")
-                .join(format!("convergence-{}.png", scene.name));
+            let png = images.join(format!("convergence-{}.png", scene.name));
             chart::draw(&png, &scene.name, &scene.runs, noise, &axis)?;
         }
     }
