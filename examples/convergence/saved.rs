@@ -153,7 +153,7 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
         }
     }
     study.rescored = Some(format!(
-        "Re-scored by `cargo run --release --example convergence -- --rescore {} --reference-dir {}`: the errors at the budgets are those of the images the run kept, measured again against the references below (the run had measured them against {}; the charts' points between budgets keep those first errors).",
+        "Re-scored by `cargo run --release --example convergence -- --rescore {} --reference-dir {}`: the errors at the budgets are those of the images the run kept, measured again against the references below (the run had measured them against {}; the charts' points between budgets keep those first errors, and the tables per pass count are the run's as it measured them).",
         to.record.display(),
         to.references.display(),
         before.join(", ")
