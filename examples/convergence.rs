@@ -152,7 +152,7 @@ struct Args {
     out_dir: PathBuf,
     /// Keep what the study measured in this folder (`study.json`, and per scene and method
     /// the image each budget's error is read from) so that `--rescore` can measure it again.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "references_only")]
     save_run: Option<PathBuf>,
     /// Measure a run kept by `--save-run` in this folder again, against the references in
     /// `--reference-dir` as they are now (after `--extend-references`, say), and write the

@@ -303,6 +303,11 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         .output()
         .unwrap();
     assert!(!refused.status.success(), "--size does not apply to --rescore");
+    let refused = Command::new(&exe)
+        .args(["--references-only", "--save-run", kept.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!refused.status.success(), "--references-only keeps no run");
     // A record that claims another size, or is cut short, is refused, naming what is wrong.
     let record = std::fs::read_to_string(kept.join("study.json")).unwrap();
     let refused_record = |text: &str, needle: &str| {
