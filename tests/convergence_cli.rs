@@ -225,7 +225,7 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         "--size",
         "16",
         "--budgets",
-        "0.02,0.05",
+        "0.000001,0.02,0.05",
         "--scenes",
         "accordion",
         "--methods",
@@ -297,6 +297,11 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         }
     }
     assert!(checked >= 3, "{checked} cells checked:\n{extended}");
+    // The smallest budget ends before any pass: nothing kept, nothing to measure, both times.
+    for md in [&first, &extended] {
+        let row = md.lines().find(|l| l.starts_with("| 0.000001 |")).unwrap();
+        assert!(row.starts_with("| 0.000001 | — | — |"), "{row}");
+    }
 
     let refused = Command::new(&exe)
         .args(["--rescore", kept.to_str().unwrap(), "--size", "8"])
@@ -329,9 +334,21 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
     };
     refused_record(
         &record.replace("\"size\":16,", "\"size\":1000000,"),
-        "no reference of accordion at 1000000×1000000",
+        "accordion-1000000x1000000.exr",
     );
     refused_record(&record[..record.len() / 2], "study.json");
+    // A kept image gone, or a reference cut short: refused, naming the file.
+    let gone = std::fs::read_dir(kept.join("accordion"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().contains("final-gather-"))
+        .unwrap();
+    std::fs::remove_file(&gone).unwrap();
+    refused_record(&record, &gone.file_name().unwrap().to_string_lossy());
+    let half = references.join("accordion-16x16.half.exr");
+    let bytes = std::fs::read(&half).unwrap();
+    std::fs::write(&half, &bytes[..bytes.len() / 2]).unwrap();
+    refused_record(&record, "accordion-16x16.half.exr");
     assert!(!dir.join("hostile/convergence.md").exists());
     let missing = Command::new(&exe)
         .args(["--rescore"])

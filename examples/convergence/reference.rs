@@ -59,7 +59,7 @@ pub fn reference(
     (cache, larger): (&Path, &Path),
 ) -> Result<Reference, String> {
     let files = Files::new(cache, name, base.width, base.height);
-    if let Some((cached, text)) = files.read() {
+    if let Ok((cached, text)) = files.read() {
         let spp = cached.spp;
         let batches = spp / u64::from(BATCH_SPP);
         if budget.extend <= 0.0 {
@@ -107,23 +107,16 @@ pub fn reference(
 }
 
 /// The reference for scene `name` at `width × height` as cached in `cache`, neither extended
-/// nor made anew (an error when there is none).
+/// nor made anew (an error naming the file that is missing or unreadable).
 pub fn cached(name: &str, width: u32, height: u32, cache: &Path) -> Result<Reference, String> {
     let files = Files::new(cache, name, width, height);
-    match files.read() {
-        Some((reference, _))
-            if [&reference.image, &reference.half]
-                .iter()
-                .all(|i| i.width() == width && i.height() == height) =>
-        {
-            Ok(reference)
+    let (reference, _) = files.read()?;
+    for (image, path) in [(&reference.image, &files.exr), (&reference.half, &files.half)] {
+        if (image.width(), image.height()) != (width, height) {
+            return Err(format!("{}: not {width}×{height} pixels", path.display()));
         }
-        Some(_) => Err(format!("{}: not {width}×{height} pixels", files.exr.display())),
-        None => Err(format!(
-            "no reference of {name} at {width}×{height} in {} (its .exr, .half.exr and .txt)",
-            cache.display()
-        )),
     }
+    Ok(reference)
 }
 
 /// The cache's three files for one scene and size.
@@ -143,13 +136,23 @@ impl Files {
         }
     }
 
-    /// The cached reference and its note, when all three files are there and readable.
-    fn read(&self) -> Option<(Reference, String)> {
-        let image = Image::read_exr(&self.exr).ok()?;
-        let half = Image::read_exr(&self.half).ok()?;
-        let text = std::fs::read_to_string(&self.meta).ok()?;
-        let spp = text.split_whitespace().next()?.parse::<u64>().ok()?;
-        Some((Reference { image, spp, half }, text))
+    /// The cached reference and its note, or what is missing or unreadable.
+    fn read(&self) -> Result<(Reference, String), String> {
+        let exr = |path: &Path| Image::read_exr(path).map_err(|e| format!("{}: {e}", path.display()));
+        let (image, half) = (exr(&self.exr)?, exr(&self.half)?);
+        let text =
+            std::fs::read_to_string(&self.meta).map_err(|e| format!("{}: {e}", self.meta.display()))?;
+        let spp = text
+            .split_whitespace()
+            .next()
+            .and_then(|t| t.parse::<u64>().ok())
+            .ok_or_else(|| {
+                format!(
+                    "{}: does not begin with the samples per pixel",
+                    self.meta.display()
+                )
+            })?;
+        Ok((Reference { image, spp, half }, text))
     }
 
     fn write(&self, reference: &Reference, how: &str) -> Result<(), String> {

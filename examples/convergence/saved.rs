@@ -123,10 +123,16 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
         };
         let noise = mask.relative_rmse(&reference.half, &reference.image);
         for run in &mut scene.runs {
-            for &b in &study.budgets {
-                let Some(i) = run.samples.iter().rposition(|s| s.seconds <= b) else {
-                    continue;
-                };
+            // The pass each budget's error is read from (the last that ended within it),
+            // each measured once however many budgets share it.
+            let mut kept: Vec<usize> = study
+                .budgets
+                .iter()
+                .filter_map(|&b| run.samples.iter().rposition(|s| s.seconds <= b))
+                .collect();
+            kept.sort_unstable();
+            kept.dedup();
+            for i in kept {
                 let sample = &mut run.samples[i];
                 let file =
                     to.record
