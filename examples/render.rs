@@ -7,9 +7,7 @@
 use clap::{CommandFactory, FromArgMatches, Parser};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::{check_image_size, write_atomically};
-use photon_maps::render::{
-    EstimatorKind, Image, Progress, RenderError, RenderSettings, Renderer, parse_image_size,
-};
+use photon_maps::render::{EstimatorKind, Image, Progress, RenderError, RenderSettings, Renderer};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -33,7 +31,7 @@ mod report;
 #[path = "../tests/support/tracking_allocator.rs"]
 mod tracking_allocator;
 
-use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice};
+use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice, parse_image_size};
 use files::{check_run_outputs, load_scene, say, scene_dependencies, scene_inputs, scene_name};
 use report::{Record, contacts_json, contacts_summary, json_number, json_object, json_string, summary};
 
@@ -170,7 +168,7 @@ fn run(args: &Args) -> Result<(), String> {
     if !args.merge.is_empty() {
         return progressive::merge(args, &args.merge);
     }
-    let (width, height) = parse_image_size(&args.size).map_err(|e| e.to_string())?;
+    let (width, height) = parse_image_size(&args.size)?;
     let estimator = args.estimator();
     let mode = args.mode.render_mode();
     if args.compare {

@@ -154,3 +154,16 @@ impl fmt::Display for LightUnitsChoice {
         write_name(self, f)
     }
 }
+
+/// `--size`: an image size written `WIDTHxHEIGHT` (e.g. `500x500`), both sides at least 1.
+pub fn parse_image_size(text: &str) -> Result<(u32, u32), String> {
+    let bad =
+        || format!("image size '{text}': expected WIDTHxHEIGHT with both sides at least 1, e.g. 500x500");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(bad());
+    }
+    Ok((w, h))
+}

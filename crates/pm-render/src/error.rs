@@ -59,9 +59,6 @@ pub enum RenderError {
     /// The worker pool could not be made.
     #[error("thread pool: {0}")]
     Threads(String),
-    /// An image size that is not `WIDTHxHEIGHT` with both sides at least 1.
-    #[error("image size '{0}': expected WIDTHxHEIGHT with both sides at least 1, e.g. 500x500")]
-    BadSize(String),
     /// A PNG exposure that is NaN or infinite.
     #[error("exposure must be a finite number of stops, got {0}")]
     BadExposure(f32),
@@ -103,16 +100,6 @@ pub enum RenderError {
         image_width: u32,
         /// Image height.
         image_height: u32,
-    },
-    /// A name (estimator, mode, …) that is not known.
-    #[error("unknown {what} '{name}' (expected {expected})")]
-    UnknownName {
-        /// What kind of name.
-        what: &'static str,
-        /// The name given.
-        name: String,
-        /// The accepted names.
-        expected: &'static str,
     },
     /// Reading or writing an image file failed.
     #[error("{path}: {message}")]

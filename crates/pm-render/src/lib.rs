@@ -90,5 +90,5 @@ pub use image::Image;
 pub use mode::{FinalGatherOptions, Lighting, Mode};
 pub use progress::Progress;
 pub use renderer::{Rendered, Renderer};
-pub use settings::{RenderSettings, parse_image_size};
+pub use settings::RenderSettings;
 pub use stats::RenderStats;

@@ -115,15 +115,3 @@ impl RenderSettings {
         options
     }
 }
-
-/// Parses an image size written `WIDTHxHEIGHT` (e.g. `500x500`); both sides must be ≥ 1.
-pub fn parse_image_size(text: &str) -> Result<(u32, u32), RenderError> {
-    let bad = || RenderError::BadSize(text.to_owned());
-    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    if w == 0 || h == 0 {
-        return Err(bad());
-    }
-    Ok((w, h))
-}

@@ -361,15 +361,6 @@ fn check_conservation<V: GatherVolume>(
 }
 
 #[test]
-fn estimator_names_parse_and_unknown_names_are_errors() {
-    for kind in EstimatorKind::ALL {
-        assert_eq!(kind.name().parse::<EstimatorKind>().unwrap(), kind);
-    }
-    let err = "sphere".parse::<EstimatorKind>().unwrap_err();
-    assert!(err.to_string().contains("sphere"));
-}
-
-#[test]
 fn empty_map_gives_zero() {
     let tree = PhotonTree::build(Vec::new()).unwrap();
     let polygons = PolygonSet::new();

@@ -3,12 +3,10 @@
 use super::{
     Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, SurfacePoint,
 };
-use crate::RenderError;
 use glam::Vec3;
 use std::fmt;
-use std::str::FromStr;
 
-/// One of the built-in estimators, chosen at run time. Parses from `disc`, `cube`, `ball`.
+/// One of the built-in estimators, chosen at run time ([`EstimatorKind::name`]: `disc`, `cube`, `ball`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum EstimatorKind {
     /// [`Disc`] (Jensen).
@@ -40,20 +38,6 @@ impl EstimatorKind {
 impl fmt::Display for EstimatorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-impl FromStr for EstimatorKind {
-    type Err = RenderError;
-    fn from_str(s: &str) -> Result<Self, RenderError> {
-        Self::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| RenderError::UnknownName {
-                what: "estimator",
-                name: s.to_owned(),
-                expected: "disc|cube|ball",
-            })
     }
 }
 

@@ -11,21 +11,18 @@ mod visualize;
 pub use direct::direct_irradiance;
 pub use final_gather::FinalGatherOptions;
 
-use crate::{
-    Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
-};
+use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, SurfacePoint};
 use glam::Vec3;
 use pm_trace::{Hit, PhotonMaps, Ray, Rng, Scene};
 use std::fmt;
-use std::str::FromStr;
 
 /// How a camera ray's radiance is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Mode {
     /// Follow specular bounces from the eye, then at the first diffuse hit return emission +
     /// `albedo/π · E` from that surface's photon map (the main results of Ball & Stejko's report).
-    /// The default. Called `Visualize` before (the deprecated [`Mode::Visualize`] and the name
-    /// `visualize` still parse to it).
+    /// The default. Called `Visualize` before (the deprecated [`Mode::Visualize`] is it; the
+    /// render example still reads the name `visualize`).
     PhotonMap,
     /// Direct light by shadow rays to every light, plus the photon map without direct photons
     /// for the rest (Image 1 of Ball & Stejko's report).
@@ -78,24 +75,6 @@ impl Mode {
 impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-impl FromStr for Mode {
-    type Err = RenderError;
-    /// Parses a [`Mode::name`]; `visualize`, the old name of `photon-map`, is accepted too.
-    fn from_str(s: &str) -> Result<Self, RenderError> {
-        if s == "visualize" {
-            return Ok(Mode::PhotonMap);
-        }
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| RenderError::UnknownName {
-                what: "mode",
-                name: s.to_owned(),
-                expected: "photon-map|shadow-rays|path-trace|final-gather",
-            })
     }
 }
 
