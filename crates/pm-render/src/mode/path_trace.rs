@@ -2,7 +2,7 @@
 //! bounces by multiple importance sampling (power heuristic); Russian roulette ends long paths.
 
 use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
-use super::scatter::specular_bounce;
+use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
 use glam::{Vec2, Vec3};
 use pm_trace::sampling::cosine_hemisphere;
 use pm_trace::{Material, Ray, RayKind, Rng, Scene};
@@ -24,6 +24,9 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
     let mut diffuse_from: Option<(Vec3, f32)> = None;
     let mis = mis_enabled(scene);
     let mut kind = RayKind::Camera;
+    // Until the first diffuse vertex the path is the camera's delta chain, which every mode
+    // follows alike: at most MAX_SPECULAR_BOUNCES bounces, and no Russian roulette.
+    let mut past_first_diffuse = false;
     for depth in 0..MAX_DEPTH {
         let Some(hit) = scene.intersect(&ray, f32::INFINITY, kind) else {
             break;
@@ -60,8 +63,12 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 count_emission = false;
                 diffuse_from = mis.then(|| (hit.position, shading.dot(direction).max(0.0) * FRAC_1_PI));
                 kind = RayKind::Other;
+                past_first_diffuse = true;
             }
             _ => {
+                if !past_first_diffuse && depth >= MAX_SPECULAR_BOUNCES {
+                    break;
+                }
                 let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
                     break;
                 };
@@ -71,7 +78,7 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 diffuse_from = None;
             }
         }
-        if depth >= ROULETTE_AFTER {
+        if past_first_diffuse && depth >= ROULETTE_AFTER {
             let survive = throughput.max_element().min(0.95);
             if survive <= 0.0 || rng.next_f32() >= survive {
                 break;
