@@ -148,7 +148,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         stats.trace.as_secs_f64(),
         stats.precompute.as_secs_f64(),
         stats.render.as_secs_f64(),
-        stats.total.as_secs_f64(),
+        stats.total().as_secs_f64(),
         heap_peak as f64 / (1 << 20) as f64,
         stats.pass_tree_bytes as f64 / (1 << 20) as f64,
         m.x,
@@ -307,7 +307,7 @@ fn stats_json(
             json_number(s.trace.as_secs_f64()),
             json_number(s.precompute.as_secs_f64()),
             json_number(s.render.as_secs_f64()),
-            json_number(s.total.as_secs_f64()),
+            json_number(s.total().as_secs_f64()),
         );
     }
     let _ = writeln!(

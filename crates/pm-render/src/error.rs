@@ -50,6 +50,12 @@ pub enum RenderError {
         /// Parts of the scene rendered.
         scene: usize,
     },
+    /// A mode that reads photon maps was given none to render from.
+    #[error("the {0} mode reads photon maps: build them first (Renderer::build_maps) and pass them")]
+    MissingMaps(crate::mode::Mode),
+    /// The path tracer, which reads no photon maps, was given some.
+    #[error("the {0} mode reads no photon maps: pass None")]
+    UnreadMaps(crate::mode::Mode),
     /// Zero photons for a mode that reads photon maps.
     #[error("photons must be at least 1")]
     ZeroPhotons,

@@ -5,9 +5,14 @@
 //! - [`estimator`]: irradiance from the photons of one map, by Jensen's [`Disc`], Hey &
 //!   Purgathofer's geometry-based [`GeometryCube`], or the [`GeometryBall`] variant; all
 //!   generic in the hot loop and allocation-free once their [`EstimatorScratch`] is warm.
+//! - [`core`]: the one path from a camera ray to radiance. A ray follows mirror and glass
+//!   bounces to its first diffuse vertex ([`PathVertex`]), where a [`RadianceSource`] reads
+//!   the radiance; one tile loop renders any source. Bring your own source to render with
+//!   the same core ([`Renderer::render_source`]).
 //! - [`Mode`]: `PhotonMap` (the photon maps read at the first diffuse hit), `ShadowRays`
 //!   (direct light by shadow rays), `PathTrace` (the unbiased reference) and `FinalGather`
-//!   (one gathered bounce into the [`RadianceCache`], precomputed irradiance in each map).
+//!   (one gathered bounce into the [`RadianceCache`], precomputed irradiance in each map);
+//!   each is a choice of [`source`].
 //! - [`Renderer`]: photon tracing, map building and the image in tiles on rayon workers; the
 //!   image is bit-identical for any thread count. [`Progress`] observes it; [`RenderStats`]
 //!   times each phase.
@@ -66,6 +71,7 @@
 //!   `docs/results.md`.
 
 pub mod cache;
+pub mod core;
 pub mod error;
 pub mod estimator;
 pub mod image;
@@ -75,20 +81,23 @@ pub mod progress;
 pub mod progressive;
 pub mod renderer;
 pub mod settings;
+pub mod source;
 pub mod stats;
 
 pub use cache::{CachePoint, RadianceCache};
+pub use core::{PathVertex, RadianceSource};
 pub use error::RenderError;
 pub use estimator::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
     GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, find_nearest, gather_found,
-    irradiance_in_volume,
+    gather_within, irradiance_in_volume,
 };
 /// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
 pub use glam;
 pub use image::Image;
-pub use mode::{FinalGatherOptions, Lighting, Mode};
+pub use mode::Mode;
 pub use progress::Progress;
 pub use renderer::{Rendered, Renderer};
 pub use settings::RenderSettings;
+pub use source::FinalGatherOptions;
 pub use stats::RenderStats;

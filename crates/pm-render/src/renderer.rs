@@ -1,20 +1,20 @@
-//! The renderer: photon tracing, map building, then the image in tiles on rayon workers.
-//! Every pixel sample draws from its own random stream (seed, pixel, sample), so the image is
-//! bit-identical for any number of threads.
+//! The one-shot renderer: photon tracing, map building (and a final gather's cache), then the
+//! mode's radiance source rendered by the core's tile loop. Every pixel sample draws from its
+//! own random stream (seed, pixel, sample), so the image is bit-identical for any number of
+//! threads.
 
-use crate::{
-    Estimator, EstimatorScratch, Image, Lighting, Mode, Progress, RadianceCache, RenderError, RenderSettings,
-    RenderStats,
-};
-use glam::Vec3;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
-use rayon::prelude::*;
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use crate::cache::RadianceCache;
+use crate::core::{RadianceSource, SampleStreams, render_tiles};
+use crate::error::RenderError;
+use crate::estimator::Estimator;
+use crate::image::Image;
+use crate::mode::Mode;
+use crate::progress::Progress;
+use crate::settings::RenderSettings;
+use crate::source::{CacheReads, DirectLight, FinalGatherSource, PathTraced, PhotonMapSource};
+use crate::stats::RenderStats;
+use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Scene, TraceOptions, trace_photons};
 use std::time::Instant;
-
-/// Keeps the pixel streams apart from the photon-path streams of the same seed.
-pub(crate) const PIXEL_SEED_SALT: u64 = 0x5DEE_CE66_D1CE_4E5B;
 
 /// An image and the figures of the render that made it.
 #[derive(Clone, Debug)]
@@ -53,7 +53,8 @@ impl<E: Estimator> Renderer<E> {
     }
 
     /// Traces photons into the maps `partitioner` assigns (skipped for path tracing), builds
-    /// the maps and renders the image, on `settings.threads` workers.
+    /// the maps (and for the final gather its cache) and renders the image, on
+    /// `settings.threads` workers.
     pub fn render<P: Partitioner + ?Sized>(
         &self,
         scene: &Scene,
@@ -79,15 +80,7 @@ impl<E: Estimator> Renderer<E> {
                 None => None,
             };
             stats.trace += partition_time;
-            let cache = match (&maps, self.settings.mode) {
-                (Some(maps), Mode::FinalGather) => Some(self.build_cache(scene, maps, progress, &mut stats)?),
-                _ => None,
-            };
-            progress.phase("render");
-            let start = Instant::now();
-            let (image, gather_rays) = self.render_counted(scene, maps.as_ref(), cache.as_ref(), progress)?;
-            stats.render = start.elapsed();
-            stats.gather_rays = gather_rays;
+            let image = self.render_mode(scene, maps.as_ref(), progress, &mut stats)?;
             Ok(Rendered { image, stats })
         })?
     }
@@ -149,93 +142,122 @@ impl<E: Estimator> Renderer<E> {
         Ok(cache)
     }
 
-    /// Renders the image from already built maps (`None` is fine for path tracing) in the
-    /// current rayon pool. Maps built for another scene are an error. For
-    /// [`Mode::FinalGather`] this builds the irradiance cache first
-    /// ([`Renderer::build_cache`]); [`Renderer::render_image_with`] takes one already built.
+    /// Renders the image of this renderer's mode from maps already built (none for path
+    /// tracing, which reads none) in the current rayon pool; for [`Mode::FinalGather`] this
+    /// builds the irradiance cache first ([`Renderer::build_cache`]). Maps built for another
+    /// scene, missing maps for a mode that reads them and maps given to the path tracer are
+    /// errors.
     pub fn render_image(
         &self,
         scene: &Scene,
         maps: Option<&PhotonMaps>,
         progress: &dyn Progress,
     ) -> Result<Image, RenderError> {
-        let cache = match (maps, self.settings.mode) {
-            (Some(maps), Mode::FinalGather) => {
-                Some(self.build_cache(scene, maps, progress, &mut RenderStats::default())?)
-            }
-            _ => None,
-        };
-        self.render_image_with(scene, maps, cache.as_ref(), progress)
+        self.render_mode(scene, maps, progress, &mut RenderStats::default())
     }
 
-    /// [`Renderer::render_image`] with the final gather's cache given (ignored in the other
-    /// modes; without one the final gather sees no indirect light).
-    pub fn render_image_with(
+    /// The image of the mode: the mode chooses the radiance source, the core renders it.
+    /// Timings of the precompute and render phases go into `stats`.
+    fn render_mode(
         &self,
         scene: &Scene,
         maps: Option<&PhotonMaps>,
-        cache: Option<&RadianceCache>,
         progress: &dyn Progress,
+        stats: &mut RenderStats,
     ) -> Result<Image, RenderError> {
-        Ok(self.render_counted(scene, maps, cache, progress)?.0)
-    }
-
-    /// [`Renderer::render_image_with`], and the number of gather rays cast.
-    fn render_counted(
-        &self,
-        scene: &Scene,
-        maps: Option<&PhotonMaps>,
-        cache: Option<&RadianceCache>,
-        progress: &dyn Progress,
-    ) -> Result<(Image, u64), RenderError> {
         self.settings.validate()?;
-        if let Some(maps) = maps {
-            let (maps, scene) = (maps.assignment().part_count(), scene.part_count());
-            if maps != scene {
-                return Err(RenderError::MapsForAnotherScene { maps, scene });
+        let mode = self.settings.mode;
+        let maps = match (maps, mode.uses_photons()) {
+            (Some(maps), true) => {
+                let (maps_parts, scene_parts) = (maps.assignment().part_count(), scene.part_count());
+                if maps_parts != scene_parts {
+                    return Err(RenderError::MapsForAnotherScene {
+                        maps: maps_parts,
+                        scene: scene_parts,
+                    });
+                }
+                Some(maps)
+            }
+            (None, false) => None,
+            (None, true) => return Err(RenderError::MissingMaps(mode)),
+            (Some(_), false) => return Err(RenderError::UnreadMaps(mode)),
+        };
+        let options = self.settings.estimator_options(&scene.bounds());
+        options.validate()?;
+        let direct = match mode {
+            Mode::ShadowRays => DirectLight::ShadowRays,
+            _ => DirectLight::Photons,
+        };
+        match (mode, maps) {
+            // Path tracing, the one mode that reads no maps (so `None` here).
+            (Mode::PathTrace, _) | (_, None) => self.render_counted(&PathTraced { scene }, progress, stats),
+            (Mode::PhotonMap | Mode::ShadowRays, Some(maps)) => {
+                let source = PhotonMapSource {
+                    scene,
+                    maps,
+                    estimator: &self.estimator,
+                    options: &options,
+                    pixel_angle: scene.camera().pixel_angle(self.settings.height),
+                    direct,
+                };
+                self.render_counted(&source, progress, stats)
+            }
+            (Mode::FinalGather, Some(maps)) => {
+                let cache = self.build_cache(scene, maps, progress, stats)?;
+                let source = FinalGatherSource {
+                    reads: CacheReads {
+                        scene,
+                        maps,
+                        estimator: &self.estimator,
+                        options: &options,
+                        cache: &cache,
+                        gather: self.settings.final_gather,
+                    },
+                };
+                self.render_counted(&source, progress, stats)
             }
         }
+    }
+
+    /// Renders `source` (any [`RadianceSource`]: a renderer author's own too) with this
+    /// renderer's size, samples, seed and tiles, in the current rayon pool. The mode in the
+    /// settings is not read: the source is what renders.
+    pub fn render_source<S: RadianceSource + ?Sized>(
+        &self,
+        source: &S,
+        progress: &dyn Progress,
+    ) -> Result<Image, RenderError> {
+        self.settings.validate()?;
+        self.render_counted(source, progress, &mut RenderStats::default())
+    }
+
+    /// The image of `source`, timing the render phase and counting gather rays into `stats`.
+    fn render_counted<S: RadianceSource + ?Sized>(
+        &self,
+        source: &S,
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<Image, RenderError> {
         let s = &self.settings;
-        let options = s.estimator_options(&scene.bounds());
-        options.validate()?;
-        let lighting = Lighting {
-            scene,
-            maps,
-            estimator: &self.estimator,
-            options: &options,
-            pixel_angle: scene.camera().pixel_angle(s.height),
-            cache,
-            final_gather: s.final_gather,
-        };
-        let tiles = tiles(s.width, s.height, s.tile_size);
-        let done = AtomicUsize::new(0);
-        let gather_rays = AtomicU64::new(0);
+        progress.phase("render");
+        let start = Instant::now();
         // Each finished tile is copied into the image at once, so the pixels are held once
-        // (plus one tile per worker), not twice. Tiles are disjoint: the order of the copies
-        // does not change the image.
-        let image = Mutex::new(Image::new(s.width, s.height)?);
+        // (plus one tile per worker), not twice.
+        let mut image = Image::new(s.width, s.height)?;
         let width = s.width as usize;
-        tiles.par_iter().for_each_init(
-            || (EstimatorScratch::new(), Vec::new()),
-            |(scratch, pixels), tile| {
-                render_tile(&lighting, s, tile, scratch, pixels);
-                gather_rays.fetch_add(std::mem::take(&mut scratch.gather_rays), Ordering::Relaxed);
-                {
-                    // A poisoned lock only means another tile's copy panicked; the pixels
-                    // themselves are plain data.
-                    let mut image = image.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-                    for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
-                        let start = (tile.y as usize + row) * width + tile.x as usize;
-                        image.pixels_mut()[start..start + chunk.len()].copy_from_slice(chunk);
-                    }
-                }
-                progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
-            },
-        );
-        let image = image
-            .into_inner()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        Ok((image, gather_rays.into_inner()))
+        let streams = SampleStreams {
+            seed: s.seed,
+            pass: 0,
+        };
+        let gather_rays = render_tiles(source, &s.frame(), streams, progress, |tile, pixels| {
+            for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+                let start = (tile.y as usize + row) * width + tile.x as usize;
+                image.pixels_mut()[start..start + chunk.len()].copy_from_slice(chunk);
+            }
+        });
+        stats.render = start.elapsed();
+        stats.gather_rays = gather_rays;
+        Ok(image)
     }
 
     fn in_pool<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, RenderError> {
@@ -253,61 +275,4 @@ pub(crate) fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> 
         .build()
         .map_err(|e| RenderError::Threads(e.to_string()))?;
     Ok(pool.install(f))
-}
-
-/// A rectangle of pixels rendered by one worker.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Tile {
-    pub(crate) x: u32,
-    pub(crate) y: u32,
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-}
-
-pub(crate) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
-    let mut out = Vec::new();
-    for y in (0..height).step_by(size as usize) {
-        for x in (0..width).step_by(size as usize) {
-            out.push(Tile {
-                x,
-                y,
-                width: size.min(width - x),
-                height: size.min(height - y),
-            });
-        }
-    }
-    out
-}
-
-/// Renders `tile` into `out` (cleared first), row by row; every (pixel, sample) draws from
-/// its own random stream, so a tile's pixels do not depend on which worker renders it.
-fn render_tile<E: Estimator>(
-    lighting: &Lighting<'_, E>,
-    s: &RenderSettings,
-    tile: &Tile,
-    scratch: &mut EstimatorScratch,
-    out: &mut Vec<Vec3>,
-) {
-    let camera = lighting.scene.camera();
-    let aspect = s.width as f32 / s.height as f32;
-    let spp = s.samples_per_pixel as u64;
-    let seed = s.seed ^ PIXEL_SEED_SALT;
-    out.clear();
-    for y in tile.y..tile.y + tile.height {
-        for x in tile.x..tile.x + tile.width {
-            let pixel = y as u64 * s.width as u64 + x as u64;
-            let mut sum = Vec3::ZERO;
-            for sample in 0..spp {
-                let mut rng = Rng::new(seed, pixel * spp + sample);
-                let u = (x as f32 + rng.next_f32()) / s.width as f32;
-                let v = (y as f32 + rng.next_f32()) / s.height as f32;
-                let l = lighting.radiance(s.mode, camera.ray(u, v, aspect), &mut rng, scratch);
-                // A non-finite sample (a degenerate light sample) must not poison the pixel.
-                if l.is_finite() {
-                    sum += l;
-                }
-            }
-            out.push(sum / spp as f32);
-        }
-    }
 }

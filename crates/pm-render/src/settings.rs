@@ -1,7 +1,10 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
 //! the report's defaults (Ball & Stejko).
 
-use crate::{EstimatorOptions, FinalGatherOptions, Mode, RenderError};
+use crate::error::RenderError;
+use crate::estimator::EstimatorOptions;
+use crate::mode::Mode;
+use crate::source::FinalGatherOptions;
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 
@@ -98,6 +101,16 @@ impl RenderSettings {
         }
         self.estimator_options(&Aabb::cube(glam::Vec3::ZERO, 1.0))
             .validate()
+    }
+
+    /// The picture's size, samples and tiles, for the render core's tile loop.
+    pub fn frame(&self) -> crate::core::Frame {
+        crate::core::Frame {
+            width: self.width,
+            height: self.height,
+            samples_per_pixel: self.samples_per_pixel,
+            tile_size: self.tile_size,
+        }
     }
 
     /// The estimator options these settings give for a scene with `bounds`: photons of kind

@@ -95,7 +95,7 @@ fn a_final_gather_written_outside_the_crate_sees_the_furnace() {
     let mut sum = 0.0f64;
     for hit in &points {
         let albedo = scene.albedo_at(hit);
-        let direct = pm_render::mode::direct_irradiance(&scene, hit, &mut rng);
+        let direct = pm_render::source::direct_irradiance(&scene, hit, &mut rng);
         let mut gathered = Vec3::ZERO;
         let rays = 32;
         for _ in 0..rays {

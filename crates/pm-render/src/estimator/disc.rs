@@ -14,6 +14,11 @@ use std::f32::consts::PI;
 pub struct Disc;
 
 impl Estimator for Disc {
+    /// `disc`.
+    fn identity(&self) -> String {
+        "disc".to_owned()
+    }
+
     fn irradiance(
         &self,
         at: SurfacePoint,

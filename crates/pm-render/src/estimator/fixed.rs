@@ -3,7 +3,7 @@
 //! Progressive rendering needs them: a volume chosen before the photons are seen makes each
 //! estimate unbiased for the irradiance smoothed over that volume.
 
-use super::gather::gather_within;
+use super::gather::collect_within;
 use super::geometry::{collect_faces, spread_power};
 use super::{
     Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView,
@@ -61,7 +61,7 @@ fn geometry_within<M: VolumeMetric>(
         candidates,
         ..
     } = scratch;
-    gather_within::<M>(at, map.tree, extent, options, photons);
+    collect_within::<M>(at, map.tree, extent, options, photons);
     if photons.is_empty() {
         return Vec3::ZERO;
     }
@@ -93,7 +93,7 @@ impl FixedVolumeEstimator for Disc {
         if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
             return Vec3::ZERO;
         }
-        gather_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
+        collect_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
         let power: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
         power / (PI * extent * extent)
     }

@@ -82,9 +82,23 @@ pub fn gather_found(
     }
 }
 
-/// Decodes every photon within `extent` of `at` (under metric `M`) that `options` accepts
-/// into `photons`: the fixed-volume counterpart of [`gather_found`].
-pub(super) fn gather_within<M: pm_kdtree::Metric>(
+/// Decodes every photon within `extent` of `at` (under metric `M`: a ball for
+/// [`pm_kdtree::Euclidean`], a cube of half-size `extent` for [`pm_kdtree::Chebyshev`]) that
+/// `options` accepts into the scratch's photons ([`EstimatorScratch::photons`]): the
+/// fixed-volume counterpart of [`gather_found`], for a [`super::FixedVolumeEstimator`] of
+/// your own. Allocation-free once the scratch is warm.
+pub fn gather_within<M: pm_kdtree::Metric>(
+    at: SurfacePoint,
+    tree: &PhotonTree,
+    extent: f32,
+    options: &EstimatorOptions,
+    scratch: &mut EstimatorScratch,
+) {
+    collect_within::<M>(at, tree, extent, options, &mut scratch.photons);
+}
+
+/// [`gather_within`] into `photons` (for callers that hold other parts of the scratch).
+pub(super) fn collect_within<M: pm_kdtree::Metric>(
     at: SurfacePoint,
     tree: &PhotonTree,
     extent: f32,

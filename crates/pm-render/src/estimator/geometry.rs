@@ -42,6 +42,11 @@ pub struct GeometryCube;
 pub struct GeometryBall;
 
 impl Estimator for GeometryCube {
+    /// `cube`.
+    fn identity(&self) -> String {
+        "cube".to_owned()
+    }
+
     fn irradiance(
         &self,
         at: SurfacePoint,
@@ -54,6 +59,11 @@ impl Estimator for GeometryCube {
 }
 
 impl Estimator for GeometryBall {
+    /// `ball`.
+    fn identity(&self) -> String {
+        "ball".to_owned()
+    }
+
     fn irradiance(
         &self,
         at: SurfacePoint,

@@ -42,6 +42,12 @@ impl fmt::Display for EstimatorKind {
 }
 
 impl Estimator for EstimatorKind {
+    /// The kind's name, as the estimator it names gives ([`Disc`] and `EstimatorKind::Disc`
+    /// render the same bits).
+    fn identity(&self) -> String {
+        self.name().to_owned()
+    }
+
     #[inline]
     fn irradiance(
         &self,

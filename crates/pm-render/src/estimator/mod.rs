@@ -78,7 +78,7 @@ mod options;
 
 pub use disc::Disc;
 pub use fixed::FixedVolumeEstimator;
-pub use gather::{GatheredPhoton, gather_found};
+pub use gather::{GatheredPhoton, gather_found, gather_within};
 pub use geometry::{GeometryBall, GeometryCube, VolumeMetric, irradiance_in_volume};
 pub use kind::EstimatorKind;
 pub use options::EstimatorOptions;
@@ -225,9 +225,21 @@ pub trait Estimator: Send + Sync {
         options: &EstimatorOptions,
         scratch: &mut EstimatorScratch,
     ) -> Vec3;
+
+    /// A name that tells this estimator, with its parameters, from every other: part of a
+    /// progressive render's shard identity, so shards made with different estimators never
+    /// merge. The default is the type's name; give an estimator with parameters (a kernel
+    /// width) a name that includes them.
+    fn identity(&self) -> String {
+        std::any::type_name::<Self>().to_owned()
+    }
 }
 
 impl<E: Estimator + ?Sized> Estimator for &E {
+    fn identity(&self) -> String {
+        (**self).identity()
+    }
+
     fn irradiance(
         &self,
         at: SurfacePoint,

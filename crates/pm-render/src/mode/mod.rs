@@ -1,19 +1,8 @@
 //! Render modes: what radiance a camera ray carries. `PhotonMap` reads the photon maps at
 //! the first diffuse hit, `ShadowRays` adds direct light by shadow rays, `PathTrace` is the
-//! unbiased reference, `FinalGather` reads the maps through one gathered bounce.
+//! unbiased reference, `FinalGather` reads the maps through one gathered bounce. Each mode is
+//! a choice of [`crate::source`] for the render core.
 
-mod direct;
-pub(crate) mod final_gather;
-mod path_trace;
-pub(crate) mod scatter;
-mod visualize;
-
-pub use direct::direct_irradiance;
-pub use final_gather::FinalGatherOptions;
-
-use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, SurfacePoint};
-use glam::Vec3;
-use pm_trace::{Hit, PhotonMaps, Ray, Rng, Scene};
 use std::fmt;
 
 /// How a camera ray's radiance is computed.
@@ -75,69 +64,5 @@ impl Mode {
 impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-/// Everything a mode reads: the scene, the photon maps, and the estimator with its options.
-#[derive(Clone, Copy, Debug)]
-pub struct Lighting<'a, E> {
-    /// The scene.
-    pub scene: &'a Scene,
-    /// The photon maps (`None` for [`Mode::PathTrace`], which needs none).
-    pub maps: Option<&'a PhotonMaps>,
-    /// The estimator.
-    pub estimator: &'a E,
-    /// Its options.
-    pub options: &'a EstimatorOptions,
-    /// The angle a pixel spans ([`pm_trace::Camera::pixel_angle`]): PhotonMap and ShadowRays
-    /// average textures over the pixel's footprint at the diffuse hit (distance travelled
-    /// from the eye times this, over the square root of the cosine there). Zero point-samples
-    /// textures, as PathTrace always does (it averages them by its samples, unbiased).
-    pub pixel_angle: f32,
-    /// The precomputed irradiance read by [`Mode::FinalGather`]'s gather rays (`None` for the
-    /// other modes; the final gather then sees no indirect light).
-    pub cache: Option<&'a RadianceCache>,
-    /// The final gather's parameters.
-    pub final_gather: FinalGatherOptions,
-}
-
-impl<E: Estimator> Lighting<'_, E> {
-    /// Irradiance at `hit` from the photon map of the part hit (zero when that map is missing).
-    #[inline]
-    pub fn photon_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
-        let Some(maps) = self.maps else { return Vec3::ZERO };
-        let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
-            return Vec3::ZERO;
-        };
-        let view = MapView {
-            tree: map.tree(),
-            polygons: map.geometry(),
-        };
-        let at = SurfacePoint {
-            position: hit.position,
-            normal: self.scene.shading_normal_at(hit),
-            front_face: hit.front_face,
-        };
-        self.estimator.irradiance(at, view, self.options, scratch)
-    }
-
-    /// Radiance arriving along the camera `ray` under `mode`.
-    #[inline]
-    pub fn radiance(&self, mode: Mode, ray: Ray, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
-        match mode {
-            Mode::PhotonMap => visualize::radiance(self, ray, rng, scratch, false),
-            Mode::ShadowRays => visualize::radiance(self, ray, rng, scratch, true),
-            Mode::PathTrace => path_trace::radiance(self.scene, ray, rng),
-            Mode::FinalGather => match self.cache {
-                Some(cache) => {
-                    let source = final_gather::ModeGather {
-                        lighting: self,
-                        cache,
-                    };
-                    final_gather::radiance(&source, ray, rng, scratch)
-                }
-                None => Vec3::ZERO,
-            },
-        }
     }
 }

@@ -72,8 +72,8 @@ pub struct ProgressiveStats {
     /// Precomputing the final gather's irradiance caches, summed over passes (zero in the
     /// other modes).
     pub precompute: Duration,
-    /// Wall time of the whole run.
-    pub total: Duration,
+    /// Wall time of the whole run, pilot and the observer's own time included ([`Self::total`]).
+    pub wall: Duration,
     /// Heap bytes of the largest pass's photon trees: the photons one pass holds (earlier
     /// passes' are dropped before the next is traced; tracing needs about twice this while
     /// the photons are sorted into trees).
@@ -85,6 +85,11 @@ pub struct ProgressiveStats {
 }
 
 impl ProgressiveStats {
+    /// The whole run's wall time (as [`crate::RenderStats::total`] is a one-shot render's).
+    pub fn total(&self) -> Duration {
+        self.wall
+    }
+
     /// Folds pass number `done` (counting from 0) into the mean near-light fraction; every
     /// pass emits the same number of photon paths, so each weighs the same.
     pub(crate) fn add_near_light(&mut self, done: u64, fraction: f64) {

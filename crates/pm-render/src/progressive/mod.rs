@@ -41,9 +41,9 @@
 
 mod accumulation;
 mod pass_maps;
+mod pass_source;
 mod pass_sum;
 mod pilot;
-mod radiance;
 mod schedule;
 mod shard;
 #[cfg(feature = "exr")]
@@ -56,21 +56,22 @@ pub use schedule::{MAX_PASS, radius_scale};
 pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
-use crate::renderer::{PIXEL_SEED_SALT, in_pool, tiles};
-use crate::{
-    EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, Mode, Progress, RadianceCache,
-    RenderError, RenderSettings,
-};
+use crate::cache::RadianceCache;
+use crate::core::{SampleStreams, Tile, render_tiles};
+use crate::error::RenderError;
+use crate::estimator::{EstimatorOptions, FixedVolumeEstimator, MapView};
+use crate::mode::Mode;
+use crate::progress::Progress;
+use crate::renderer::in_pool;
+use crate::settings::RenderSettings;
+use crate::source::{DirectLight, FinalGatherSource};
 use glam::Vec3;
 use pass_maps::trace_pass;
+use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
 use pm_kdtree::PhotonTree;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
-use radiance::PassLighting;
-use rayon::prelude::*;
+use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Scene, TraceOptions, trace_photons};
 use std::ops::ControlFlow;
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 /// The pass index whose photon streams trace the pilot map (never a render pass).
@@ -276,7 +277,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
         stats.accumulation_bytes = accumulation.sums.heap_bytes();
-        let tiles = tiles(r.width, r.height, r.tile_size);
+        let frame = r.frame();
         loop {
             if s.passes.is_some_and(|n| accumulation.passes >= n) {
                 break;
@@ -309,23 +310,53 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             };
             progress.phase("render");
             let t = Instant::now();
-            let lighting = PassLighting {
+            let volumes = PassVolumes {
                 scene,
                 trees: &maps.trees,
                 pilot: &pilot,
                 estimator: &self.estimator,
                 options: &options,
                 scale,
-                shadow_rays: r.mode == Mode::ShadowRays,
-                gather: cache.as_ref().map(|c| (c, r.final_gather)),
             };
-            render_pass(&lighting, r, pass, &tiles, &mut accumulation.sums, progress);
+            let streams = SampleStreams { seed: r.seed, pass };
+            let sums = &mut accumulation.sums;
+            let width = r.width as usize;
+            let add = |tile: &Tile, pixels: &[Vec3]| {
+                for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+                    let start = (tile.y as usize + row) * width + tile.x as usize;
+                    for (i, p) in chunk.iter().enumerate() {
+                        sums.add_value(start + i, *p);
+                    }
+                }
+            };
+            // The mode chooses what the pass reads at a diffuse hit; the core renders it.
+            match (&cache, r.mode) {
+                (Some(cache), _) => {
+                    let reads = PassGather {
+                        volumes: &volumes,
+                        cache,
+                        options: r.final_gather,
+                    };
+                    render_tiles(&FinalGatherSource { reads }, &frame, streams, progress, add)
+                }
+                (None, mode) => {
+                    let direct = match mode {
+                        Mode::ShadowRays => DirectLight::ShadowRays,
+                        _ => DirectLight::Photons,
+                    };
+                    let source = PassPhotonSource {
+                        volumes: &volumes,
+                        direct,
+                    };
+                    render_tiles(&source, &frame, streams, progress, add)
+                }
+            };
             drop(maps);
             stats.render += t.elapsed();
             accumulation.passes += 1;
             progress.pass_done(accumulation.passes, stats.photons_emitted);
             stats.passes = accumulation.passes;
-            stats.total = start.elapsed();
+            stats.wall = start.elapsed();
             if observe(&accumulation, &stats).is_break() {
                 break;
             }
@@ -334,7 +365,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             }
         }
         stats.passes = accumulation.passes;
-        stats.total = start.elapsed();
+        stats.wall = start.elapsed();
         Ok(ProgressiveRendered { accumulation, stats })
     }
 }
@@ -393,56 +424,4 @@ pub(crate) fn trace_and_build(
     let traced = trace_photons(scene, assignment, &options)?;
     let stored = traced.stats().total_stored();
     Ok((PhotonMaps::build(scene, assignment, traced)?, stored))
-}
-
-/// Renders one pass in tiles and adds it to `sum`; every (pass, pixel, sample) draws from its
-/// own stream and each pixel gets one addition per pass, so the sum is the same for any
-/// thread count.
-fn render_pass<E: FixedVolumeEstimator>(
-    lighting: &PassLighting<'_, E>,
-    s: &RenderSettings,
-    pass: u64,
-    tiles: &[crate::renderer::Tile],
-    sums: &mut PassSums,
-    progress: &dyn Progress,
-) {
-    let camera = lighting.scene.camera();
-    let aspect = s.width as f32 / s.height as f32;
-    let spp = s.samples_per_pixel as u64;
-    let seed = s.seed ^ PIXEL_SEED_SALT;
-    let width = s.width as usize;
-    let sums = Mutex::new(sums);
-    let done = AtomicUsize::new(0);
-    tiles.par_iter().for_each_init(
-        || (EstimatorScratch::new(), Vec::<Vec3>::new()),
-        |(scratch, pixels), tile| {
-            pixels.clear();
-            for y in tile.y..tile.y + tile.height {
-                for x in tile.x..tile.x + tile.width {
-                    let pixel = y as u64 * s.width as u64 + x as u64;
-                    let mut l = Vec3::ZERO;
-                    for sample in 0..spp {
-                        let mut rng = Rng::for_pass(seed, pass, pixel * spp + sample);
-                        let u = (x as f32 + rng.next_f32()) / s.width as f32;
-                        let v = (y as f32 + rng.next_f32()) / s.height as f32;
-                        let radiance = lighting.radiance(camera.ray(u, v, aspect), &mut rng, scratch);
-                        if radiance.is_finite() {
-                            l += radiance;
-                        }
-                    }
-                    pixels.push(l / spp as f32);
-                }
-            }
-            {
-                let mut sums = sums.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-                for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
-                    let start = (tile.y as usize + row) * width + tile.x as usize;
-                    for (i, p) in chunk.iter().enumerate() {
-                        sums.add_value(start + i, *p);
-                    }
-                }
-            }
-            progress.tiles_done(done.fetch_add(1, Ordering::Relaxed) + 1, tiles.len());
-        },
-    );
 }

@@ -20,11 +20,15 @@
 
 use super::ProgressiveStats;
 use super::pass_maps::trace_pass;
-use crate::mode::direct_irradiance;
-use crate::mode::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
-use crate::renderer::PIXEL_SEED_SALT;
+use crate::core::{PIXEL_SEED_SALT, PathVertex, follow_delta_bounces};
+use crate::error::RenderError;
+use crate::estimator::EstimatorOptions;
+use crate::image::Image;
+use crate::mode::Mode;
+use crate::progress::Progress;
 use crate::renderer::in_pool;
-use crate::{EstimatorOptions, Image, Mode, Progress, RenderError, RenderSettings};
+use crate::settings::RenderSettings;
+use crate::source::direct_irradiance;
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
 use pm_trace::{Material, Partitioner, RayKind, Rng, Scene, SingleMap};
@@ -183,7 +187,7 @@ impl SppmRenderer {
                 passes += 1;
                 progress.pass_done(passes, stats.photons_emitted);
                 stats.passes = passes;
-                stats.total = start.elapsed();
+                stats.wall = start.elapsed();
                 let snapshot = SppmSnapshot {
                     state: &state,
                     width: r.width,
@@ -198,7 +202,7 @@ impl SppmRenderer {
                 }
             }
             stats.passes = passes;
-            stats.total = start.elapsed();
+            stats.wall = start.elapsed();
             let image = SppmSnapshot {
                 state: &state,
                 width: r.width,
@@ -263,47 +267,49 @@ impl Pass<'_> {
         let mut rng = Rng::for_pass(s.seed ^ PIXEL_SEED_SALT, self.pass, pixel_index);
         let u = (x as f32 + rng.next_f32()) / s.width as f32;
         let v = (y as f32 + rng.next_f32()) / s.height as f32;
-        let mut ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
-        let mut throughput = Vec3::ONE;
-        for _ in 0..=MAX_SPECULAR_BOUNCES {
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
-                return;
-            };
-            if let Material::Lambertian { .. } = *scene.material(&hit) {
-                let albedo = scene.albedo_at(&hit);
-                let direct =
-                    scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng);
-                let direct = throughput * direct;
-                if direct.is_finite() {
-                    pixel.direct += direct.as_dvec3();
+        let ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
+        let mut seen = Vec3::ZERO;
+        let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, &mut rng, |hit, _, throughput, _| {
+            if !matches!(*scene.material(hit), Material::Lambertian { .. }) {
+                let le = scene.emission(hit);
+                if le != Vec3::ZERO {
+                    seen += throughput * le;
                 }
-                let tree = self.tree;
-                if pixel.radius == 0.0 {
-                    pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
-                }
-                let (phi, m) = gather(
-                    tree,
-                    hit.position,
-                    scene.shading_normal_at(&hit),
-                    pixel.radius,
-                    self.options,
-                );
-                if m > 0 {
-                    let m = m as f32;
-                    let n_new = pixel.n + self.alpha * m;
-                    let r_new = pixel.radius * (n_new / (pixel.n + m)).sqrt();
-                    let ratio = (r_new / pixel.radius).powi(2);
-                    pixel.tau = (pixel.tau + throughput * albedo * FRAC_1_PI * phi) * ratio;
-                    pixel.n = n_new;
-                    pixel.radius = r_new;
-                }
-                return;
             }
-            let Some((next, factor)) = specular_bounce(scene, &hit, &ray, &mut rng) else {
-                return;
-            };
-            throughput *= factor;
-            ray = next;
+        });
+        if seen != Vec3::ZERO && seen.is_finite() {
+            pixel.direct += seen.as_dvec3();
+        }
+        let Some(PathVertex { hit, throughput, .. }) = vertex else {
+            return;
+        };
+        // The visible point: emission and direct light by shadow rays, then the pass's photons
+        // within the pixel's radius.
+        let albedo = scene.albedo_at(&hit);
+        let direct = scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng);
+        let direct = throughput * direct;
+        if direct.is_finite() {
+            pixel.direct += direct.as_dvec3();
+        }
+        let tree = self.tree;
+        if pixel.radius == 0.0 {
+            pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
+        }
+        let (phi, m) = gather(
+            tree,
+            hit.position,
+            scene.shading_normal_at(&hit),
+            pixel.radius,
+            self.options,
+        );
+        if m > 0 {
+            let m = m as f32;
+            let n_new = pixel.n + self.alpha * m;
+            let r_new = pixel.radius * (n_new / (pixel.n + m)).sqrt();
+            let ratio = (r_new / pixel.radius).powi(2);
+            pixel.tau = (pixel.tau + throughput * albedo * FRAC_1_PI * phi) * ratio;
+            pixel.n = n_new;
+            pixel.radius = r_new;
         }
     }
 }

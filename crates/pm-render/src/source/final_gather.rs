@@ -1,20 +1,20 @@
-//! FinalGather: specular bounces from the eye to the first diffuse hit x; there direct light by
-//! shadow rays MIS-combined with the gather rays, caustics from caustic photons, and indirect
-//! light by the gather rays into the cache.
+//! A final gather read at the first diffuse hit x: direct light by shadow rays MIS-combined
+//! with the gather rays, caustics from caustic photons, and indirect light by the gather rays
+//! into a cache. What the gather reads (k-nearest or a pass's fixed volumes) is a
+//! [`GatherReads`].
 
-use super::Lighting;
 use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
-use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
-use crate::{
-    Estimator, EstimatorOptions, EstimatorScratch, MapView, RadianceCache, RenderError, SurfacePoint,
-};
+use crate::cache::RadianceCache;
+use crate::core::{PathVertex, RadianceSource, follow_delta_bounces};
+use crate::error::RenderError;
+use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
 use glam::{Vec2, Vec3};
 use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
-use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
+use pm_trace::{Hit, PhotonMaps, Ray, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
-/// Parameters of [`crate::Mode::FinalGather`].
+/// Parameters of [`crate::mode::Mode::FinalGather`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FinalGatherOptions {
     /// Cosine-weighted gather rays per camera sample at its first diffuse hit (stratified over
@@ -97,8 +97,8 @@ impl FinalGatherOptions {
 
 /// What a final gather reads besides its rays: the caustics at a diffuse point and the cached
 /// outgoing radiance at a gather ray's diffuse hit. The one-shot mode reads k-nearest
-/// estimates; a progressive pass reads fixed-volume ones.
-pub(crate) trait GatherSource {
+/// estimates ([`CacheReads`]); a progressive pass reads fixed-volume ones.
+pub trait GatherReads: Sync {
     /// The scene.
     fn scene(&self) -> &Scene;
     /// The gather's parameters.
@@ -109,35 +109,44 @@ pub(crate) trait GatherSource {
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3;
 }
 
-/// The one-shot mode's source: the mode's estimator on the photon maps' caustic trees, and the
-/// cache's nearest point.
-pub(crate) struct ModeGather<'a, E> {
-    pub lighting: &'a Lighting<'a, E>,
+/// The one-shot mode's reads: the estimator on the cache's caustic trees (split as the photon
+/// maps are), and the cache's nearest point.
+#[derive(Clone, Copy, Debug)]
+pub struct CacheReads<'a, E> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// Its photon maps (their polygons bound the caustic estimates' areas).
+    pub maps: &'a PhotonMaps,
+    /// The estimator of the caustics.
+    pub estimator: &'a E,
+    /// Its options (photons of every kind are read from the caustic trees).
+    pub options: &'a EstimatorOptions,
+    /// The irradiance cache, built from `maps`.
     pub cache: &'a RadianceCache,
+    /// The gather's parameters.
+    pub gather: FinalGatherOptions,
 }
 
-impl<E: Estimator> GatherSource for ModeGather<'_, E> {
+impl<E: Estimator> GatherReads for CacheReads<'_, E> {
     fn scene(&self) -> &Scene {
-        self.lighting.scene
+        self.scene
     }
 
     fn options(&self) -> &FinalGatherOptions {
-        &self.lighting.final_gather
+        &self.gather
     }
 
     fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
-        let lighting = self.lighting;
-        let Some(maps) = lighting.maps else {
-            return Vec3::ZERO;
-        };
-        let map_id = maps.map_of(hit.part);
-        let (Some(tree), Some(map)) = (self.cache.caustic_tree(map_id), maps.maps().get(map_id as usize))
-        else {
+        let map_id = self.maps.map_of(hit.part);
+        let (Some(tree), Some(map)) = (
+            self.cache.caustic_tree(map_id),
+            self.maps.maps().get(map_id as usize),
+        ) else {
             return Vec3::ZERO;
         };
         let options = EstimatorOptions {
             kinds: KindMask::ALL,
-            ..*lighting.options
+            ..*self.options
         };
         let view = MapView {
             tree,
@@ -145,14 +154,14 @@ impl<E: Estimator> GatherSource for ModeGather<'_, E> {
         };
         let at = SurfacePoint {
             position: hit.position,
-            normal: lighting.scene.shading_normal_at(hit),
+            normal: self.scene.shading_normal_at(hit),
             front_face: hit.front_face,
         };
-        lighting.estimator.irradiance(at, view, &options, scratch)
+        self.estimator.irradiance(at, view, &options, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
-        self.cache.radiance(self.lighting.scene, hit, scratch)
+        self.cache.radiance(self.scene, hit, scratch)
     }
 }
 
@@ -192,50 +201,39 @@ struct EmissionWeight {
 /// Emission met straight away counts with its multiple-importance weight `mis` (and not at
 /// all without one); emission after specular bounces does not count: the caustic photons at
 /// the gather's origin carry it.
-fn gather<G: GatherSource>(
+fn gather<G: GatherReads>(
     source: &G,
-    mut ray: Ray,
+    ray: Ray,
     corner: f32,
     mis: Option<EmissionWeight>,
     rng: &mut Rng,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
     let scene = source.scene();
-    let mut throughput = Vec3::ONE;
-    let mut travelled = 0.0f32;
     let mut emitted = Vec3::ZERO;
-    for bounce in 0..=MAX_SPECULAR_BOUNCES {
-        let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
-            return emitted;
-        };
-        travelled += hit.t;
+    let vertex = follow_delta_bounces(scene, ray, RayKind::Other, rng, |hit, ray, _, bounce| {
         if bounce == 0
             && let Some(w) = mis
         {
-            let le = scene.emission(&hit);
+            let le = scene.emission(hit);
             if le != Vec3::ZERO {
                 emitted = le * bsdf_emission_weight(scene, w.from, ray.direction, hit.t, w.rays, w.pdf);
             }
         }
-        if let Material::Lambertian { .. } = *scene.material(&hit) {
-            if travelled < corner {
-                return emitted + throughput * diffuse_bounce(source, &hit, 1, 0.0, rng, scratch);
-            }
-            return emitted + throughput * source.cached_radiance(&hit, scratch);
-        }
-        let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
-            return emitted;
-        };
-        throughput *= factor;
-        ray = next;
+    });
+    let Some(vertex) = vertex else {
+        return emitted;
+    };
+    if vertex.distance < corner {
+        return emitted + vertex.throughput * diffuse_bounce(source, &vertex.hit, 1, 0.0, rng, scratch);
     }
-    emitted
+    emitted + vertex.throughput * source.cached_radiance(&vertex.hit, scratch)
 }
 
 /// Reflected radiance at a diffuse `hit` (without its emission): direct light by shadow rays,
 /// caustics from the caustic photons, and `rays` gather rays for the rest (those that land
 /// within `corner` metres taking one more bounce).
-fn diffuse_bounce<G: GatherSource>(
+fn diffuse_bounce<G: GatherReads>(
     source: &G,
     hit: &Hit,
     rays: u32,
@@ -282,30 +280,29 @@ fn diffuse_bounce<G: GatherSource>(
     albedo * (FRAC_1_PI * e + indirect / rays as f32)
 }
 
-/// Radiance along a camera ray under the final gather.
-pub(crate) fn radiance<G: GatherSource>(
-    source: &G,
-    mut ray: Ray,
-    rng: &mut Rng,
-    scratch: &mut EstimatorScratch,
-) -> Vec3 {
-    let scene = source.scene();
-    let mut throughput = Vec3::ONE;
-    for _ in 0..=MAX_SPECULAR_BOUNCES {
-        let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
-            break;
-        };
-        if let Material::Lambertian { .. } = *scene.material(&hit) {
-            let options = source.options();
-            let corner = options.corner_distance_in(&scene.bounds());
-            let reflected = diffuse_bounce(source, &hit, options.gather_rays, corner, rng, scratch);
-            return throughput * (scene.emission(&hit) + reflected);
-        }
-        let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
-            break;
-        };
-        throughput *= factor;
-        ray = next;
+/// A final gather at the first diffuse vertex, reading through `G`.
+#[derive(Clone, Copy, Debug)]
+pub struct FinalGatherSource<G> {
+    /// What the gather reads.
+    pub reads: G,
+}
+
+impl<G: GatherReads> RadianceSource for FinalGatherSource<G> {
+    fn scene(&self) -> &Scene {
+        self.reads.scene()
     }
-    Vec3::ZERO
+
+    fn reflected(&self, vertex: &PathVertex, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
+        let scene = self.reads.scene();
+        let options = self.reads.options();
+        let corner = options.corner_distance_in(&scene.bounds());
+        diffuse_bounce(
+            &self.reads,
+            &vertex.hit,
+            options.gather_rays,
+            corner,
+            rng,
+            scratch,
+        )
+    }
 }

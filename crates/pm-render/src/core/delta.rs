@@ -1,14 +1,11 @@
-//! Specular scattering shared by the modes: mirror reflection and Fresnel glass.
+//! Delta scattering: mirror reflection and Fresnel glass, the bounces the render core follows.
 
 use glam::Vec3;
 use pm_trace::photons::{glass_direction, mirror_direction};
 use pm_trace::{Hit, Material, Ray, Rng, Scene};
 
-/// Longest chain of specular bounces followed from the eye.
-pub(crate) const MAX_SPECULAR_BOUNCES: u32 = 16;
-
-/// The next ray and throughput factor after a specular bounce at `hit`, or `None` when the
-/// material is diffuse.
+/// The next ray and throughput factor after a delta (mirror or glass) bounce at `hit`, or
+/// `None` when the material is diffuse.
 ///
 /// Mirrors and glass bend light about the interpolated shading normal
 /// ([`Scene::shading_normal_at`]), so a smooth (`NORMAL`-attributed) mesh reflects and
@@ -17,7 +14,7 @@ pub(crate) const MAX_SPECULAR_BOUNCES: u32 = 16;
 /// into the surface or refract back out of it (near the silhouette of a coarse mesh), the
 /// bounce uses the geometric normal instead, so no path crosses a surface it should not.
 #[inline]
-pub(crate) fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng) -> Option<(Ray, Vec3)> {
+pub fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng) -> Option<(Ray, Vec3)> {
     let d = ray.direction;
     match *scene.material(hit) {
         Material::Lambertian { .. } => None,

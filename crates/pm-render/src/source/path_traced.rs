@@ -1,11 +1,14 @@
-//! PathTrace: an unbiased path tracer with next-event estimation combined with the diffuse
-//! bounces by multiple importance sampling (power heuristic); Russian roulette ends long paths.
+//! A path-traced bounce: from the camera path's first diffuse vertex, an unbiased path tracer
+//! with next-event estimation combined with the diffuse bounces by multiple importance sampling
+//! (power heuristic); Russian roulette ends long paths. With the render core's delta chain in
+//! front of it, the path-trace mode: the reference every estimator is measured against.
 
 use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
-use super::scatter::{MAX_SPECULAR_BOUNCES, specular_bounce};
+use crate::core::{PathVertex, RadianceSource, specular_bounce};
+use crate::estimator::EstimatorScratch;
 use glam::{Vec2, Vec3};
 use pm_trace::sampling::cosine_hemisphere;
-use pm_trace::{Material, Ray, RayKind, Rng, Scene};
+use pm_trace::{Material, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Longest path (a safety net; Russian roulette ends paths long before).
@@ -13,24 +16,61 @@ const MAX_DEPTH: u32 = 256;
 /// Bounces before Russian roulette starts.
 const ROULETTE_AFTER: u32 = 3;
 
-pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
+/// Radiance read at a path's first diffuse vertex by path tracing from there.
+#[derive(Clone, Copy, Debug)]
+pub struct PathTraced<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+}
+
+impl RadianceSource for PathTraced<'_> {
+    fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// The radiance a path traced onwards from `vertex` brings back (without its emission).
+    fn reflected(&self, vertex: &PathVertex, rng: &mut Rng, _: &mut EstimatorScratch) -> Vec3 {
+        let vertex = PathVertex {
+            throughput: Vec3::ONE,
+            ..*vertex
+        };
+        trace_from(self.scene, &vertex, VertexEmission::Left, rng)
+    }
+
+    /// Path tracing accumulates along its own path, each term times the throughput so far.
+    fn carried(&self, vertex: &PathVertex, rng: &mut Rng, _: &mut EstimatorScratch) -> Vec3 {
+        trace_from(self.scene, vertex, VertexEmission::Counted, rng)
+    }
+}
+
+/// Whether the path's first vertex's own emission is in what [`trace_from`] returns.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum VertexEmission {
+    Counted,
+    Left,
+}
+
+/// The radiance a path brings back from `vertex` on, continuing with its throughput; its depth
+/// counts the delta bounces before it.
+fn trace_from(scene: &Scene, vertex: &PathVertex, first: VertexEmission, rng: &mut Rng) -> Vec3 {
+    let mut ray = vertex.ray;
+    let mut hit = vertex.hit;
     let mut radiance = Vec3::ZERO;
-    let mut throughput = Vec3::ONE;
-    // Emission found by the ray is counted in full on camera rays and after specular bounces;
-    // after a diffuse bounce from `(x, pdf)` it is weighted against the shadow rays there (by
-    // multiple importance sampling, when every light allows it; else not counted at all, the
-    // shadow rays having carried it).
-    let mut count_emission = true;
+    let mut throughput = vertex.throughput;
+    // Emission found by the ray is counted in full at the first vertex and after specular
+    // bounces; after a diffuse bounce from `(x, pdf)` it is weighted against the shadow rays
+    // there (by multiple importance sampling, when every light allows it; else not counted at
+    // all, the shadow rays having carried it).
+    let mut count_emission = first == VertexEmission::Counted;
     let mut diffuse_from: Option<(Vec3, f32)> = None;
     let mis = mis_enabled(scene);
-    let mut kind = RayKind::Camera;
-    // Until the first diffuse vertex the path is the camera's delta chain, which every mode
-    // follows alike: at most MAX_SPECULAR_BOUNCES bounces, and no Russian roulette.
-    let mut past_first_diffuse = false;
-    for depth in 0..MAX_DEPTH {
-        let Some(hit) = scene.intersect(&ray, f32::INFINITY, kind) else {
-            break;
-        };
+    for depth in vertex.bounces..MAX_DEPTH {
+        if depth > vertex.bounces {
+            let Some(next) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
+                break;
+            };
+            hit = next;
+        }
         if count_emission {
             radiance += throughput * scene.emission(&hit);
         } else if let Some((from, pdf)) = diffuse_from {
@@ -62,13 +102,8 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 ray = scene.spawn_ray(&hit, direction);
                 count_emission = false;
                 diffuse_from = mis.then(|| (hit.position, shading.dot(direction).max(0.0) * FRAC_1_PI));
-                kind = RayKind::Other;
-                past_first_diffuse = true;
             }
             _ => {
-                if !past_first_diffuse && depth >= MAX_SPECULAR_BOUNCES {
-                    break;
-                }
                 let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
                     break;
                 };
@@ -78,7 +113,7 @@ pub(super) fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng) -> Vec3 {
                 diffuse_from = None;
             }
         }
-        if past_first_diffuse && depth >= ROULETTE_AFTER {
+        if depth >= ROULETTE_AFTER {
             let survive = throughput.max_element().min(0.95);
             if survive <= 0.0 || rng.next_f32() >= survive {
                 break;

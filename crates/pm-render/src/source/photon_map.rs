@@ -1,0 +1,85 @@
+//! The photon maps read at the first diffuse hit by a k-nearest estimate: the photon-map
+//! mode (Ball & Stejko's main results) and, with direct light by shadow rays, their Image 1.
+
+use super::direct::direct_irradiance;
+use crate::core::{PathVertex, RadianceSource};
+use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
+use glam::Vec3;
+use pm_trace::{Hit, PhotonMaps, Rng, Scene};
+use std::f32::consts::FRAC_1_PI;
+
+/// Where the direct light at a diffuse hit comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DirectLight {
+    /// From the photons of kind direct, like all other light.
+    Photons,
+    /// From one shadow ray per light; the estimator's options must then leave photons of kind
+    /// direct out ([`pm_kdtree::KindMask::NOT_DIRECT`]).
+    ShadowRays,
+}
+
+/// Irradiance at `hit` from the photon map of its part with `estimator` (zero when that map
+/// is missing): the read that every photon-map source shares.
+#[inline]
+pub fn map_irradiance<E: Estimator + ?Sized>(
+    scene: &Scene,
+    maps: &PhotonMaps,
+    estimator: &E,
+    options: &EstimatorOptions,
+    hit: &Hit,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
+        return Vec3::ZERO;
+    };
+    let view = MapView {
+        tree: map.tree(),
+        polygons: map.geometry(),
+    };
+    let at = SurfacePoint {
+        position: hit.position,
+        normal: scene.shading_normal_at(hit),
+        front_face: hit.front_face,
+    };
+    estimator.irradiance(at, view, options, scratch)
+}
+
+/// Radiance `ρ/π · E` at the first diffuse hit, `E` a k-nearest estimate in the hit's own map
+/// (plus shadow rays, by [`DirectLight`]). Textures are averaged over the pixel's footprint
+/// there: its width at the distance travelled, stretched on a tilted surface.
+#[derive(Clone, Copy, Debug)]
+pub struct PhotonMapSource<'a, E> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// Its photon maps.
+    pub maps: &'a PhotonMaps,
+    /// The estimator.
+    pub estimator: &'a E,
+    /// Its options.
+    pub options: &'a EstimatorOptions,
+    /// The angle a pixel spans ([`pm_trace::Camera::pixel_angle`]); zero point-samples
+    /// textures.
+    pub pixel_angle: f32,
+    /// Where direct light comes from.
+    pub direct: DirectLight,
+}
+
+impl<E: Estimator> RadianceSource for PhotonMapSource<'_, E> {
+    fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    #[inline]
+    fn reflected(&self, vertex: &PathVertex, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
+        let (scene, hit) = (self.scene, &vertex.hit);
+        // The pixel's footprint: its width at this distance, stretched on a tilted surface
+        // (by the square root of 1/cos, between the ellipse's two axes).
+        let cos = (-vertex.ray.direction.dot(hit.normal)).max(1e-3);
+        let albedo = scene.albedo_over(hit, vertex.distance * self.pixel_angle / cos.sqrt());
+        let mut e = map_irradiance(scene, self.maps, self.estimator, self.options, hit, scratch);
+        if self.direct == DirectLight::ShadowRays {
+            e += direct_irradiance(scene, hit, rng);
+        }
+        albedo * FRAC_1_PI * e
+    }
+}
