@@ -9,9 +9,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::glam::Vec2;
-use photon_maps::render::{
-    Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryCube, MapView, RadianceCache, SurfacePoint,
-};
+use photon_maps::render::source::map_irradiance;
+use photon_maps::render::{Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryCube, RadianceCache};
 use photon_maps::trace::sampling::cosine_hemisphere;
 use photon_maps::trace::{
     CreaseAngle, Hit, Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, TraceOptions, scenes,
@@ -72,17 +71,7 @@ fn estimate<E: Estimator>(
 ) -> f32 {
     let mut sum = 0.0;
     for hit in hits {
-        let map = maps.map(maps.map_of(hit.part));
-        let view = MapView {
-            tree: map.tree(),
-            polygons: map.geometry(),
-        };
-        let at = SurfacePoint {
-            position: hit.position,
-            normal: scene.shading_normal_at(hit),
-            front_face: hit.front_face,
-        };
-        sum += estimator.irradiance(at, view, options, scratch).x;
+        sum += map_irradiance(scene, maps, estimator, options, hit, scratch).x;
     }
     sum
 }

@@ -4,10 +4,11 @@
 //! [`GatherReads`].
 
 use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
+use super::photon_map::estimate_at;
 use crate::cache::RadianceCache;
 use crate::core::{PathVertex, RadianceSource, follow_delta_bounces};
 use crate::error::RenderError;
-use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
+use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView};
 use glam::{Vec2, Vec3};
 use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
@@ -152,12 +153,7 @@ impl<E: Estimator> GatherReads for CacheReads<'_, E> {
             tree,
             polygons: map.geometry(),
         };
-        let at = SurfacePoint {
-            position: hit.position,
-            normal: self.scene.shading_normal_at(hit),
-            front_face: hit.front_face,
-        };
-        self.estimator.irradiance(at, view, &options, scratch)
+        estimate_at(self.scene, self.estimator, view, &options, hit, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {

@@ -36,6 +36,20 @@ pub fn map_irradiance<E: Estimator + ?Sized>(
         tree: map.tree(),
         polygons: map.geometry(),
     };
+    estimate_at(scene, estimator, view, options, hit, scratch)
+}
+
+/// `estimator`'s irradiance at `hit` (its shading normal, its side) from the photons and
+/// polygons of `view`.
+#[inline]
+pub(crate) fn estimate_at<E: Estimator + ?Sized>(
+    scene: &Scene,
+    estimator: &E,
+    view: MapView<'_>,
+    options: &EstimatorOptions,
+    hit: &Hit,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
     let at = SurfacePoint {
         position: hit.position,
         normal: scene.shading_normal_at(hit),
