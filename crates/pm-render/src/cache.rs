@@ -1,7 +1,8 @@
 //! Precomputed irradiance (Christensen 1999): irradiance estimated once at one photon in n of
 //! each map, then read by a final gather's rays as one nearest-point lookup in the hit's own map.
 
-use crate::{Estimator, EstimatorOptions, EstimatorScratch, MapView, RenderError, SurfacePoint};
+use crate::error::RenderError;
+use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
 use glam::Vec3;
 use pm_kdtree::{Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
 use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};

@@ -21,18 +21,18 @@ pub enum RenderError {
         /// Height asked for.
         height: u32,
     },
-    /// An image with more than [`crate::image::MAX_PIXELS`] pixels.
-    #[error("image size {width}x{height}: more than the limit of {max} pixels", max = crate::image::MAX_PIXELS)]
+    /// An image with more than [`crate::limits::MAX_PIXELS`] pixels.
+    #[error("image size {width}x{height}: more than the limit of {max} pixels", max = crate::limits::MAX_PIXELS)]
     ImageTooLarge {
         /// Width asked for.
         width: u64,
         /// Height asked for.
         height: u64,
     },
-    /// A render whose per-pixel state would pass [`crate::image::MAX_PIXEL_STATE_BYTES`].
+    /// A render whose per-pixel state would pass [`crate::limits::MAX_PIXEL_STATE_BYTES`].
     #[error(
         "image size {width}x{height}: its per-pixel state takes {bytes} bytes, more than the limit of {max} (2 GiB)",
-        max = crate::image::MAX_PIXEL_STATE_BYTES
+        max = crate::limits::MAX_PIXEL_STATE_BYTES
     )]
     PixelStateTooLarge {
         /// Width asked for.
@@ -68,11 +68,11 @@ pub enum RenderError {
     /// A PNG exposure that is NaN or infinite.
     #[error("exposure must be a finite number of stops, got {0}")]
     BadExposure(f32),
-    /// More samples per pixel than [`crate::RenderSettings::MAX_SAMPLES_PER_PIXEL`].
-    #[error("{0} samples per pixel: more than the limit of {max}", max = crate::RenderSettings::MAX_SAMPLES_PER_PIXEL)]
+    /// More samples per pixel than [`crate::limits::MAX_SAMPLES_PER_PIXEL`].
+    #[error("{0} samples per pixel: more than the limit of {max}", max = crate::limits::MAX_SAMPLES_PER_PIXEL)]
     TooManySamples(u32),
-    /// More worker threads than [`crate::RenderSettings::MAX_THREADS`].
-    #[error("{0} threads: more than the limit of {max}", max = crate::RenderSettings::MAX_THREADS)]
+    /// More worker threads than [`crate::limits::MAX_THREADS`].
+    #[error("{0} threads: more than the limit of {max}", max = crate::limits::MAX_THREADS)]
     TooManyThreads(usize),
     /// Zero samples per pixel.
     #[error("samples per pixel must be at least 1")]
@@ -117,7 +117,7 @@ pub enum RenderError {
     },
     /// A progressive render in a mode other than photon-map, shadow-rays or final-gather.
     #[error("mode {0} cannot render progressively (expected photon-map, shadow-rays or final-gather)")]
-    UnsupportedMode(crate::Mode),
+    UnsupportedMode(crate::mode::Mode),
     /// A final-gather parameter is out of range (the message names it).
     #[error("final gather: {0}")]
     BadFinalGather(String),
@@ -128,11 +128,11 @@ pub enum RenderError {
     #[error("a progressive render needs at least one pass or a time budget")]
     ZeroPasses,
     /// Passes that would run past the last pass index,
-    /// [`crate::progressive::MAX_PASS`].
+    /// [`crate::limits::MAX_PASS`].
     #[error(
         "passes from {first_pass} ({passes}) run past the last pass, {max}",
         passes = passes.map_or_else(|| "on a time budget".to_owned(), |n| format!("{n} of them")),
-        max = crate::progressive::MAX_PASS
+        max = crate::limits::MAX_PASS
     )]
     PassRange {
         /// The first pass.

@@ -75,6 +75,7 @@ pub mod core;
 pub mod error;
 pub mod estimator;
 pub mod image;
+pub mod limits;
 pub mod mode;
 pub mod prelude;
 pub mod progress;

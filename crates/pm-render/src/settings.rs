@@ -61,14 +61,13 @@ impl Default for RenderSettings {
 }
 
 impl RenderSettings {
-    /// The most samples per pixel (2¹⁶): render time grows with pixels × samples, and more
-    /// than this is refused with [`RenderError::TooManySamples`].
-    pub const MAX_SAMPLES_PER_PIXEL: u32 = 1 << 16;
+    /// The most samples per pixel ([`crate::limits::MAX_SAMPLES_PER_PIXEL`], 2¹⁶); more are
+    /// refused with [`RenderError::TooManySamples`].
+    pub const MAX_SAMPLES_PER_PIXEL: u32 = crate::limits::MAX_SAMPLES_PER_PIXEL;
 
-    /// The most worker threads (512): each is an OS thread with its own stack, and the standard
-    /// library aborts the process when it cannot make one, so more are refused with
+    /// The most worker threads ([`crate::limits::MAX_THREADS`], 512); more are refused with
     /// [`RenderError::TooManyThreads`].
-    pub const MAX_THREADS: usize = 512;
+    pub const MAX_THREADS: usize = crate::limits::MAX_THREADS;
 
     /// Checks sizes, counts and distances before anything is allocated; the error names the
     /// bad setting and the limit. The limits: [`crate::image::MAX_PIXELS`] pixels,

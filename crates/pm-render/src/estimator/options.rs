@@ -1,7 +1,7 @@
 //! Parameters shared by every estimator: k, the maximum search distance, back-face rejection
 //! and which photon kinds to gather.
 
-use crate::RenderError;
+use crate::error::RenderError;
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 

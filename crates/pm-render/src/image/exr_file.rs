@@ -1,7 +1,7 @@
 //! Lossless OpenEXR files (32-bit float RGB, ZIP compression) through the `exr` crate.
 
 use super::Image;
-use crate::RenderError;
+use crate::error::RenderError;
 use exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
 use glam::Vec3;
 use std::path::Path;

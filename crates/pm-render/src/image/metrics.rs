@@ -1,7 +1,7 @@
 //! Image metrics: mean, RMSE and relative RMSE against a reference, mean over a rectangle.
 
 use super::{Image, check_same_size};
-use crate::RenderError;
+use crate::error::RenderError;
 use glam::{DVec3, Vec3};
 
 impl Image {

@@ -9,9 +9,9 @@ mod png_file;
 mod srgb;
 
 pub use atomic::{check_output_path, output_target, write_atomically};
-pub use srgb::{linear_to_srgb8, srgb8_of_image};
+pub use srgb::linear_to_srgb8;
 
-use crate::RenderError;
+use crate::error::RenderError;
 use glam::Vec3;
 
 /// A linear-light RGB image (Rec. 709 primaries), f32 per channel, rows top to bottom.
@@ -127,20 +127,7 @@ pub(crate) fn check_same_size(a: &Image, b: &Image) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// The most pixels an image may have: 2²⁶ (67,108,864, e.g. 8192×8192). The film holds 12 bytes
-/// a pixel (768 MiB at the limit) and writing it takes about as much again (the PNG's 3 bytes a
-/// pixel, the EXR encoder's blocks); larger sizes are refused with
-/// [`RenderError::ImageTooLarge`] before anything is allocated. A 2×2 grid
-/// ([`Image::grid_2x2`]) counts its four cells.
-pub const MAX_PIXELS: u64 = 1 << 26;
-
-/// The most bytes the per-pixel state of a render may hold: 2 GiB. The progressive
-/// renderer's exact sums ([`crate::progressive::PassSums`], 48 bytes a pixel, also the running
-/// sum of a merge) and SPPM's pixel state (48 bytes a pixel) count against it, so those modes
-/// stop at about 44.7 million pixels (6688×6688) where the single-pass film (12 bytes a pixel)
-/// fits [`MAX_PIXELS`]; past it the run is refused with [`RenderError::PixelStateTooLarge`]
-/// before anything is allocated.
-pub const MAX_PIXEL_STATE_BYTES: u64 = 1 << 31;
+pub use crate::limits::{MAX_PIXEL_STATE_BYTES, MAX_PIXELS};
 
 /// Checks that `bytes_per_pixel` of state for a `width × height` image fit
 /// [`MAX_PIXEL_STATE_BYTES`] (and the size itself, as [`check_image_size`]).
@@ -167,4 +154,15 @@ pub fn check_image_size(width: u32, height: u32) -> Result<(), RenderError> {
         });
     }
     Ok(())
+}
+
+/// The image as interleaved 8-bit sRGB bytes (RGBRGB…, rows from the top), each linear
+/// value scaled by `2^exposure` (exposure in stops) first.
+pub fn srgb8_of_image(image: &Image, exposure: f32) -> Vec<u8> {
+    let scale = exposure.exp2();
+    image
+        .pixels()
+        .iter()
+        .flat_map(|p| (*p * scale).to_array().map(linear_to_srgb8))
+        .collect()
 }

@@ -1,7 +1,7 @@
 //! The 8-bit sRGB PNG preview through the `png` crate.
 
 use super::{Image, srgb8_of_image};
-use crate::RenderError;
+use crate::error::RenderError;
 use std::path::Path;
 
 impl Image {

@@ -1,8 +1,9 @@
 //! What a progressive render gives back: the exact running sum of its passes, and its counts,
 //! timings and memory.
 
-use super::PassSums;
-use crate::{Image, RenderError};
+use super::pass_sum::PassSums;
+use crate::error::RenderError;
+use crate::image::Image;
 use std::ops::Range;
 use std::time::Duration;
 

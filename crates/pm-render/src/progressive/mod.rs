@@ -52,7 +52,7 @@ mod sppm;
 
 pub use accumulation::{Accumulation, ProgressiveRendered, ProgressiveStats};
 pub use pass_sum::PassSums;
-pub use schedule::{MAX_PASS, radius_scale};
+pub use schedule::{MAX_PASS, PILOT_PASS, radius_scale};
 pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
@@ -73,9 +73,6 @@ use pm_kdtree::PhotonTree;
 use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Scene, TraceOptions, trace_photons};
 use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
-
-/// The pass index whose photon streams trace the pilot map (never a render pass).
-pub const PILOT_PASS: u64 = u64::MAX;
 
 /// The version of the progressive algorithm, part of [`ProgressiveSettings::identity`]: bumped
 /// whenever the same settings would render a different image (v2: pilot extents at sparse

@@ -3,7 +3,8 @@
 //! kinds the pass never gathers (direct ones, when shadow rays carry direct light) are not put
 //! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
 
-use crate::{RenderError, RenderSettings};
+use crate::error::RenderError;
+use crate::settings::RenderSettings;
 use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;

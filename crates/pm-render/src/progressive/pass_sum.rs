@@ -11,7 +11,8 @@
 //! Within that, `hi` is the exact sum correctly rounded, whatever the grouping, and the mean
 //! `hi / passes` rounded to f32 is the same bits.
 
-use crate::{Image, RenderError};
+use crate::error::RenderError;
+use crate::image::Image;
 use glam::{DVec3, Vec3};
 
 /// `a + b` as the rounded sum and its exact error: `a + b == s + e` exactly.

@@ -11,7 +11,8 @@
 //! that Knaus & Zwicker's argument asks of the volume; it adapts to the photon density as the
 //! k-nearest extent does.
 
-use crate::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, RenderError, SurfacePoint};
+use crate::error::RenderError;
+use crate::estimator::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
 use glam::Vec3;
 use pm_kdtree::{Euclidean, KindMask, PhotonTree};
 use pm_trace::{MapError, PhotonMaps};
@@ -115,8 +116,10 @@ impl Pilot {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::estimator::GeometryCube;
+    use crate::mode::Mode;
     use crate::progressive::{PILOT_PASS, trace_and_build};
-    use crate::{GeometryCube, Mode, RenderSettings};
+    use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, Partitioner, scenes};
 
     /// The pilot's extent at a point against brute force: the nearest site (every 16th

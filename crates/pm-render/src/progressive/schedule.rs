@@ -2,10 +2,12 @@
 //! the pilot radius times `s_i`, with `s_i² = Π_{j<i} (j + α)/(j + 1)`, in closed form so that
 //! any pass index costs the same.
 
-/// The largest pass index a render may use: every index below [`super::PILOT_PASS`]
-/// (`u64::MAX`, whose streams trace the pilot map), so a run's passes end at most at
-/// `u64::MAX`.
-pub const MAX_PASS: u64 = super::PILOT_PASS - 1;
+pub use crate::limits::MAX_PASS;
+
+/// The pass index whose photon streams trace the pilot map (never a render pass).
+pub const PILOT_PASS: u64 = u64::MAX;
+
+const _: () = assert!(MAX_PASS == PILOT_PASS - 1);
 
 /// Below this pass the product is multiplied out (at most this many factors); from it on the
 /// asymptotic series of `ln Γ` is accurate to f64 rounding.

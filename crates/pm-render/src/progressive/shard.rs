@@ -3,7 +3,8 @@
 //! their passes gives — or are refused, naming the shard at fault.
 
 use super::{Accumulation, MAX_PASS, PassSums};
-use crate::{Image, RenderError};
+use crate::error::RenderError;
+use crate::image::Image;
 use glam::DVec3;
 use std::ops::Range;
 use thiserror::Error;

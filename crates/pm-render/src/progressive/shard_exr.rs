@@ -5,7 +5,7 @@
 
 use super::shard::{ShardHeader, plan_merge};
 use super::{PassSums, Shard, ShardError};
-use crate::RenderError;
+use crate::error::RenderError;
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
     Encoding, LayerAttributes, ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, WritableImage,

@@ -18,7 +18,7 @@
 //! and the progressive renderer's pilot have, so that the comparison does not hinge on a
 //! hand-tuned constant.
 
-use super::ProgressiveStats;
+use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass;
 use crate::core::{PIXEL_SEED_SALT, PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
