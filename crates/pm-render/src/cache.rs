@@ -179,8 +179,6 @@ impl RadianceCache {
         let map_of_part: Vec<u32> = (0..assignment.part_count() as u32)
             .map(|p| assignment.map_of(pm_trace::PartId(p)))
             .collect();
-        // The cast that finds a photon's surface starts this far before it.
-        let back = 4.0 * scene.epsilon();
         let set_aside = f64::from(every) / f64::from(every - 1);
         let splits = trees
             .iter()
@@ -191,39 +189,16 @@ impl RadianceCache {
             .zip(&splits)
             .enumerate()
             .map(|(m, (tree, (indices, others)))| {
-                let points: Vec<Photon> = indices
-                    .par_iter()
-                    .map_init(EstimatorScratch::new, |scratch, &i| {
-                        let photon = tree.get(i);
-                        let position = photon.position();
-                        let direction = photon.direction();
-                        let ray = Ray {
-                            origin: position - direction * back,
-                            direction,
-                        };
-                        let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
-                        if map_of_part.get(hit.part.0 as usize) != Some(&(m as u32)) {
-                            return None;
-                        }
-                        let at = SurfacePoint {
-                            position,
-                            normal: scene.shading_normal_at(&hit),
-                            front_face: hit.front_face,
-                        };
-                        let point = CachePoint {
-                            map: m,
-                            at,
-                            photons: others,
-                        };
-                        Some(Photon {
-                            position,
-                            power: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
-                            direction: hit.normal,
-                            kind: PhotonKind::Direct,
-                        })
-                    })
-                    .flatten()
-                    .collect();
+                let points = cache_points(
+                    scene,
+                    &map_of_part,
+                    m,
+                    tree,
+                    indices,
+                    others,
+                    set_aside,
+                    &irradiance,
+                );
                 PhotonTree::build(points).map_err(|e| RenderError::BadFinalGather(e.to_string()))
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -365,6 +340,60 @@ impl RadianceCache {
             + self.photons.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
+}
+
+/// The cache points of map `m`: the photons of `tree` at `indices`, each on the surface it
+/// landed on (found by a short cast back along its travel; a photon whose surface is not in
+/// map `m` is skipped) with `irradiance` estimated there from `others`, times `set_aside`.
+#[allow(clippy::too_many_arguments)]
+fn cache_points<F>(
+    scene: &Scene,
+    map_of_part: &[u32],
+    m: usize,
+    tree: &PhotonTree,
+    indices: &[u32],
+    others: &PhotonTree,
+    set_aside: f64,
+    irradiance: &F,
+) -> Vec<Photon>
+where
+    F: Fn(CachePoint<'_>, &mut EstimatorScratch) -> Vec3 + Sync,
+{
+    // The cast that finds a photon's surface starts this far before it.
+    let back = 4.0 * scene.epsilon();
+    indices
+        .par_iter()
+        .map_init(EstimatorScratch::new, |scratch, &i| {
+            let photon = tree.get(i);
+            let position = photon.position();
+            let direction = photon.direction();
+            let ray = Ray {
+                origin: position - direction * back,
+                direction,
+            };
+            let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
+            if map_of_part.get(hit.part.0 as usize) != Some(&(m as u32)) {
+                return None;
+            }
+            let at = SurfacePoint {
+                position,
+                normal: scene.shading_normal_at(&hit),
+                front_face: hit.front_face,
+            };
+            let point = CachePoint {
+                map: m,
+                at,
+                photons: others,
+            };
+            Some(Photon {
+                position,
+                power: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
+                direction: hit.normal,
+                kind: PhotonKind::Direct,
+            })
+        })
+        .flatten()
+        .collect()
 }
 
 /// Splits `tree` into its cache points (the indices of the photons whose hash falls in the

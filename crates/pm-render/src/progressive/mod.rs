@@ -274,7 +274,6 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
         stats.accumulation_bytes = accumulation.sums.heap_bytes();
-        let frame = r.frame();
         loop {
             if s.passes.is_some_and(|n| accumulation.passes >= n) {
                 break;
@@ -287,69 +286,16 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             else {
                 break;
             };
-            progress.phase("trace");
-            let t = Instant::now();
-            let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
-            stats.trace += t.elapsed();
-            stats.photons_emitted += u64::from(r.photons);
-            stats.photons_stored += maps.stored;
-            stats.add_near_light(accumulation.passes, maps.near_light_fraction);
-            stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
-            let scale = radius_scale(pass, f64::from(s.alpha)) as f32;
-            let cache = if r.mode == Mode::FinalGather {
-                progress.phase("precompute");
-                let t = Instant::now();
-                let cache = self.pass_cache(scene, assignment, &maps.trees, &pilot, &options, scale)?;
-                stats.precompute += t.elapsed();
-                Some(cache)
-            } else {
-                None
-            };
-            progress.phase("render");
-            let t = Instant::now();
-            let volumes = PassVolumes {
+            self.render_pass(
                 scene,
-                trees: &maps.trees,
-                pilot: &pilot,
-                estimator: &self.estimator,
-                options: &options,
-                scale,
-            };
-            let streams = SampleStreams { seed: r.seed, pass };
-            let sums = &mut accumulation.sums;
-            let width = r.width as usize;
-            let add = |tile: &Tile, pixels: &[Vec3]| {
-                for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
-                    let start = (tile.y as usize + row) * width + tile.x as usize;
-                    for (i, p) in chunk.iter().enumerate() {
-                        sums.add_value(start + i, *p);
-                    }
-                }
-            };
-            // The mode chooses what the pass reads at a diffuse hit; the core renders it.
-            match (&cache, r.mode) {
-                (Some(cache), _) => {
-                    let reads = PassGather {
-                        volumes: &volumes,
-                        cache,
-                        options: r.final_gather,
-                    };
-                    render_tiles(&FinalGatherSource { reads }, &frame, streams, progress, add)
-                }
-                (None, mode) => {
-                    let direct = match mode {
-                        Mode::ShadowRays => DirectLight::ShadowRays,
-                        _ => DirectLight::Photons,
-                    };
-                    let source = PassPhotonSource {
-                        volumes: &volumes,
-                        direct,
-                    };
-                    render_tiles(&source, &frame, streams, progress, add)
-                }
-            };
-            drop(maps);
-            stats.render += t.elapsed();
+                assignment,
+                &pilot,
+                &options,
+                pass,
+                &mut accumulation,
+                &mut stats,
+                progress,
+            )?;
             accumulation.passes += 1;
             progress.pass_done(accumulation.passes, stats.photons_emitted);
             stats.passes = accumulation.passes;
@@ -368,6 +314,79 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
 }
 
 impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
+    /// Pass `pass`: traces its photons, builds its maps (and for the final gather its cache),
+    /// renders it through the mode's source and adds it to `accumulation`'s sums, timing each
+    /// phase into `stats`.
+    #[allow(clippy::too_many_arguments)]
+    fn render_pass(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        pilot: &Pilot,
+        options: &EstimatorOptions,
+        pass: u64,
+        accumulation: &mut Accumulation,
+        stats: &mut ProgressiveStats,
+        progress: &dyn Progress,
+    ) -> Result<(), RenderError> {
+        let r = &self.settings.render;
+        progress.phase("trace");
+        let t = Instant::now();
+        let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
+        stats.trace += t.elapsed();
+        stats.photons_emitted += u64::from(r.photons);
+        stats.photons_stored += maps.stored;
+        stats.add_near_light(accumulation.passes, maps.near_light_fraction);
+        stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+        let scale = radius_scale(pass, f64::from(self.settings.alpha)) as f32;
+        let cache = if r.mode == Mode::FinalGather {
+            progress.phase("precompute");
+            let t = Instant::now();
+            let cache = self.pass_cache(scene, assignment, &maps.trees, pilot, options, scale)?;
+            stats.precompute += t.elapsed();
+            Some(cache)
+        } else {
+            None
+        };
+        progress.phase("render");
+        let t = Instant::now();
+        let volumes = PassVolumes {
+            scene,
+            trees: &maps.trees,
+            pilot,
+            estimator: &self.estimator,
+            options,
+            scale,
+        };
+        let (frame, streams) = (r.frame(), SampleStreams { seed: r.seed, pass });
+        let sums = &mut accumulation.sums;
+        let add = |tile: &Tile, pixels: &[Vec3]| sums.add_tile(tile, pixels);
+        // The mode chooses what the pass reads at a diffuse hit; the core renders it.
+        match (&cache, r.mode) {
+            (Some(cache), _) => {
+                let reads = PassGather {
+                    volumes: &volumes,
+                    cache,
+                    options: r.final_gather,
+                };
+                render_tiles(&FinalGatherSource { reads }, &frame, streams, progress, add)
+            }
+            (None, mode) => {
+                let direct = match mode {
+                    Mode::ShadowRays => DirectLight::ShadowRays,
+                    _ => DirectLight::Photons,
+                };
+                let source = PassPhotonSource {
+                    volumes: &volumes,
+                    direct,
+                };
+                render_tiles(&source, &frame, streams, progress, add)
+            }
+        };
+        stats.render += t.elapsed();
+        Ok(())
+    }
+
     /// A pass's final-gather cache: irradiance at one photon in n of the pass (from the others), each in the
     /// pass's fixed volume there (the pilot's extent times the pass's shrink factor).
     fn pass_cache(

@@ -11,6 +11,7 @@
 //! Within that, `hi` is the exact sum correctly rounded, whatever the grouping, and the mean
 //! `hi / passes` rounded to f32 is the same bits.
 
+use crate::core::Tile;
 use crate::error::RenderError;
 use crate::image::Image;
 use glam::{DVec3, Vec3};
@@ -104,6 +105,18 @@ impl PassSums {
         let v = value.as_dvec3();
         for c in 0..3 {
             (hi[c], lo[c]) = add_exact(hi[c], lo[c], v[c], 0.0);
+        }
+    }
+
+    /// Adds one pass's values of the pixels of `tile` (row by row, as the render core's tile
+    /// loop hands them over).
+    pub(crate) fn add_tile(&mut self, tile: &Tile, pixels: &[Vec3]) {
+        let width = self.width as usize;
+        for (row, chunk) in pixels.chunks_exact(tile.width as usize).enumerate() {
+            let start = (tile.y as usize + row) * width + tile.x as usize;
+            for (i, p) in chunk.iter().enumerate() {
+                self.add_value(start + i, *p);
+            }
         }
     }
 

@@ -31,7 +31,7 @@ use crate::settings::RenderSettings;
 use crate::source::direct_irradiance;
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
-use pm_trace::{Material, Partitioner, RayKind, Rng, Scene, SingleMap};
+use pm_trace::{MapAssignment, Material, Partitioner, RayKind, Rng, Scene, SingleMap};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};
 use std::ops::ControlFlow;
@@ -148,42 +148,22 @@ impl SppmRenderer {
                 map_count: 1,
                 ..ProgressiveStats::default()
             };
-            let width = r.width as usize;
-            let mut state = vec![PixelState::default(); width * r.height as usize];
+            let mut state = vec![PixelState::default(); r.width as usize * r.height as usize];
             stats.accumulation_bytes = (state.capacity() * size_of::<PixelState>()) as u64;
             let mut passes = 0u64;
             loop {
                 if s.passes.is_some_and(|n| passes >= n) {
                     break;
                 }
-                progress.phase("trace");
-                let t = Instant::now();
-                let maps = trace_pass(scene, &assignment, r, passes, options.kinds)?;
-                stats.trace += t.elapsed();
-                stats.photons_emitted += u64::from(r.photons);
-                stats.photons_stored += maps.stored;
-                stats.add_near_light(passes, maps.near_light_fraction);
-                stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
-                progress.phase("render");
-                let t = Instant::now();
-                let pass = Pass {
+                self.pass(
                     scene,
-                    tree: &maps.trees[0],
-                    options: &options,
-                    settings: r,
-                    alpha: s.alpha,
-                    pass: passes,
-                };
-                state.par_chunks_mut(width).enumerate().for_each_init(
-                    Neighbours::new,
-                    |neighbours, (y, row)| {
-                        for (x, pixel) in row.iter_mut().enumerate() {
-                            pass.update(x as u32, y as u32, pixel, neighbours);
-                        }
-                    },
-                );
-                stats.render += t.elapsed();
-                drop(maps);
+                    &assignment,
+                    &options,
+                    passes,
+                    &mut state,
+                    &mut stats,
+                    progress,
+                )?;
                 passes += 1;
                 progress.pass_done(passes, stats.photons_emitted);
                 stats.passes = passes;
@@ -212,6 +192,52 @@ impl SppmRenderer {
             .image()?;
             Ok(SppmRendered { image, stats })
         })?
+    }
+}
+
+impl SppmRenderer {
+    /// Pass `pass`: traces its photons into one map and updates every pixel's state from
+    /// them, timing both into `stats`.
+    #[allow(clippy::too_many_arguments)]
+    fn pass(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        options: &EstimatorOptions,
+        pass: u64,
+        state: &mut [PixelState],
+        stats: &mut ProgressiveStats,
+        progress: &dyn Progress,
+    ) -> Result<(), RenderError> {
+        let r = &self.settings.render;
+        progress.phase("trace");
+        let t = Instant::now();
+        let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
+        stats.trace += t.elapsed();
+        stats.photons_emitted += u64::from(r.photons);
+        stats.photons_stored += maps.stored;
+        stats.add_near_light(pass, maps.near_light_fraction);
+        stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+        progress.phase("render");
+        let t = Instant::now();
+        let update = Pass {
+            scene,
+            tree: &maps.trees[0],
+            options,
+            settings: r,
+            alpha: self.settings.alpha,
+            pass,
+        };
+        state.par_chunks_mut(r.width as usize).enumerate().for_each_init(
+            Neighbours::new,
+            |neighbours, (y, row)| {
+                for (x, pixel) in row.iter_mut().enumerate() {
+                    update.update(x as u32, y as u32, pixel, neighbours);
+                }
+            },
+        );
+        stats.render += t.elapsed();
+        Ok(())
     }
 }
 
