@@ -4,18 +4,14 @@
 use crate::error::RenderError;
 use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
 use glam::Vec3;
-use pm_kdtree::{Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
+use pm_kdtree::{KindMask, Photon, PhotonKind, PhotonTree};
 use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};
 use rayon::prelude::*;
 use std::f32::consts::FRAC_1_PI;
 
-/// Candidates examined per lookup for one whose normal agrees with the query's.
-const CANDIDATES: usize = 8;
+mod points;
 
-/// The smallest cosine between a cache point's normal and the query's for the point to answer
-/// (about 25°): the nearest point on the other side of a thin sheet, or across a sharp fold of
-/// one map's surface, is passed over.
-pub const NORMAL_AGREEMENT: f32 = 0.9;
+pub use points::{IrradiancePoint, IrradiancePoints, NORMAL_AGREEMENT};
 
 /// Where [`RadianceCache::build_with`] asks for an irradiance estimate, and from what.
 #[derive(Clone, Copy, Debug)]
@@ -60,8 +56,9 @@ pub struct CachePoint<'a> {
 /// each map's own count ratio instead would be unbiased only given that some photon is kept,
 /// and too dark by n⁻ᴺ in a map of N photons.)
 ///
-/// The points are kept per map in a [`PhotonTree`] (20 bytes each: the position, the
-/// irradiance as unbiased 12-bit log codes, the normal as an octahedral code).
+/// The points are kept per map as [`IrradiancePoints`]: position, normal and irradiance in
+/// full precision (48 bytes a point with the index), the caustic photons apart in a tree of
+/// their own per map ([`RadianceCache::caustic_tree`]).
 ///
 /// [`RadianceCache::irradiance`] answers a query at a surface point of map `m` with the nearest
 /// cache point of map `m` whose normal agrees with the query's (cosine at least
@@ -96,9 +93,8 @@ pub struct CachePoint<'a> {
 /// ```
 #[derive(Clone, Debug)]
 pub struct RadianceCache {
-    /// One tree per photon map: "photons" whose power is the irradiance (W/m²) and whose
-    /// direction is the surface normal on the side the photons arrived from.
-    maps: Vec<PhotonTree>,
+    /// Per photon map: its irradiance points.
+    points: Vec<IrradiancePoints>,
     map_of_part: Vec<u32>,
     /// Per photon map: its photons of kind caustic alone (Jensen's caustic map, split as the
     /// photon maps are), so that a caustic estimate does not wade through the others.
@@ -199,7 +195,7 @@ impl RadianceCache {
                     set_aside,
                     &irradiance,
                 );
-                PhotonTree::build(points).map_err(|e| RenderError::BadFinalGather(e.to_string()))
+                IrradiancePoints::new(points)
             })
             .collect::<Result<Vec<_>, _>>()?;
         let photons = splits.into_iter().map(|(_, others)| others).collect();
@@ -216,7 +212,7 @@ impl RadianceCache {
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(RadianceCache {
-            maps: cache,
+            points: cache,
             map_of_part,
             caustics,
             photons,
@@ -252,28 +248,12 @@ impl RadianceCache {
         radius: f32,
         scratch: &mut EstimatorScratch,
     ) -> Option<Vec3> {
-        let tree = self.maps.get(map as usize)?;
-        let max_distance = radius.min(self.max_distance);
-        if tree.is_empty() {
-            return None;
-        }
-        let neighbours = &mut scratch.neighbours;
-        // The nearest point first (almost always the answer), then more candidates.
-        tree.nearest_k::<Euclidean>(position, 1, max_distance, KindMask::ALL, neighbours);
-        let agrees = |p: &pm_kdtree::CompactPhoton| p.direction().dot(normal) >= NORMAL_AGREEMENT;
-        match neighbours.as_slice().first().map(|n| tree.get(n.index)) {
-            None => return None,
-            Some(p) if agrees(&p) => return Some(p.power(tree.power_scale())),
-            Some(_) => {}
-        }
-        tree.nearest_k::<Euclidean>(position, CANDIDATES, max_distance, KindMask::ALL, neighbours);
-        neighbours.sort_by_distance();
-        neighbours
-            .as_slice()
-            .iter()
-            .map(|n| tree.get(n.index))
-            .find(agrees)
-            .map(|p| p.power(tree.power_scale()))
+        self.points.get(map as usize)?.nearest_agreeing(
+            position,
+            normal,
+            radius.min(self.max_distance),
+            &mut scratch.neighbours,
+        )
     }
 
     /// The photons of map `map` that are not cache points, which the cache estimated from
@@ -322,9 +302,14 @@ impl RadianceCache {
         self.caustics.get(map as usize).filter(|t| !t.is_empty())
     }
 
+    /// The irradiance points of photon map `map`.
+    pub fn points(&self, map: u32) -> Option<&IrradiancePoints> {
+        self.points.get(map as usize)
+    }
+
     /// Cache points over all maps.
     pub fn len(&self) -> usize {
-        self.maps.iter().map(PhotonTree::len).sum()
+        self.points.iter().map(IrradiancePoints::len).sum()
     }
 
     /// True when no map has a cache point.
@@ -334,7 +319,10 @@ impl RadianceCache {
 
     /// Bytes held by the cache (its trees and the part-to-map table).
     pub fn memory_bytes(&self) -> usize {
-        self.maps.iter().map(PhotonTree::memory_bytes).sum::<usize>()
+        self.points
+            .iter()
+            .map(IrradiancePoints::memory_bytes)
+            .sum::<usize>()
             + self.map_of_part.len() * size_of::<u32>()
             + self.caustics.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + self.photons.iter().map(PhotonTree::memory_bytes).sum::<usize>()
@@ -355,7 +343,7 @@ fn cache_points<F>(
     others: &PhotonTree,
     set_aside: f64,
     irradiance: &F,
-) -> Vec<Photon>
+) -> Vec<IrradiancePoint>
 where
     F: Fn(CachePoint<'_>, &mut EstimatorScratch) -> Vec3 + Sync,
 {
@@ -385,11 +373,10 @@ where
                 at,
                 photons: others,
             };
-            Some(Photon {
+            Some(IrradiancePoint {
                 position,
-                power: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
-                direction: hit.normal,
-                kind: PhotonKind::Direct,
+                normal: hit.normal,
+                irradiance: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
             })
         })
         .flatten()
