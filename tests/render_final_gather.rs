@@ -106,7 +106,7 @@ fn relative(a: Vec3, b: Vec3) -> Vec3 {
 fn agrees_with_the_path_tracer(name: &str, image_tolerance: f32, region_tolerance: f32) {
     let scene = scenes::build(name).unwrap();
     let crease = CreaseAngle::default();
-    let halves = [7, 8].map(|seed| render(&scene, &crease, settings(Mode::PathTrace, 512, seed)));
+    let halves = [7, 8].map(|seed| render(&scene, &crease, settings(Mode::PathTrace, 768, seed)));
     let reference = Image::from_pixels(
         SIZE,
         SIZE,

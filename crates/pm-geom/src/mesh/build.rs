@@ -20,8 +20,8 @@ impl HalfEdgeMesh {
     /// Builds the mesh from `positions` and convex planar `faces` given as index lists.
     ///
     /// Steps: every position must be finite and every face must have ≥ 3 in-range indices
-    /// (else an error naming the culprit); vertices within `options.weld_tolerance` are
-    /// welded; in each face, consecutive duplicate vertices are removed; faces left with
+    /// (else an error naming the culprit); vertices within `options.weld_tolerance` (at most
+    /// [`MeshOptions::MAX_RELATIVE_WELD`] of the mesh's own size) are welded; in each face, consecutive duplicate vertices are removed; faces left with
     /// fewer than 3 vertices, a vertex used twice, or (near) zero area are dropped and
     /// counted ([`HalfEdgeMesh::dropped_face_count`]). Two half-edges on the same vertex pair
     /// with opposite directions become twins; an edge with more than two half-edges, or with
@@ -33,7 +33,7 @@ impl HalfEdgeMesh {
         options: &MeshOptions,
     ) -> Result<Self, MeshError> {
         check_input(positions, faces)?;
-        let (welded, remap) = weld(positions, options.weld_tolerance);
+        let (welded, remap) = weld(positions, options.tolerance_for(positions));
         let mut mesh = HalfEdgeMesh {
             positions: welded,
             face_starts: vec![0],

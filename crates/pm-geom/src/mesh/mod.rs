@@ -29,11 +29,35 @@ pub struct HalfEdgeId(pub u32);
 /// Build options.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshOptions {
-    /// Vertices within this distance (absolute, metres) are welded into one: each position
-    /// joins the first earlier vertex within reach (a greedy clustering through a hash grid,
-    /// so a chain of points each just within reach of the next is not merged end to end).
-    /// Zero, negative or NaN welds only identical positions.
+    /// Vertices within this distance (metres) are welded into one: each position joins the
+    /// first earlier vertex within reach (a greedy clustering through a hash grid, so a chain
+    /// of points each just within reach of the next is not merged end to end). Capped at
+    /// [`MeshOptions::MAX_RELATIVE_WELD`] of the mesh's bounding-box diagonal, so that a mesh
+    /// a micrometre across is not welded into a point. Zero, negative or NaN welds only
+    /// identical positions.
     pub weld_tolerance: f32,
+}
+
+impl MeshOptions {
+    /// The largest weld distance as a share of a mesh's bounding-box diagonal (10⁻⁶: the
+    /// default 1 µm for a mesh 1 m across, 1 pm for one 1 µm across).
+    pub const MAX_RELATIVE_WELD: f32 = 1e-6;
+
+    /// The weld distance for a mesh of `positions`: [`MeshOptions::weld_tolerance`], capped at
+    /// [`MeshOptions::MAX_RELATIVE_WELD`] of their bounding-box diagonal.
+    pub fn tolerance_for(&self, positions: &[Vec3]) -> f32 {
+        let (lo, hi) = positions
+            .iter()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let diagonal = (hi - lo).length();
+        if diagonal.is_finite() {
+            self.weld_tolerance.min(Self::MAX_RELATIVE_WELD * diagonal)
+        } else {
+            self.weld_tolerance
+        }
+    }
 }
 
 impl Default for MeshOptions {

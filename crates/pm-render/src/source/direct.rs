@@ -26,7 +26,7 @@ pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, 
         if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
             continue;
         }
-        if !scene.occluded(hit.position, hit.position + sample.direction * sample.distance) {
+        if !scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
             e += sample.radiance_over_pdf * cos;
         }
     }
@@ -66,7 +66,7 @@ pub(crate) fn direct_irradiance_mis(
         if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
             continue;
         }
-        if scene.occluded(hit.position, hit.position + sample.direction * sample.distance) {
+        if scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
             continue;
         }
         let weight = match light.incident_pdf(hit.position, sample.direction) {

@@ -35,7 +35,7 @@ pub struct EmittedRay {
 /// A shadow-ray sample towards a light from a receiving point.
 ///
 /// The irradiance at the point is estimated by `E ≈ radiance_over_pdf · max(0, n · direction)`
-/// when the segment to the light is unoccluded (`Scene::occluded(point, point + direction ·
+/// when the segment to the light is unoccluded (`Scene::occluded_from(hit, point + direction ·
 /// distance)`). For delta lights (point, spot, directional) `radiance_over_pdf` is the
 /// incident irradiance on a surface facing the light.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -358,7 +358,8 @@ impl SceneBuilder {
         camera
             .validate()
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
-        let epsilon = 1e-5 * bounds.size().max_element().max(1.0);
+        let far = Vec3::splat(reach);
+        let epsilon = super::offset::point_error(far, far, bounds.diagonal());
         let has_culling = surfaces.surfaces.iter().any(|s| s.sides.culls_back());
         Ok(Scene {
             meshes,

@@ -4,6 +4,7 @@
 mod builder;
 mod checks;
 mod mesh_input;
+pub mod offset;
 mod queries;
 mod shading;
 
@@ -75,6 +76,17 @@ pub struct Hit {
     /// Index of the part's surface in the scene's surface table (read with the triangle, so
     /// [`Scene::surface`] needs no per-part lookup).
     surface: u32,
+    /// A bound on the distance of `position` from the true surface point (rounding).
+    error: f32,
+}
+
+impl Hit {
+    /// A bound on the distance of [`Hit::position`] from the surface point the ray really
+    /// meets: its rounding error, which scales with the magnitudes it was computed from
+    /// ([`offset::point_error`]). [`Scene::spawn_ray`] starts rays this far off the surface.
+    pub fn error(&self) -> f32 {
+        self.error
+    }
 }
 
 /// A mesh of the scene and the parts of its faces.
@@ -156,7 +168,11 @@ impl Scene {
         &self.bvh
     }
 
-    /// The distance used to push rays off surfaces (1e-5 × the scene's size, at least 1e-5 m).
+    /// A bound on the rounding error of any hit point in this scene: [`offset::point_error`]
+    /// for a ray from the scene's farthest coordinate across its whole diagonal. Tolerances
+    /// that are not about one hit (the short cast that finds a stored photon's surface, the
+    /// match of a ray's hit with a light's surface) use it; rays leaving a hit use the hit's
+    /// own, tighter [`Hit::error`].
     pub fn epsilon(&self) -> f32 {
         self.epsilon
     }

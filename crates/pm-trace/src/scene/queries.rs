@@ -1,6 +1,7 @@
 //! The scene's ray queries: closest hits (one ray, or two interleaved), occlusion between two
 //! points, and rays leaving a hit.
 
+use super::offset::{offset_point, point_error};
 use super::{Hit, RayKind, Scene};
 use crate::Ray;
 use crate::bvh::{HitPrimitive, PartSurface};
@@ -74,6 +75,7 @@ impl Scene {
             front_face,
             part,
             surface,
+            error: point_error(ray.origin, position, t),
         }
     }
 
@@ -97,24 +99,50 @@ impl Scene {
         }
     }
 
-    /// True when a surface lies strictly between `from` and `to` (surfaces within
-    /// [`Scene::epsilon`] of either end do not count, so both may lie on surfaces).
+    /// True when a surface lies strictly between `from` and `to` (surfaces within the
+    /// rounding error of either end do not count, so both may lie on surfaces).
     #[inline]
     pub fn occluded(&self, from: Vec3, to: Vec3) -> bool {
         let d = to - from;
         let dist = d.length();
-        if !dist.is_finite() || dist <= 2.0 * self.epsilon {
+        let error = point_error(from, to, dist);
+        if !dist.is_finite() || dist <= 2.0 * error {
             return false;
         }
         let ray = Ray {
             origin: from,
             direction: d / dist,
         };
-        self.bvh.any_hit(&ray, self.epsilon, dist - self.epsilon)
+        self.bvh.any_hit(&ray, error, dist - error)
+    }
+
+    /// True when a surface lies between the surface point `hit` and `to`: the shadow ray
+    /// starts off `hit`'s surface as [`Scene::spawn_ray`]'s do, and surfaces within the
+    /// rounding error of `to` do not count (it may lie on a light's surface).
+    #[inline]
+    pub fn occluded_from(&self, hit: &Hit, to: Vec3) -> bool {
+        let side = if (to - hit.position).dot(hit.normal) >= 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        let from = offset_point(hit.position, side, hit.error);
+        let d = to - from;
+        let dist = d.length();
+        let error = point_error(from, to, dist);
+        if !dist.is_finite() || dist <= error {
+            return false;
+        }
+        let ray = Ray {
+            origin: from,
+            direction: d / dist,
+        };
+        self.bvh.any_hit(&ray, 0.0, dist - error)
     }
 
     /// A ray leaving `hit` along unit `direction`, its origin pushed off the surface to the
-    /// side `direction` goes to (avoids re-hitting the same surface).
+    /// side `direction` goes to by the hit's rounding error ([`Hit::error`]) and one float
+    /// step more, so it neither re-hits the same surface nor starts beyond a thin wall.
     #[inline]
     pub fn spawn_ray(&self, hit: &Hit, direction: Vec3) -> Ray {
         let side = if direction.dot(hit.normal) >= 0.0 {
@@ -123,7 +151,7 @@ impl Scene {
             -hit.normal
         };
         Ray {
-            origin: hit.position + side * self.epsilon,
+            origin: offset_point(hit.position, side, hit.error),
             direction,
         }
     }
