@@ -66,7 +66,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let base = args
         .out
         .clone()
-        .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
+        .unwrap_or_else(|| super::default_out(&scene_name));
     let dependencies = scene_dependencies(&args.scene);
     let inputs = scene_inputs(&args.scene, &dependencies);
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
