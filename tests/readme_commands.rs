@@ -27,10 +27,11 @@ fn writes_only_under_target(label: &str, name: &str, args: &[&str], expected: &[
         .current_dir(&copy.dir)
         .output()
         .expect("the example starts");
+    example::assert_ok(args, &output);
+    let differing = copy.differing();
     assert!(
-        output.status.success(),
-        "{name} {args:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
+        differing.is_empty(),
+        "{name} {args:?} changed tracked files: {differing:?}"
     );
     for file in expected {
         assert!(
@@ -39,11 +40,6 @@ fn writes_only_under_target(label: &str, name: &str, args: &[&str], expected: &[
         );
         assert!(file.starts_with("target/"), "{file} is not under target/");
     }
-    let differing = copy.differing();
-    assert!(
-        differing.is_empty(),
-        "{name} {args:?} changed tracked files: {differing:?}"
-    );
     if let (Some(before), Some(after)) = (before, tracked::snapshot()) {
         let changed = tracked::changed(&before, &after);
         assert!(
