@@ -53,3 +53,19 @@ fn every_example_answers_help_at_once_and_writes_nothing() {
         assert!(changed.is_empty(), "--help changed tracked files: {changed:?}");
     }
 }
+
+/// What the guide promises of a misspelt value: the list of possible values, and clap's
+/// "a similar value exists" tip when one is close.
+#[test]
+fn a_close_misspelling_gets_the_list_and_a_suggestion() {
+    let Some(output) = example::run(&["--maps", "creese"]) else {
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "--maps creese was accepted");
+    assert!(
+        stderr.contains("[possible values: single, crease, contact]"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("a similar value exists: 'crease'"), "{stderr}");
+}
