@@ -2,14 +2,17 @@
 //! seconds for path tracing, SPPM, the progressive renderer (disc, cube and ball with crease
 //! maps), the final gather and the progressive final gather on the report's four scenes; the
 //! light leaked into the unlit room and the accordion's crease bias per pass count. Writes
-//! `docs/convergence.md` and `docs/images/convergence-<scene>.png`.
+//! `convergence.md` and `images/convergence-<scene>.png` into `--out-dir` (default
+//! `target/convergence`; `--out-dir docs` regenerates the repository's own).
 //!
 //! Each (scene, method) is run once, to the largest budget, and the accumulated image's error
 //! is read after every pass (off the clock): the error at a budget is that of the last pass
 //! that ended within it. So the study takes about scenes × methods × the largest budget (about
-//! 30 minutes on 2 cores), plus the references. Those are kept in `--reference-dir` (the
-//! repository's `docs/convergence-references`, 125×125, made by this example) and reused;
-//! `--extend-references S` path traces S more seconds into each, `--references-only` stops
+//! 30 minutes on 2 cores), plus the references. Those are kept in `--reference-dir` and
+//! reused; without it, the repository's `docs/convergence-references` (125×125, made by this
+//! example) are read, and a reference they lack is made in `target/convergence-references`:
+//! nothing is written into the repository unless its folder is named. `--extend-references S`
+//! path traces S more seconds into each (it needs `--reference-dir`), `--references-only` stops
 //! after them. Without one, a `results` reference of a whole multiple of the size is
 //! box-filtered down, or else one is path traced for `--reference-seconds`.
 //!
@@ -18,8 +21,9 @@
 //! references as they are now and rewrites the Markdown and charts in seconds, so extending
 //! a reference does not need the study run again.
 //!
-//! The full study: `cargo run --release --example convergence -- --clock cpu`
-//! A smoke test in seconds: `cargo run --release --example convergence -- --quick --out-dir /tmp/c`
+//! The full study: `cargo run --release --example convergence -- --clock cpu --out-dir docs`
+//! A smoke test in seconds (writes under `target/convergence`):
+//! `cargo run --release --example convergence -- --quick`
 
 #[path = "convergence/chart.rs"]
 mod chart;
@@ -93,8 +97,9 @@ struct Args {
     #[arg(long)]
     references_only: bool,
     /// Where references are kept (one EXR, its first half and a note per scene and size; delete
-    /// to re-render) [default: docs/convergence-references, the study's own in the repository;
-    /// quick: target/convergence-quick-references].
+    /// to re-render) [default: read from docs/convergence-references, the study's own in the
+    /// repository, and made in target/convergence-references where that has none; quick:
+    /// target/convergence-quick-references].
     #[arg(long)]
     reference_dir: Option<PathBuf>,
     /// Where the `results` example caches its (larger) references: one whose size is a whole
@@ -147,8 +152,9 @@ struct Args {
     /// Skip the leak and crease tables (for quick experiments with the convergence tables).
     #[arg(long)]
     no_per_pass: bool,
-    /// Output folder: writes convergence.md there and the charts in its images/ folder.
-    #[arg(long, default_value = "docs")]
+    /// Output folder: writes convergence.md there and the charts in its images/ folder
+    /// (`--out-dir docs` regenerates the repository's own).
+    #[arg(long, default_value = "target/convergence")]
     out_dir: PathBuf,
     /// Keep what the study measured in this folder (`study.json`, and per scene and method
     /// the image each budget's error is read from) so that `--rescore` can measure it again.
@@ -179,15 +185,25 @@ fn main() -> ExitCode {
     }
 }
 
-/// Where the references are kept: the repository's own, or a scratch folder for quick runs.
-fn reference_dir(args: &Args) -> PathBuf {
-    args.reference_dir.clone().unwrap_or_else(|| {
-        PathBuf::from(if args.quick {
-            "target/convergence-quick-references"
-        } else {
-            "docs/convergence-references"
-        })
-    })
+/// The repository's references, read (never written) when `--reference-dir` is not given.
+const REPOSITORY_REFERENCES: &str = "docs/convergence-references";
+
+/// Where the reference of scene `name` at `size`² is kept: the folder named, or else the
+/// repository's own where it has this one, or a scratch folder under `target/` (so that a run
+/// naming no folder writes nothing into the repository).
+fn reference_dir(args: &Args, name: &str, size: u32) -> PathBuf {
+    if let Some(dir) = &args.reference_dir {
+        return dir.clone();
+    }
+    if args.quick {
+        return PathBuf::from("target/convergence-quick-references");
+    }
+    let repository = PathBuf::from(REPOSITORY_REFERENCES);
+    if repository.join(format!("{name}-{size}x{size}.exr")).is_file() {
+        repository
+    } else {
+        PathBuf::from("target/convergence-references")
+    }
 }
 
 fn list<T: std::str::FromStr>(text: &str, what: &str) -> Result<Vec<T>, String> {
@@ -204,7 +220,10 @@ fn run(args: &Args) -> Result<(), String> {
         }
         saved::rescore(&saved::Rescore {
             record,
-            references: &reference_dir(args),
+            references: args
+                .reference_dir
+                .as_deref()
+                .unwrap_or(REPOSITORY_REFERENCES.as_ref()),
             out_dir: &args.out_dir,
             charts: charts.is_ok(),
         })?;
@@ -234,6 +253,11 @@ fn run(args: &Args) -> Result<(), String> {
     };
     if !(reference_seconds.seconds > 0.0 && reference_seconds.extend >= 0.0) {
         return Err("--reference-seconds must be positive and --extend-references not negative".into());
+    }
+    if reference_seconds.extend > 0.0 && args.reference_dir.is_none() {
+        return Err(format!(
+            "--extend-references writes into the references: name their folder (--reference-dir {REPOSITORY_REFERENCES} extends the repository's own)"
+        ));
     }
     if budgets.is_empty() || budgets.iter().any(|b| !(b.is_finite() && *b > 0.0)) {
         return Err("--budgets must be positive seconds".into());
@@ -314,7 +338,7 @@ fn run(args: &Args) -> Result<(), String> {
             &scene,
             base,
             reference_seconds,
-            (&reference_dir(args), &args.results_references),
+            (&reference_dir(args, name, size), &args.results_references),
         )?;
         let mask = if args.all_pixels {
             mask::Mask::all(size, size)
@@ -397,7 +421,7 @@ fn run(args: &Args) -> Result<(), String> {
                 extend: 0.0,
                 ..reference_seconds
             },
-            (&reference_dir(args), &args.results_references),
+            (&reference_dir(args, "accordion", size), &args.results_references),
         )?;
         per_pass::tables(base, photons_only, &counts, &accordion.image, &mut study)?;
     }

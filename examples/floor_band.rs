@@ -11,11 +11,21 @@
 //! replicates: `FLOOR_BAND_SEEDS=8,9,10` (progressive seeds, default 7), `FLOOR_BAND_MAPS=contact`
 //! (default both), and `FLOOR_BAND_TRUTH=MEAN,SE` to reuse a reference printed before.
 
+use clap::Parser;
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
 use photon_maps::trace::glam::{DVec3, Vec3};
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene};
 use std::path::PathBuf;
+
+/// The floor band beside the glTF Cornell box's blocks: crease against contact maps, per
+/// progressive pass count, against the path tracer. Prints a table; writes nothing.
+#[derive(Parser, Debug)]
+struct Args {
+    /// The glTF scene.
+    #[arg(default_value = "../shared/gltf-corpus/cornell/007Renderer/cornell_box.gltf")]
+    scene: PathBuf,
+}
 
 const SIZE: u32 = 128;
 const CHECKPOINTS: [u64; 5] = [0, 16, 64, 256, 1024];
@@ -23,10 +33,7 @@ const REFERENCE_REPLICATES: u64 = 4;
 const REFERENCE_SPP: u32 = 4096;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let path = std::env::args()
-        .nth(1)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("../shared/gltf-corpus/cornell/007Renderer/cornell_box.gltf"));
+    let path = Args::parse().scene;
     let scene = photon_maps::trace::gltf::load_scene(&path)?;
     let bounds = scene.bounds();
     // "1 cm" in the 0.55 m Cornell box (diagonal 0.95 m), scaled to the file's units.

@@ -52,8 +52,9 @@ struct Args {
     /// Radiance estimator [default: cube].
     #[arg(long, value_enum)]
     estimator: Option<EstimatorChoice>,
-    /// Render mode.
-    #[arg(long, value_enum, default_value_t = ModeChoice::PhotonMap)]
+    /// Render mode: final-gather (the default) for clean pictures, photon-map for the
+    /// report's view of the maps themselves (the default with --compare).
+    #[arg(long, value_enum, default_value_t = ModeChoice::FinalGather)]
     mode: ModeChoice,
     /// Photon paths emitted from the lights.
     #[arg(long, default_value_t = 100_000)]
@@ -64,9 +65,10 @@ struct Args {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "500x500")]
     size: String,
-    /// Samples per pixel (`RenderSettings::samples_per_pixel`).
-    #[arg(long = "samples-per-pixel", visible_alias = "spp", default_value_t = 1)]
-    spp: u32,
+    /// Samples per pixel (`RenderSettings::samples_per_pixel`) [default: 16 in final-gather
+    /// mode, else 1].
+    #[arg(long = "samples-per-pixel", visible_alias = "spp")]
+    spp: Option<u32>,
     /// Worker threads; 0 = rayon's global pool, one thread per core unless RAYON_NUM_THREADS
     /// says otherwise (`RenderSettings::threads`).
     #[arg(long, default_value_t = 0)]
@@ -78,7 +80,7 @@ struct Args {
     /// --compare picked so that about 1 % of the pixels clip].
     #[arg(long, allow_negative_numbers = true)]
     exposure: Option<f32>,
-    /// Output path; its .exr and .png siblings are written (default out/<scene>.exr).
+    /// Output path; its .exr and .png siblings are written (default target/out/<scene>.exr).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Write the figures of the render(s) as JSON here.
@@ -110,16 +112,17 @@ struct Args {
     /// Merge progressive shards (EXR files) into --out.
     #[arg(long, num_args = 1..)]
     merge: Vec<PathBuf>,
-    /// Final-gather mode: gather rays per camera sample [default: 64].
+    /// Final-gather mode, and progressive mode, where it makes each pass a final gather: gather
+    /// rays per camera sample [default: 4].
     #[arg(long)]
     gather_rays: Option<u32>,
-    /// Final-gather mode: irradiance is precomputed at one photon in n (n ≥ 2), from the
-    /// others [default: 4].
+    /// Final-gather mode (and progressive with --gather-rays): irradiance is precomputed at
+    /// one photon in n (n ≥ 2), from the others [default: 4].
     #[arg(long)]
     cache_every: Option<u32>,
-    /// Final-gather mode: gather hits closer than this (metres) take one more bounce
-    /// instead of reading the cache (Jensen's corner rule; 0: never) [default: 5 % of the
-    /// scene's bounding-box diagonal].
+    /// Final-gather mode (and progressive with --gather-rays): gather hits closer than this
+    /// (metres) take one more bounce instead of reading the cache (Jensen's corner rule; 0:
+    /// never) [default: 5 % of the scene's bounding-box diagonal].
     #[arg(long)]
     corner_distance: Option<f32>,
 }
@@ -133,6 +136,16 @@ impl Args {
     /// `--estimator`, or its default.
     fn estimator(&self) -> EstimatorKind {
         self.estimator.unwrap_or(EstimatorChoice::Cube).into()
+    }
+
+    /// `--samples-per-pixel`, or its default: 16 camera samples of 4 gather rays (`gather.rs`)
+    /// in final-gather mode, 1 in the others.
+    fn spp(&self) -> u32 {
+        self.spp.unwrap_or(if self.mode == ModeChoice::FinalGather {
+            gather::SAMPLES_PER_PIXEL
+        } else {
+            1
+        })
     }
 
     /// `--exposure`, or 0 stops.
@@ -150,10 +163,14 @@ struct Variant {
 
 fn main() -> ExitCode {
     let matches = Args::command().get_matches();
-    let args = match Args::from_arg_matches(&matches) {
+    let mut args = match Args::from_arg_matches(&matches) {
         Ok(args) => args,
         Err(e) => e.exit(),
     };
+    // The report's 2×2 grid is of photon maps seen directly: its mode unless one is named.
+    if args.compare && matches.value_source("mode") != Some(clap::parser::ValueSource::CommandLine) {
+        args.mode = ModeChoice::PhotonMap;
+    }
     let result = applies::refuse_inapplicable(&args, &matches).and_then(|()| run(&args));
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -177,7 +194,7 @@ fn run(args: &Args) -> Result<(), String> {
     let settings = RenderSettings {
         width,
         height,
-        samples_per_pixel: args.spp,
+        samples_per_pixel: args.spp(),
         photons: args.photons,
         k: args.k,
         mode,
@@ -199,10 +216,7 @@ fn run(args: &Args) -> Result<(), String> {
     }
 
     let scene_name = scene_name(&args.scene);
-    let base = args
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
+    let base = args.out.clone().unwrap_or_else(|| default_out(&scene_name));
     // Fail on an unwritable or clashing output before spending time on the scene or render.
     let dependencies = scene_dependencies(&args.scene);
     let inputs = scene_inputs(&args.scene, &dependencies);
@@ -296,6 +310,12 @@ fn run(args: &Args) -> Result<(), String> {
         say(&format!("wrote {}", path.display()));
     }
     Ok(())
+}
+
+/// Where a run writes when `--out` is not given: under `target/`, beside the build, so that a
+/// run in the repository writes into none of its files.
+pub fn default_out(scene_name: &str) -> PathBuf {
+    Path::new("target").join("out").join(format!("{scene_name}.exr"))
 }
 
 /// Refuses what `--compare` cannot honour: it chooses the maps and estimator of each panel

@@ -1,9 +1,10 @@
 //! Reproduces the report's results (its section 8): the 16 timed cases (four scenes ×
 //! basic / multiple maps / geometry area / both) plus the ball estimator, each measured against
-//! a path-traced reference, written to `docs/results.md` with 2×2 image grids under
-//! `docs/results/`.
+//! a path-traced reference, written to `results.md` with 2×2 image grids under `results/` in
+//! `--out-dir` (default `target/results`; `--out-dir docs` regenerates the repository's own).
 //!
-//! `cargo run --release --example results` (add `--quick` for a small trial run).
+//! `cargo run --release --example results -- --out-dir docs` (add `--quick` for a small trial
+//! run).
 
 use clap::Parser;
 use glam::Vec3;
@@ -38,7 +39,8 @@ struct Args {
     /// Worker threads (0 = rayon's global pool: a thread per core unless RAYON_NUM_THREADS says otherwise).
     #[arg(long, default_value_t = 0)]
     threads: usize,
-    /// Where results.md and the results/ PNG folder go (default: docs).
+    /// Where results.md and the results/ PNG folder go [default: target/results, quick:
+    /// target/results-quick; `--out-dir docs` regenerates the repository's own].
     #[arg(long)]
     out_dir: Option<PathBuf>,
     /// Where path-traced references are cached.
@@ -228,7 +230,7 @@ fn run(args: &Args) -> Result<(), String> {
             PathBuf::from(if args.quick {
                 "target/results-quick"
             } else {
-                "docs"
+                "target/results"
             })
         }),
         cache_dir: args.cache_dir.clone(),

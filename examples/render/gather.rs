@@ -5,6 +5,14 @@ use super::Args;
 use super::choices::ModeChoice;
 use photon_maps::render::FinalGatherOptions;
 
+/// The command line's default gather rays per camera sample in final-gather mode, with
+/// [`SAMPLES_PER_PIXEL`] camera samples: at equal CPU time they reach a lower error than the
+/// library's 1 × 64 (`docs/final-gather-sweep.md`).
+pub const GATHER_RAYS: u32 = 4;
+
+/// The command line's default camera samples per pixel in final-gather mode.
+pub const SAMPLES_PER_PIXEL: u32 = 16;
+
 /// The final gather's options from the command line; an error when one is given in a mode
 /// that does not gather (so that it is not silently ignored). `--mode progressive` gathers
 /// when `--gather-rays` is given ([`gathers`]).
@@ -27,7 +35,7 @@ pub fn options(args: &Args) -> Result<FinalGatherOptions, String> {
     }
     let defaults = FinalGatherOptions::default();
     Ok(FinalGatherOptions {
-        gather_rays: args.gather_rays.unwrap_or(defaults.gather_rays),
+        gather_rays: args.gather_rays.unwrap_or(GATHER_RAYS),
         cache_every: args.cache_every.unwrap_or(defaults.cache_every),
         corner_distance: args.corner_distance.or(defaults.corner_distance),
     })

@@ -7,7 +7,7 @@ use super::{Args, ModeChoice, contacts_json, contacts_summary, json_number, json
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
-    ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, SppmRenderer, SppmSettings,
+    ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, Shard, ShardError, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Progress, RenderSettings};
 use std::fmt::Write as _;
@@ -66,7 +66,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let base = args
         .out
         .clone()
-        .unwrap_or_else(|| Path::new("out").join(format!("{scene_name}.exr")));
+        .unwrap_or_else(|| super::default_out(&scene_name));
     let dependencies = scene_dependencies(&args.scene);
     let inputs = scene_inputs(&args.scene, &dependencies);
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
@@ -188,7 +188,10 @@ pub fn merge(args: &Args, shards: &[PathBuf]) -> Result<(), String> {
         })
         .collect();
     let (exr_path, png_path) = check_run_outputs(&out, args.stats_json.as_deref(), &inputs)?;
-    let merged = Shard::merge_files(shards).map_err(|e| e.to_string())?;
+    let merged = Shard::merge_files(shards).map_err(|e| match e {
+        ShardError::SettingsMismatch { a, b } => settings_differ(&a, &b),
+        e => e.to_string(),
+    })?;
     merged.write_exr(&exr_path).map_err(|e| e.to_string())?;
     let mean = merged.mean();
     mean.write_png(&png_path, args.exposure())
@@ -267,6 +270,61 @@ fn scene_identity(arg: &str) -> Result<(String, String), String> {
         hash = fnv(hash, arg.as_bytes());
     }
     Ok((name.clone(), format!("{name} fnv1a64:{hash:016x}")))
+}
+
+/// The refusal of shards rendered with other settings, naming the settings that differ: the
+/// `key=value` tokens of the two settings identities (the words before the first `=` token,
+/// "progressive v3" or "sppm", compared as `renderer`).
+pub fn settings_differ(a: &str, b: &str) -> String {
+    fn tokens(identity: &str) -> Vec<(String, String)> {
+        let mut renderer = Vec::new();
+        let mut pairs = Vec::new();
+        for token in identity.split_whitespace() {
+            match token.split_once('=') {
+                Some((key, value)) => pairs.push((key.to_owned(), value.to_owned())),
+                None if pairs.is_empty() => renderer.push(token),
+                None => pairs.push((token.to_owned(), String::new())),
+            }
+        }
+        pairs.insert(0, ("renderer".to_owned(), renderer.join(" ")));
+        pairs
+    }
+    let (a, b) = (tokens(a), tokens(b));
+    let value = |pairs: &[(String, String)], key: &str| {
+        pairs
+            .iter()
+            .find(|(k, _)| k == key)
+            .map_or_else(|| "(none)".to_owned(), |(_, v)| v.clone())
+    };
+    let mut keys: Vec<&str> = a.iter().map(|(k, _)| k.as_str()).collect();
+    keys.extend(
+        b.iter()
+            .map(|(k, _)| k.as_str())
+            .filter(|k| !a.iter().any(|(x, _)| x == k)),
+    );
+    let differ: Vec<String> = keys
+        .into_iter()
+        .filter(|k| value(&a, k) != value(&b, k))
+        .map(|k| format!("{k} {} against {}", value(&a, k), value(&b, k)))
+        .collect();
+    if differ.is_empty() {
+        // Tokens equal but the strings not (spacing): show both.
+        return format!(
+            "shards with different settings: '{}' and '{}'",
+            a.iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect::<Vec<_>>()
+                .join(" "),
+            b.iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+    }
+    format!(
+        "shards with different settings, which must all match: {}",
+        differ.join(", ")
+    )
 }
 
 fn stats_json(
