@@ -39,7 +39,7 @@
 //!   builder (O(n log n) on any input, a triangle fan included), which is tested to find
 //!   exactly the same hits, also right next to the ray's origin and along the axes. Analytic
 //!   shapes are searched apart from the triangles.
-//! - Memory: a built scene holds 81–94 bytes per triangle ([`Scene::heap_bytes`]: the
+//! - Memory: a built scene holds 80–94 bytes per triangle ([`Scene::heap_bytes`]: the
 //!   half-edge mesh, each triangle's corners, part and surface once, the BVH nodes); building it peaks
 //!   near 400 bytes per triangle. Ray cost grows with the log of the triangle count plus
 //!   cache misses: 24 → 240k triangles costs about 3× per path-traced sample (see

@@ -156,7 +156,7 @@ pub struct GltfOptions {
     /// the camera (a "headlight") so the scene still renders (on by default).
     pub default_light: bool,
     /// The most triangles the scene may hold after instancing (20 million by default). A built
-    /// scene holds 81–94 bytes per triangle (mesh, triangles, BVH; see `Scene::heap_bytes`),
+    /// scene holds 80–94 bytes per triangle (mesh, triangles, BVH; see `Scene::heap_bytes`),
     /// about 1.9 GB at this limit, and building it peaks near 400 bytes per triangle (the
     /// binary BVH and its 8-wide conversion), about 8 GB; photon maps come on top. Many nodes
     /// may place the same mesh, so a small file can describe a huge scene; past this limit

@@ -204,7 +204,7 @@ impl SceneBuilder {
 
     /// Refuses to build a scene of more than `limit` triangles (faces fan-triangulated) with
     /// [`SceneError::TooManyTriangles`], before allocating for them; the default and the
-    /// largest limit is [`MAX_SCENE_TRIANGLES`]. At 77–90 bytes per built triangle and a peak
+    /// largest limit is [`MAX_SCENE_TRIANGLES`]. At 80–94 bytes per built triangle and a peak
     /// near 400 while building, this bounds a scene's memory.
     pub fn max_triangles(mut self, limit: usize) -> Self {
         self.max_triangles = Some(limit);

@@ -13,7 +13,7 @@ pub(super) enum FaceSurfaces {
 }
 
 /// The most triangles (after fan triangulation of every face) a scene may hold: 2²⁷, about
-/// 134 million. A built scene holds 81–94 bytes per triangle and building it peaks near
+/// 134 million. A built scene holds 80–94 bytes per triangle and building it peaks near
 /// 400, so this limit is about 54 GB of building; smaller budgets are the caller's (the glTF
 /// loader has `GltfOptions::max_scene_bytes`).
 pub const MAX_SCENE_TRIANGLES: usize = 1 << 27;
