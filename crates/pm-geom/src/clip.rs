@@ -1,7 +1,9 @@
 //! Sutherland–Hodgman clipping of a convex polygon against an axis-aligned box or a plane,
 //! into caller-owned buffers so that the hot path allocates nothing once warm.
 
-use crate::{Aabb, Plane, polygon_vector_area};
+use crate::aabb::Aabb;
+use crate::plane::Plane;
+use crate::polygon::polygon_vector_area;
 use glam::{DVec2, Vec3};
 
 /// Reusable buffers for clipping; keep one per thread.

@@ -103,6 +103,7 @@ pub mod emission;
 pub mod error;
 pub mod light;
 pub mod material;
+pub mod part;
 pub mod partition;
 pub mod photons;
 pub mod ray;
@@ -127,6 +128,7 @@ pub use light::{
     SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
+pub use part::{PartId, PartSource};
 pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap,
 };
@@ -138,8 +140,8 @@ pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{
-    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder,
-    SceneMesh, VertexAttributes,
+    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene, SceneBuilder, SceneMesh,
+    VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use sides::Sides;

@@ -3,7 +3,7 @@
 //! winding number of at least one in some solid lies where no light reaches.
 
 use super::pair::Face;
-use crate::Aabb;
+use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
 

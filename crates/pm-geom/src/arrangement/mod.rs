@@ -11,6 +11,7 @@
 //! last place of the largest one), so no sign is decided by rounding noise.
 
 mod barrier;
+mod budget;
 #[cfg(test)]
 mod contact_tests;
 mod copies;
@@ -22,9 +23,12 @@ mod pair;
 mod tests;
 
 pub use barrier::BarrierSet;
+pub use budget::ArrangementError;
 
+use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
-use crate::{Aabb, polygon_vector_area};
+use crate::polygon::polygon_vector_area;
+use budget::Budget;
 use copies::{covered_by, exact_duplicates};
 use cut::{Cut, add_cut, cut_face};
 use glam::Vec3;
@@ -110,31 +114,6 @@ pub struct Arrangement {
     pub barriers: Vec<[Vec3; 2]>,
     /// What was found.
     pub counts: IntersectionCounts,
-}
-
-/// Why [`split_polygons_at_intersections`] stopped: a bound was reached before it allocated
-/// more.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum ArrangementError {
-    /// More candidate face pairs than [`ArrangementOptions::max_pairs`].
-    #[error("more than {limit} pairs of faces overlap: too many intersecting faces to resolve")]
-    TooManyPairs {
-        /// The bound.
-        limit: usize,
-    },
-    /// More pieces or cut segments than [`ArrangementOptions::max_pieces`].
-    #[error("cutting the faces where they meet makes more than {limit} pieces")]
-    TooManyPieces {
-        /// The bound.
-        limit: usize,
-    },
-    /// More vertices than [`ArrangementOptions::max_vertices`].
-    #[error("cutting the faces where they meet makes more than {limit} vertices")]
-    TooManyVertices {
-        /// The bound.
-        limit: usize,
-    },
 }
 
 /// Cuts the convex planar `polygons` wherever they meet each other.
@@ -245,7 +224,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     }
 
     // Cut every face met by another into convex pieces.
-    let mut budget = Budget::new(options);
+    let mut budget = Budget::new(options.max_pieces, options.max_vertices);
     let mut pieces: Vec<Vec<Vec3>> = Vec::with_capacity(polygons.len());
     let mut source = Vec::with_capacity(polygons.len());
     let mut was_cut = vec![false; polygons.len()];
@@ -320,46 +299,6 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
     out.counts = counts;
     Ok(out)
-}
-
-/// Counts pieces and vertices against the bounds before they are kept.
-pub(super) struct Budget {
-    pub(super) pieces: usize,
-    pub(super) vertices: usize,
-    max_pieces: usize,
-    max_vertices: usize,
-}
-
-impl Budget {
-    fn new(options: &ArrangementOptions) -> Self {
-        Budget {
-            pieces: 0,
-            vertices: 0,
-            max_pieces: options.max_pieces,
-            max_vertices: options.max_vertices,
-        }
-    }
-
-    pub(super) fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
-        if pieces > self.max_pieces {
-            return Err(ArrangementError::TooManyPieces {
-                limit: self.max_pieces,
-            });
-        }
-        if vertices > self.max_vertices {
-            return Err(ArrangementError::TooManyVertices {
-                limit: self.max_vertices,
-            });
-        }
-        Ok(())
-    }
-
-    fn add(&mut self, piece: &[Vec3]) -> Result<(), ArrangementError> {
-        self.check(self.pieces + 1, self.vertices + piece.len())?;
-        self.pieces += 1;
-        self.vertices += piece.len();
-        Ok(())
-    }
 }
 
 /// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.

@@ -2,7 +2,7 @@
 //! distances of each face's vertices to the other's plane (piercing, an edge lying in the other
 //! face, an overlap in one plane, or a near-contact closer than the gap tolerance).
 
-use crate::Aabb;
+use crate::aabb::Aabb;
 use glam::Vec3;
 
 /// Faces whose normals are closer than this (in `1 − |cos|`, about 0.8°) count as parallel.
@@ -227,7 +227,7 @@ fn meet_in_plane(
         }
     }
     let overlap = &scratch.clip;
-    let area = crate::polygon_area(overlap);
+    let area = crate::polygon::polygon_area(overlap);
     let size = Aabb::from_points(overlap).diagonal();
     if area <= tolerance * size {
         return; // touching along an edge or at a point

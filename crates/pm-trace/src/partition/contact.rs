@@ -4,12 +4,15 @@
 //! photon map spans both sides of such a meeting. Ball & Stejko's future work ("light bleeding
 //! would still occur if the floor were one rectangle across both boxes"), taken to solids.
 
+use super::record::ContactRecord;
 use super::{MapAssignment, PartitionError, Partitioner};
-use crate::{PartId, PartSource, Scene, SceneError, Surface};
+use crate::error::SceneError;
+use crate::material::Surface;
+use crate::part::{PartId, PartSource};
+use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{
-    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, IntersectionCounts, MeshOptions,
-    split_polygons_at_intersections,
+    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_intersections,
 };
 
 /// Crease-angle maps over all meshes of a scene welded together, after cutting faces where
@@ -61,38 +64,6 @@ impl Default for Contact {
             relative_tolerance: 1e-5,
             relative_gap: 2e-3,
         }
-    }
-}
-
-/// What [`Contact::split_scene`] found and cut: the meeting segments no map crosses, the pieces
-/// inside closed solids, and counts of each kind of meeting.
-#[derive(Clone, Debug, Default)]
-pub struct ContactRecord {
-    barriers: BarrierSet,
-    sealed_parts: Vec<bool>,
-    counts: IntersectionCounts,
-    seconds: f64,
-}
-
-impl ContactRecord {
-    /// How many meetings of each kind were found, and pieces dropped or sealed.
-    pub fn counts(&self) -> IntersectionCounts {
-        self.counts
-    }
-
-    /// The segments along which faces meet: no photon map joins across them.
-    pub fn barriers(&self) -> &BarrierSet {
-        &self.barriers
-    }
-
-    /// True when `part` lies inside a closed solid, where no light reaches.
-    pub fn is_sealed(&self, part: PartId) -> bool {
-        self.sealed_parts.get(part.0 as usize).copied().unwrap_or(false)
-    }
-
-    /// Wall-clock seconds the split took.
-    pub fn seconds(&self) -> f64 {
-        self.seconds
     }
 }
 

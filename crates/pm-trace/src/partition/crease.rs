@@ -2,7 +2,8 @@
 //! edges whose crease angle is below a threshold; every analytic part is its own map.
 
 use super::{MapAssignment, Partitioner};
-use crate::{PartId, PartSource, Scene};
+use crate::part::{PartId, PartSource};
+use crate::scene::Scene;
 use pm_geom::FaceId;
 
 /// Flood fill over half-edge twins with crease angle `< max_angle` (radians). Boundary and

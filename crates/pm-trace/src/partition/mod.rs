@@ -3,11 +3,15 @@
 
 mod contact;
 mod crease;
+pub(crate) mod record;
 
-pub use contact::{Contact, ContactRecord};
+pub use contact::Contact;
 pub use crease::CreaseAngle;
+pub use record::ContactRecord;
 
-use crate::{PartId, Scene, SceneError};
+use crate::error::SceneError;
+use crate::part::PartId;
+use crate::scene::Scene;
 
 /// The photon map of every part of a scene.
 #[derive(Clone, Debug, PartialEq, Eq)]

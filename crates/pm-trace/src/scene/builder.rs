@@ -3,13 +3,54 @@
 
 use super::checks::{SurfaceTable, check_lights, check_shape, check_surface, default_camera};
 use super::mesh_input::{FaceSurfaces, MAX_SCENE_TRIANGLES, MeshInput};
-use super::{MeshShading, PartId, PartSource, Scene, SceneMesh, VertexAttributes};
-use crate::bvh::{PartSurface, SceneBvh, ShapePrimitive};
-use crate::shape::{Ring, RingSide, Shape, Sphere};
-use crate::{AreaLight, Camera, Light, Material, SceneError, Surface};
+use super::shading::{MeshShading, VertexAttributes};
+use super::{Scene, SceneMesh};
+use crate::bvh::SceneBvh;
+use crate::bvh::shape::ShapePrimitive;
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::light::area::AreaLight;
+use crate::material::{Material, Surface};
+use crate::part::{PartId, PartSource, PartSurface};
+use crate::shape::Shape;
+use crate::shape::ring::{Ring, RingSide};
+use crate::shape::sphere::Sphere;
 use glam::Vec3;
 use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
+
+impl Scene {
+    /// A new, empty builder.
+    pub fn builder() -> SceneBuilder {
+        SceneBuilder::default()
+    }
+
+    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
+    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
+    /// along contact lines). Add every mesh again, including those of area-light quads.
+    pub fn into_builder_without_meshes(self) -> SceneBuilder {
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (i, source) in self.shape_parts.iter().enumerate() {
+            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
+            match *source {
+                PartSource::Sphere { shape }
+                | PartSource::Ring {
+                    shape,
+                    side: RingSide::Top,
+                } => shapes.push((self.shapes[shape as usize], surface)),
+                _ => {}
+            }
+        }
+        SceneBuilder {
+            shapes,
+            lights: self.lights,
+            camera: Some(self.camera),
+            mesh_options: self.mesh_options,
+            ..SceneBuilder::default()
+        }
+    }
+}
 
 /// Builds a [`Scene`]; errors are reported by [`SceneBuilder::build`].
 ///
@@ -190,7 +231,7 @@ impl SceneBuilder {
             material: Material::Lambertian { albedo: Vec3::ZERO },
             emission: radiance,
             camera_visible: true,
-            sides: crate::Sides::Front,
+            sides: crate::sides::Sides::Front,
         };
         self.mesh(&quad, &[[0u32, 1, 2, 3]], surface)
             .light(AreaLight::quad(corner, edge_u, edge_v, radiance))

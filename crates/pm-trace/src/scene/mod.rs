@@ -1,11 +1,11 @@
 //! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
-mod builder;
+pub(crate) mod builder;
 mod checks;
 mod mesh_input;
 mod queries;
-mod shading;
+pub(crate) mod shading;
 
 pub use builder::SceneBuilder;
 pub use mesh_input::MAX_SCENE_TRIANGLES;
@@ -14,40 +14,16 @@ use shading::MeshShading;
 pub use shading::VertexAttributes;
 
 use crate::bvh::SceneBvh;
-use crate::shape::{RingSide, Shape};
-use crate::{Camera, ContactRecord, Light, Material, SceneError, Surface};
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::material::{Material, Surface};
+use crate::part::{PartId, PartSource};
+use crate::partition::record::ContactRecord;
+use crate::shape::Shape;
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
-
-/// Identifies one part of the scene: a mesh face, a sphere, or one side of a ring. Photon
-/// maps are assigned per part.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct PartId(pub u32);
-
-/// What a part is made of.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PartSource {
-    /// Face `face` of mesh `mesh` (indices into [`Scene::meshes`]).
-    MeshFace {
-        /// Mesh index.
-        mesh: u32,
-        /// Face of that mesh.
-        face: FaceId,
-    },
-    /// A sphere (index into [`Scene::shapes`]).
-    Sphere {
-        /// Shape index.
-        shape: u32,
-    },
-    /// One side of a ring (index into [`Scene::shapes`]).
-    Ring {
-        /// Shape index.
-        shape: u32,
-        /// Which side.
-        side: RingSide,
-    },
-}
 
 /// Which rays a query is for: camera rays skip surfaces hidden from the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -145,11 +121,6 @@ const SPHERE_PROXY_STACKS: u32 = 16;
 const RING_PROXY_SEGMENTS: u32 = 64;
 
 impl Scene {
-    /// A new, empty builder.
-    pub fn builder() -> SceneBuilder {
-        SceneBuilder::default()
-    }
-
     /// The ray-query structure (for tests that compare its two kinds of search).
     #[cfg(test)]
     pub(crate) fn search(&self) -> &SceneBvh {
@@ -359,31 +330,6 @@ impl Scene {
     /// The analytic shapes, in the order they were added.
     pub fn shapes(&self) -> &[Shape] {
         &self.shapes
-    }
-
-    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
-    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
-    /// along contact lines). Add every mesh again, including those of area-light quads.
-    pub fn into_builder_without_meshes(self) -> SceneBuilder {
-        let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (i, source) in self.shape_parts.iter().enumerate() {
-            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
-            match *source {
-                PartSource::Sphere { shape }
-                | PartSource::Ring {
-                    shape,
-                    side: RingSide::Top,
-                } => shapes.push((self.shapes[shape as usize], surface)),
-                _ => {}
-            }
-        }
-        SceneBuilder {
-            shapes,
-            lights: self.lights,
-            camera: Some(self.camera),
-            mesh_options: self.mesh_options,
-            ..SceneBuilder::default()
-        }
     }
 
     /// Calls `f` with each polygon of `part`: a mesh face as it is, analytic parts as a fine

@@ -2,8 +2,9 @@
 //! points, and rays leaving a hit.
 
 use super::{Hit, RayKind, Scene};
-use crate::Ray;
-use crate::bvh::{HitPrimitive, PartSurface};
+use crate::bvh::HitPrimitive;
+use crate::part::PartSurface;
+use crate::ray::Ray;
 use glam::Vec3;
 
 /// Triangles from which [`Scene::prefers_ray_pairs`] (and [`Scene::intersect_pair`] interleaves

@@ -1,8 +1,11 @@
 //! The Cornell box in its measured dimensions (metres), with a mirror sphere and a diffuse
 //! ring on the floor instead of the two blocks.
 
-use super::box_mesh;
-use crate::{Camera, Scene, SceneError, Surface};
+use super::box_mesh::box_mesh;
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::material::Surface;
+use crate::scene::Scene;
 use glam::Vec3;
 
 pub(super) fn cornell_box() -> Result<Scene, SceneError> {

@@ -1,8 +1,13 @@
 //! The two-room scenes: lit and unlit rooms, coloured rooms with floating cubes, and touching
 //! rooms whose floor and ceiling run under and over the dividing wall.
 
-use super::box_mesh;
-use crate::{Camera, PointLight, Scene, SceneBuilder, SceneError, Surface};
+use super::box_mesh::box_mesh;
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::point::PointLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use glam::Vec3;
 
 /// Inside size of each room, thickness of the dividing wall.

@@ -2,8 +2,13 @@
 //! into an `n × n` grid of quads, and a field of many separate cubes. Their light transport is
 //! the same at every `n` (the split faces are coplanar), so their images can be compared.
 
-use super::{box_mesh, rooms};
-use crate::{PointLight, Scene, SceneBuilder, SceneError, Surface};
+use super::box_mesh::box_mesh;
+use super::rooms;
+use crate::error::SceneError;
+use crate::light::point::PointLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use glam::Vec3;
 
 /// The largest `n` accepted by [`split_rooms`] (2·6·2·n² = 96M triangles at this bound).
@@ -104,7 +109,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
     ];
     let mut positions = Vec::with_capacity(count as usize * 8);
     let mut faces: Vec<[u32; 4]> = Vec::with_capacity(count as usize * 6);
-    let mut rng = crate::Rng::new(0x5ca1e, count as u64);
+    let mut rng = crate::rng::Rng::new(0x5ca1e, count as u64);
     for i in 0..count {
         let (gx, gz) = ((i % per_side) as f32, (i / per_side) as f32);
         let jitter = Vec3::new(rng.next_f32() - 0.5, rng.next_f32(), rng.next_f32() - 0.5) * 0.2 * cell;
@@ -126,7 +131,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
             Vec3::new(0.5 * size, 0.6 * size, 0.5 * size),
             Vec3::splat(1000.0),
         ))
-        .camera(crate::Camera::new(
+        .camera(crate::camera::Camera::new(
             Vec3::new(0.5 * size, 0.7 * size, -0.4 * size),
             Vec3::new(0.5 * size, 0.0, 0.5 * size),
             Vec3::Y,
