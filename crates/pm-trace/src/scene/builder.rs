@@ -1,23 +1,23 @@
 //! Building a [`Scene`]: meshes, analytic shapes, lights and a camera checked and turned into
 //! parts with surfaces and the ray-query structure.
 
-use super::checks::{SurfaceTable, check_lights, check_shape, check_surface, default_camera};
+use super::Scene;
+use super::assemble::{PartTable, add_shapes, build_meshes, scene_bounds};
+use super::checks::{check_lights, default_camera};
 use super::mesh_input::{FaceSurfaces, MAX_SCENE_TRIANGLES, MeshInput};
 use super::shading::{MeshShading, VertexAttributes};
-use super::{Scene, SceneMesh};
 use crate::bvh::SceneBvh;
-use crate::bvh::shape::ShapePrimitive;
 use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::light::Light;
 use crate::light::area::AreaLight;
 use crate::material::{Material, Surface};
-use crate::part::{PartId, PartSource, PartSurface};
+use crate::part::{PartId, PartSource};
 use crate::shape::Shape;
 use crate::shape::ring::{Ring, RingSide};
 use crate::shape::sphere::Sphere;
 use glam::Vec3;
-use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
+use pm_geom::MeshOptions;
 use std::sync::Arc;
 
 impl Scene {
@@ -278,118 +278,22 @@ impl SceneBuilder {
         }
         // Kept faces have at least one triangle each, so this is within the limit too.
         let face_count: usize = self.meshes.iter().map(|m| m.starts.len() - 1).sum();
-        let mut part_count = 0u32;
-        let mut surfaces = SurfaceTable::default();
-        let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
-        let mut triangles = Vec::with_capacity(triangle_count);
-        let mut triangle_parts = Vec::with_capacity(triangle_count);
-        let mut shape_prims = Vec::new();
-        let mut meshes = Vec::with_capacity(self.meshes.len());
-        let mut has_shading = false;
-        let mut has_emission_textures = false;
-        // Each input mesh is dropped once built, so the input and the scene are not held twice.
-        for (mi, input) in self.meshes.into_iter().enumerate() {
-            if let FaceSurfaces::PerFace(s) = &input.surfaces
-                && s.len() != input.face_count()
-            {
-                return Err(SceneError::SurfaceCount {
-                    mesh: mi,
-                    surfaces: s.len(),
-                    faces: input.face_count(),
-                });
-            }
-            if let Some(shading) = &input.shading {
-                shading
-                    .validate()
-                    .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
-                has_shading = true;
-                has_emission_textures |= shading.has_emission_texture();
-            }
-            let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), &self.mesh_options)
-                .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
-            let first_part = part_count;
-            let mut polygon = Vec::new();
-            for face in mesh.faces() {
-                let surface = match &input.surfaces {
-                    FaceSurfaces::One(s) => *s,
-                    FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
-                };
-                check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
-                let surface = surfaces.id_of(surface);
-                let part = PartSurface {
-                    part: PartId(part_count),
-                    surface,
-                };
-                part_count += 1;
-                part_surface_ids.push(surface);
-                polygon.clear();
-                polygon.extend(mesh.face_polygon(face));
-                for i in 1..polygon.len().saturating_sub(1) {
-                    triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
-                    triangle_parts.push(part);
-                }
-            }
-            meshes.push(SceneMesh {
-                mesh,
-                first_part,
-                shading: input.shading,
-            });
-        }
-        let mesh_part_count = part_count;
-        let mut shape_parts = Vec::new();
-        let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (si, (shape, surface)) in self.shapes.iter().enumerate() {
-            check_shape(shape).map_err(|reason| SceneError::InvalidShape { shape: si, reason })?;
-            check_surface(surface, || format!("shape {si}"))?;
-            match *shape {
-                Shape::Sphere(sphere) => {
-                    let part = PartSurface {
-                        part: PartId(part_count),
-                        surface: surfaces.id_of(*surface),
-                    };
-                    part_count += 1;
-                    shape_parts.push(PartSource::Sphere { shape: si as u32 });
-                    part_surface_ids.push(part.surface);
-                    shape_prims.push(ShapePrimitive::Sphere { sphere, part });
-                }
-                Shape::Ring(ring) => {
-                    for side in RingSide::ALL {
-                        let part = PartSurface {
-                            part: PartId(part_count),
-                            surface: surfaces.id_of(*surface),
-                        };
-                        part_count += 1;
-                        shape_parts.push(PartSource::Ring {
-                            shape: si as u32,
-                            side,
-                        });
-                        part_surface_ids.push(part.surface);
-                        shape_prims.push(ShapePrimitive::RingSide { ring, side, part });
-                    }
-                }
-            }
-            shapes.push(*shape);
-        }
-        // Dropped (degenerate) faces leave spare room.
-        triangles.shrink_to_fit();
-        triangle_parts.shrink_to_fit();
-        part_surface_ids.shrink_to_fit();
-        if triangles.is_empty() && shape_prims.is_empty() {
-            return Err(SceneError::NoGeometry);
-        }
-        let bounds = meshes
-            .iter()
-            .flat_map(|m| m.mesh.positions().iter())
-            .fold(Aabb::EMPTY, |b, &p| b.grow(p));
-        let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
-        let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
-        // NaN bounds cannot occur (positions are checked finite), but are refused all the same.
-        if reach.is_nan() || reach >= pm_kdtree::MAX_COORDINATE {
-            return Err(SceneError::GeometryOutOfRange {
-                min: bounds.min.to_array(),
-                max: bounds.max.to_array(),
-            });
-        }
+        let mut parts = PartTable::with_capacity(
+            face_count + RingSide::ALL.len() * self.shapes.len(),
+            triangle_count,
+        );
+        let meshes = build_meshes(self.meshes, &self.mesh_options, &mut parts)?;
+        let mesh_part_count = parts.count();
+        let (shapes, shape_parts) = add_shapes(&self.shapes, &mut parts)?;
+        let PartTable {
+            surfaces,
+            surface_ids: part_surface_ids,
+            triangles,
+            triangle_parts,
+            shape_prims,
+            ..
+        } = parts.finish()?;
+        let bounds = scene_bounds(&meshes.meshes, &shapes)?;
         let mut lights = self.lights;
         for light in &mut lights {
             light.attach(&bounds);
@@ -402,7 +306,7 @@ impl SceneBuilder {
         let epsilon = 1e-5 * bounds.size().max_element().max(1.0);
         let has_culling = surfaces.surfaces.iter().any(|s| s.sides.culls_back());
         Ok(Scene {
-            meshes,
+            meshes: meshes.meshes,
             shapes,
             mesh_part_count,
             shape_parts,
@@ -415,8 +319,8 @@ impl SceneBuilder {
             mesh_options: self.mesh_options,
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
             contacts: None,
-            has_shading,
-            has_emission_textures,
+            has_shading: meshes.has_shading,
+            has_emission_textures: meshes.has_emission_textures,
             has_culling,
         })
     }
