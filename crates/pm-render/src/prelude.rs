@@ -11,6 +11,7 @@ pub use glam::{Vec3, vec3};
 pub use pm_geom::{Aabb, Ball, HalfEdgeMesh, PolygonSet};
 pub use pm_kdtree::{Chebyshev, Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
 pub use pm_trace::{
-    AreaLight, Camera, Contact, CreaseAngle, DirectionalLight, Light, MapAssignment, Material, Partitioner,
-    PhotonMaps, PointLight, Scene, SingleMap, SpotLight, Surface, TraceOptions, scenes, trace_photons,
+    AreaLight, Camera, Contact, CreaseAngle, DirectionalLight, Light, MapAssignment, Material, Partitioned,
+    Partitioner, PhotonMaps, PointLight, Scene, SingleMap, SpotLight, Surface, TraceOptions, scenes,
+    trace_photons,
 };

@@ -7,7 +7,7 @@ use crate::{
     RenderStats,
 };
 use glam::Vec3;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -52,33 +52,29 @@ impl<E: Estimator> Renderer<E> {
         &self.settings
     }
 
-    /// Traces photons into the maps `partitioner` assigns (skipped for path tracing), builds
-    /// the maps and renders the image, on `settings.threads` workers.
-    pub fn render<P: Partitioner + ?Sized>(
+    /// Traces photons into the maps `partitioned` assigns (skipped for path tracing), builds
+    /// the maps and renders its scene, on `settings.threads` workers.
+    pub fn render(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
     ) -> Result<Rendered, RenderError> {
         self.settings.validate()?;
-        let uses_photons = self.settings.mode.uses_photons();
-        let start = Instant::now();
-        let assignment = if uses_photons {
-            Some(partitioner.try_partition(scene)?)
-        } else {
-            None
-        };
-        let partition_time = start.elapsed();
+        let scene = partitioned.scene();
+        let assignment = self
+            .settings
+            .mode
+            .uses_photons()
+            .then(|| partitioned.assignment());
         self.in_pool(|| {
             let mut stats = RenderStats {
                 threads: rayon::current_num_threads(),
                 ..RenderStats::default()
             };
-            let maps = match &assignment {
+            let maps = match assignment {
                 Some(assignment) => Some(self.build_maps(scene, assignment, progress, &mut stats)?),
                 None => None,
             };
-            stats.trace += partition_time;
             let cache = match (&maps, self.settings.mode) {
                 (Some(maps), Mode::FinalGather) => Some(self.build_cache(scene, maps, progress, &mut stats)?),
                 _ => None,

@@ -36,28 +36,25 @@ fn mesh_area(scene: &Scene) -> f64 {
 #[test]
 fn touching_rooms_floor_splits_into_one_map_per_room() {
     let scene = scenes::build("touching-rooms").unwrap();
-    let crease = CreaseAngle::default().partition(&scene);
+    let crease = CreaseAngle::default().partition(scene.clone()).unwrap();
+    let crease = crease.assignment();
     assert_eq!(
-        map_below(&scene, &crease, 0.5, 0.5),
-        map_below(&scene, &crease, 1.5, 0.5),
+        map_below(&scene, crease, 0.5, 0.5),
+        map_below(&scene, crease, 1.5, 0.5),
         "the scene must test the case"
     );
 
-    let contact = Contact::default();
     let area_before = mesh_area(&scene);
-    let split = contact.split_scene(scene).unwrap();
+    let contact = Contact::default().partition(scene).unwrap();
+    let (split, maps) = (contact.scene(), contact.assignment());
     for mesh in split.meshes() {
         mesh.half_edge_mesh().validate().unwrap();
     }
     assert!(
-        (mesh_area(&split) - area_before).abs() < 1e-6 * area_before,
+        (mesh_area(split) - area_before).abs() < 1e-6 * area_before,
         "the split keeps the area"
     );
-    let maps = contact.partition(&split);
-    assert_ne!(
-        map_below(&split, &maps, 0.5, 0.5),
-        map_below(&split, &maps, 1.5, 0.5)
-    );
+    assert_ne!(map_below(split, maps, 0.5, 0.5), map_below(split, maps, 1.5, 0.5));
     // No map reaches into both rooms.
     for parts in maps.parts_per_map() {
         let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
@@ -114,31 +111,28 @@ fn floor_with_wall(spans: &[(f32, f32)]) -> Scene {
 
 #[test]
 fn full_width_wall_splits_the_floor_into_two_maps() {
-    let contact = Contact::default();
-    let scene = contact.split_scene(floor_with_wall(&[(0.0, 1.0)])).unwrap();
-    let maps = contact.partition(&scene);
-    assert_ne!(
-        map_below(&scene, &maps, 0.5, 0.5),
-        map_below(&scene, &maps, 1.5, 0.5)
-    );
+    let contact = Contact::default()
+        .partition(floor_with_wall(&[(0.0, 1.0)]))
+        .unwrap();
+    let (scene, maps) = (contact.scene(), contact.assignment());
+    assert_ne!(map_below(scene, maps, 0.5, 0.5), map_below(scene, maps, 1.5, 0.5));
 }
 
 #[test]
 fn doorway_keeps_the_floor_one_map() {
-    let contact = Contact::default();
-    let scene = contact
-        .split_scene(floor_with_wall(&[(0.0, 0.4), (0.6, 1.0)]))
+    let contact = Contact::default()
+        .partition(floor_with_wall(&[(0.0, 0.4), (0.6, 1.0)]))
         .unwrap();
-    let maps = contact.partition(&scene);
-    let left = map_below(&scene, &maps, 0.5, 0.1);
+    let (scene, maps) = (contact.scene(), contact.assignment());
+    let left = map_below(scene, maps, 0.5, 0.1);
     assert_eq!(
         left,
-        map_below(&scene, &maps, 1.5, 0.9),
+        map_below(scene, maps, 1.5, 0.9),
         "light passes through the doorway"
     );
     assert_eq!(
         left,
-        map_below(&scene, &maps, 1.01, 0.5),
+        map_below(scene, maps, 1.01, 0.5),
         "the doorway's floor joins both rooms"
     );
 }
@@ -179,13 +173,12 @@ fn box_on_a_floor_is_cut_out_and_the_floor_around_it_stays_one_map() {
         .light(PointLight::new(p(1.5, 2.0, 1.5), Vec3::splat(10.0)))
         .build()
         .unwrap();
-    let contact = Contact::default();
-    let split = contact.split_scene(scene).unwrap();
-    let maps = contact.partition(&split);
+    let contact = Contact::default().partition(scene).unwrap();
+    let (split, maps) = (contact.scene(), contact.assignment());
     let around = [(0.5, 0.5), (1.5, 0.5), (2.5, 2.5), (0.5, 1.5), (2.5, 1.5)];
-    let m = map_below(&split, &maps, 0.5, 0.5);
+    let m = map_below(split, maps, 0.5, 0.5);
     for (x, z) in around {
-        assert_eq!(map_below(&split, &maps, x, z), m, "floor at ({x}, {z})");
+        assert_eq!(map_below(split, maps, x, z), m, "floor at ({x}, {z})");
     }
     // Under the box: the floor piece there is in no map of the floor around it.
     let under: Vec<u32> = (0..split.part_count() as u32)
@@ -213,12 +206,12 @@ fn splitting_keeps_the_traced_power() {
         seed: 7,
         ..TraceOptions::default()
     };
-    let before = trace_photons(&scene, &CreaseAngle::default().partition(&scene), &options).unwrap();
-    let contact = Contact::default();
-    let split = contact
-        .split_scene(scenes::build("touching-rooms").unwrap())
+    let crease = CreaseAngle::default().partition(scene).unwrap();
+    let before = trace_photons(crease.scene(), crease.assignment(), &options).unwrap();
+    let contact = Contact::default()
+        .partition(scenes::build("touching-rooms").unwrap())
         .unwrap();
-    let after = trace_photons(&split, &contact.partition(&split), &options).unwrap();
+    let after = trace_photons(contact.scene(), contact.assignment(), &options).unwrap();
     let (a, b) = (
         common::stored_power(&before, None),
         common::stored_power(&after, None),
@@ -229,22 +222,23 @@ fn splitting_keeps_the_traced_power() {
 }
 
 #[test]
-fn contact_refuses_a_scene_it_has_not_split() {
+fn contact_maps_come_only_with_the_split_scene() {
     let scene = scenes::build("touching-rooms").unwrap();
-    let contact = Contact::default();
-    assert!(!scene.is_split_at_contacts());
-    assert_eq!(
-        contact.try_partition(&scene),
-        Err(pm_trace::PartitionError::NotSplitAtContacts),
-        "unsplit, its maps would silently be the crease-angle ones"
-    );
-    assert!(CreaseAngle::default().try_partition(&scene).is_ok());
-
-    let split = contact.prepare_scene(scene).unwrap();
-    assert!(split.is_split_at_contacts());
-    let maps = contact.try_partition(&split).unwrap();
-    // Preparing twice changes nothing.
-    let again = contact.prepare_scene(split.clone()).unwrap();
-    assert_eq!(again.part_count(), split.part_count());
-    assert_eq!(contact.try_partition(&again).unwrap(), maps);
+    let parts = scene.part_count();
+    let contact = Contact::default().partition(scene.clone()).unwrap();
+    let record = contact
+        .record()
+        .expect("the contact partition keeps what it found");
+    assert!(record.counts().in_plane > 0, "{:?}", record.counts());
+    // The maps are the split scene's: they cover its parts, not the scene as built.
+    assert!(contact.scene().part_count() > parts);
+    assert_eq!(contact.assignment().part_count(), contact.scene().part_count());
+    // The same scene split twice gives the same scene and maps.
+    let again = Contact::default().partition(scene.clone()).unwrap();
+    assert_eq!(again.assignment(), contact.assignment());
+    assert_eq!(again.scene().part_count(), contact.scene().part_count());
+    // The crease-angle partition leaves the scene as it is and has no record.
+    let crease = CreaseAngle::default().partition(scene).unwrap();
+    assert!(crease.record().is_none());
+    assert_eq!(crease.scene().part_count(), parts);
 }

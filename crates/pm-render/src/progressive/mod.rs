@@ -65,7 +65,7 @@ use glam::Vec3;
 use pass_maps::trace_pass;
 use pilot::Pilot;
 use pm_kdtree::PhotonTree;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Rng, Scene, TraceOptions, trace_photons};
 use radiance::PassLighting;
 use rayon::prelude::*;
 use std::ops::ControlFlow;
@@ -216,36 +216,29 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
 
     /// Traces the pilot, then renders the passes (`settings.passes` of them from
     /// `settings.first_pass`, or until the time budget is spent) into a sum.
-    pub fn render<P: Partitioner + ?Sized>(
+    pub fn render(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
     ) -> Result<ProgressiveRendered, RenderError> {
-        self.render_observed(
-            scene,
-            partitioner,
-            progress,
-            &mut |_, _| ControlFlow::Continue(()),
-        )
+        self.render_observed(partitioned, progress, &mut |_, _| ControlFlow::Continue(()))
     }
 
     /// As [`ProgressiveRenderer::render`], calling `observe` with the sum and the figures so
     /// far after every pass; the run also stops after a pass for which it returns
     /// [`ControlFlow::Break`]. (A convergence study reads the image at chosen times this way
     /// without rendering again.) The observer's own time counts in the wall time.
-    pub fn render_observed<P: Partitioner + ?Sized>(
+    pub fn render_observed(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
         observe: &mut (dyn FnMut(&Accumulation, &ProgressiveStats) -> ControlFlow<()> + Send),
     ) -> Result<ProgressiveRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
-        let assignment = partitioner.try_partition(scene)?;
+        let (scene, assignment) = (partitioned.scene(), partitioned.assignment());
         in_pool(self.settings.render.threads, || {
-            self.render_in_pool(scene, &assignment, progress, start, observe)
+            self.render_in_pool(scene, assignment, progress, start, observe)
         })?
     }
 

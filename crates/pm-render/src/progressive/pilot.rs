@@ -126,7 +126,8 @@ mod tests {
     #[test]
     fn extent_is_the_brute_force_k_nearest_extent_at_the_nearest_site() {
         let scene = scenes::build("colored-rooms").unwrap();
-        let assignment = CreaseAngle::default().partition(&scene);
+        let partitioned = CreaseAngle::default().partition(scene).unwrap();
+        let (scene, assignment, _) = partitioned.into_parts();
         let settings = RenderSettings {
             photons: 4_000,
             k: 20,

@@ -27,7 +27,7 @@ use crate::renderer::in_pool;
 use crate::{EstimatorOptions, Image, Mode, Progress, RenderError, RenderSettings};
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
-use pm_trace::{Material, Partitioner, RayKind, Rng, Scene, SingleMap};
+use pm_trace::{MapAssignment, Material, RayKind, Rng, Scene};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};
 use std::ops::ControlFlow;
@@ -127,7 +127,7 @@ impl SppmRenderer {
     ) -> Result<SppmRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
-        let assignment = SingleMap.partition(scene);
+        let assignment = MapAssignment::single(scene.part_count());
         in_pool(self.settings.render.threads, || {
             let s = &self.settings;
             let r = &s.render;

@@ -4,7 +4,7 @@
 use crate::part::PartId;
 use pm_geom::{BarrierSet, IntersectionCounts};
 
-/// What [`Contact::split_scene`](super::Contact::split_scene) found and cut: the meeting segments no map crosses, the pieces
+/// What [`Contact`](super::Contact) found and cut when it split a scene: the meeting segments no map crosses, the pieces
 /// inside closed solids, and counts of each kind of meeting.
 #[derive(Clone, Debug, Default)]
 pub struct ContactRecord {

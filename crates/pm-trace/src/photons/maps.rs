@@ -4,7 +4,7 @@
 use super::traced::TracedPhotons;
 use crate::error::{MapError, TraceError};
 use crate::part::PartId;
-use crate::partition::MapAssignment;
+use crate::partition::assignment::MapAssignment;
 use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{Aabb, CoplanarMerger, MergeOptions, PolygonSet};

@@ -5,7 +5,7 @@ use super::light_picker::LightPicker;
 use super::options::{NEAR_LIGHT_DISTANCE, TraceOptions};
 use super::scatter::{glass_direction, mirror_direction};
 use crate::material::Material;
-use crate::partition::MapAssignment;
+use crate::partition::assignment::MapAssignment;
 use crate::ray::Ray;
 use crate::rng::Rng;
 use crate::sampling::cosine_hemisphere;
@@ -237,6 +237,8 @@ impl PhotonPath {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::partition::Partitioner;
+    use crate::partition::crease::CreaseAngle;
     use crate::photons::light_picker::LightPicker;
     use crate::scenes::scale::split_rooms;
 
@@ -248,7 +250,11 @@ mod tests {
     fn paths_traced_in_pairs_store_what_paths_traced_one_at_a_time_store() {
         let scene = split_rooms(60).unwrap();
         assert!(scene.prefers_ray_pairs());
-        let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
+        let assignment = CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone();
         let options = TraceOptions {
             photons: 2_001,
             seed: 7,
@@ -304,7 +310,11 @@ mod tests {
     fn paired_tracing_is_the_same_on_one_and_seven_threads() {
         let scene = split_rooms(60).unwrap();
         assert!(scene.prefers_ray_pairs());
-        let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
+        let assignment = CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone();
         let options = TraceOptions {
             photons: 3_001,
             seed: 11,

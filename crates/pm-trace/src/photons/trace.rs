@@ -7,7 +7,7 @@ use super::options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, TraceOptions};
 use super::path::{NearLight, trace_paths};
 use super::traced::{TraceStats, TracedPhotons};
 use crate::error::TraceError;
-use crate::partition::MapAssignment;
+use crate::partition::assignment::MapAssignment;
 use crate::scene::Scene;
 use pm_kdtree::Photon;
 use rayon::prelude::*;

@@ -29,7 +29,7 @@ impl Scene {
     /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
     /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
     /// along contact lines). Add every mesh again, including those of area-light quads.
-    pub fn into_builder_without_meshes(self) -> SceneBuilder {
+    pub(crate) fn into_builder_without_meshes(self) -> SceneBuilder {
         let mut shapes = Vec::with_capacity(self.shapes.len());
         for (i, source) in self.shape_parts.iter().enumerate() {
             let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
@@ -318,10 +318,51 @@ impl SceneBuilder {
             epsilon,
             mesh_options: self.mesh_options,
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
-            contacts: None,
             has_shading: meshes.has_shading,
             has_emission_textures: meshes.has_emission_textures,
             has_culling,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ray::Ray;
+    use crate::scene::RayKind;
+    use crate::scenes;
+    use glam::Vec3;
+
+    /// The builder the contact split rebuilds a scene with keeps its shapes, lights and camera.
+    #[test]
+    fn a_scene_rebuilds_from_its_own_meshes_with_the_same_parts_and_hits() {
+        let scene = scenes::build("cornell-box").unwrap();
+        // Collect every mesh as polygons with their surfaces, then rebuild.
+        let mut meshes = Vec::new();
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            let mut positions = Vec::new();
+            let mut faces = Vec::new();
+            let mut surfaces = Vec::new();
+            for f in mesh.faces() {
+                let start = positions.len() as u32;
+                positions.extend(mesh.face_polygon(f));
+                faces.push((start..positions.len() as u32).collect::<Vec<u32>>());
+                surfaces.push(*scene.part_surface(m.part_of_face(f)));
+            }
+            meshes.push((positions, faces, surfaces));
+        }
+        let parts = scene.part_count();
+        let probe = Ray::new(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.3, -0.2, 0.5));
+        let before = scene.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
+        let mut builder = scene.into_builder_without_meshes();
+        for (p, f, s) in &meshes {
+            builder = builder.mesh_per_face(p, f, s);
+        }
+        let rebuilt = builder.build().unwrap();
+        assert_eq!(rebuilt.part_count(), parts);
+        assert_eq!(rebuilt.lights().len(), 1);
+        let after = rebuilt.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
+        assert_eq!(before.part, after.part);
+        assert!((before.t - after.t).abs() < 1e-6);
     }
 }

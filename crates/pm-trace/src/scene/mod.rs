@@ -20,7 +20,6 @@ use crate::error::SceneError;
 use crate::light::Light;
 use crate::material::{Material, Surface};
 use crate::part::{PartId, PartSource};
-use crate::partition::record::ContactRecord;
 use crate::shape::Shape;
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
@@ -106,8 +105,6 @@ pub struct Scene {
     epsilon: f32,
     mesh_options: MeshOptions,
     bvh: Arc<SceneBvh>,
-    /// What [`crate::Contact`] found when it split the faces where they meet; `None` until then.
-    contacts: Option<Arc<ContactRecord>>,
     /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
     has_shading: bool,
     /// True when some mesh has an emission texture (else [`Scene::emission`] skips the lookup).
@@ -151,23 +148,6 @@ impl Scene {
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
         self.camera = camera;
         Ok(self)
-    }
-
-    /// True when [`crate::Contact`] has split this scene's faces along their contacts (its
-    /// [`crate::Partitioner::prepare_scene`]).
-    pub fn is_split_at_contacts(&self) -> bool {
-        self.contacts.is_some()
-    }
-
-    /// What [`crate::Contact`] found and cut when it split this scene (`None` for a scene it
-    /// has not split).
-    pub fn contact_record(&self) -> Option<&ContactRecord> {
-        self.contacts.as_deref()
-    }
-
-    /// Records that [`crate::Contact`] split this scene, and what it found.
-    pub(crate) fn set_contact_record(&mut self, record: ContactRecord) {
-        self.contacts = Some(Arc::new(record));
     }
 
     /// Bounds of all geometry.

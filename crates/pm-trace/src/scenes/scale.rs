@@ -146,12 +146,20 @@ mod tests {
 
     #[test]
     fn split_rooms_have_24_n_squared_triangles_and_keep_each_wall_one_map() {
-        use crate::{CreaseAngle, Partitioner};
+        use crate::partition::Partitioner;
+        use crate::partition::crease::CreaseAngle;
         for n in [1, 3] {
             let scene = split_rooms(n).unwrap();
             assert_eq!(scene.part_count() as u32, 12 * n * n);
             // Coplanar split faces are edge-connected: one map per wall, as at n = 1.
-            assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 12);
+            assert_eq!(
+                CreaseAngle::default()
+                    .partition(scene.clone())
+                    .unwrap()
+                    .assignment()
+                    .map_count(),
+                12
+            );
         }
         assert!(split_rooms(0).is_err());
         assert!(split_rooms(MAX_SPLIT + 1).is_err());
@@ -159,10 +167,18 @@ mod tests {
 
     #[test]
     fn cube_field_has_one_map_per_cube_and_the_floor() {
-        use crate::{CreaseAngle, Partitioner};
+        use crate::partition::Partitioner;
+        use crate::partition::crease::CreaseAngle;
         let scene = cube_field(50).unwrap();
         assert_eq!(scene.part_count(), 1 + 50 * 6);
-        assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 1 + 50 * 6);
+        assert_eq!(
+            CreaseAngle::default()
+                .partition(scene.clone())
+                .unwrap()
+                .assignment()
+                .map_count(),
+            1 + 50 * 6
+        );
         assert!(cube_field(0).is_err());
     }
 }
