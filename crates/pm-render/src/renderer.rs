@@ -29,9 +29,10 @@ pub struct Rendered {
 ///
 /// ```no_run
 /// # use pm_render::{Renderer, RenderSettings, GeometryCube};
-/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// # use pm_trace::Partitioner;
+/// # fn f(scene: pm_trace::Scene) -> Result<(), pm_render::RenderError> {
 /// let renderer = Renderer::new(GeometryCube, RenderSettings::default());
-/// let out = renderer.render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// let out = renderer.render(&pm_trace::CreaseAngle::default().partition(scene)?, &())?;
 /// println!("{:?} total", out.stats.total());
 /// # Ok(()) }
 /// ```

@@ -190,10 +190,11 @@ impl ProgressiveSettings {
 /// ```no_run
 /// # use pm_render::{EstimatorKind, RenderSettings};
 /// # use pm_render::progressive::{ProgressiveRenderer, ProgressiveSettings};
-/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// # use pm_trace::Partitioner;
+/// # fn f(scene: pm_trace::Scene) -> Result<(), pm_render::RenderError> {
 /// let settings = ProgressiveSettings::new(RenderSettings { photons: 50_000, ..Default::default() }, 32);
-/// let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
-///     .render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// let partitioned = pm_trace::CreaseAngle::default().partition(scene)?;
+/// let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings).render(&partitioned, &())?;
 /// let image = out.accumulation.mean();
 /// # Ok(()) }
 /// ```
