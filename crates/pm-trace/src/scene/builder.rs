@@ -216,10 +216,9 @@ impl SceneBuilder {
     /// let (x, z) = (vec3(0.5, 0.0, 0.0), vec3(0.0, 0.0, 0.5));
     /// assert_eq!(x.cross(z).normalize(), Vec3::NEG_Y);
     /// for (edges, near) in [((x, z), 0.0..0.01), ((z, x), 0.99..1.01)] {
-    ///     let scene = room(edges.0, edges.1)?;
-    ///     let assignment = CreaseAngle::default().partition(&scene);
+    ///     let partitioned = CreaseAngle::default().partition(room(edges.0, edges.1)?)?;
     ///     let options = TraceOptions { photons: 2_000, ..TraceOptions::default() };
-    ///     let traced = trace_photons(&scene, &assignment, &options)?;
+    ///     let traced = trace_photons(partitioned.scene(), partitioned.assignment(), &options)?;
     ///     // Facing down: nothing lands within 1 mm of the light. Facing up: everything does.
     ///     assert!(near.contains(&traced.stats().near_light_fraction));
     /// }
