@@ -242,3 +242,62 @@ fn contact_maps_come_only_with_the_split_scene() {
     assert!(crease.record().is_none());
     assert_eq!(crease.scene().part_count(), parts);
 }
+
+/// The six outward quads of the box `[lo, hi]` as one closed mesh.
+fn solid_box(lo: Vec3, hi: Vec3) -> (Vec<Vec3>, Vec<[u32; 4]>) {
+    let corners = (0..8)
+        .map(|i| {
+            Vec3::new(
+                if i & 1 != 0 { hi.x } else { lo.x },
+                if i & 2 != 0 { hi.y } else { lo.y },
+                if i & 4 != 0 { hi.z } else { lo.z },
+            )
+        })
+        .collect();
+    let faces = vec![
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [4, 5, 7, 6],
+        [0, 2, 3, 1],
+    ];
+    (corners, faces)
+}
+
+#[test]
+fn bar_pushed_into_a_cube_seals_its_end_and_reports_four_barriers() {
+    // A bar [0.5, 1.5]² × [−1, 1] enters the cube [0, 2]³ through its face z = 0 and ends
+    // inside it: the four sides of the entry square are the meeting lines, and the bar's end
+    // face at z = 1 (never cut) lies inside the cube with the bar's sides from z = 0 to 1.
+    let white = Surface::diffuse(Vec3::splat(0.5));
+    let (cube, cube_faces) = solid_box(Vec3::ZERO, Vec3::splat(2.0));
+    let (bar, bar_faces) = solid_box(Vec3::new(0.5, 0.5, -1.0), Vec3::new(1.5, 1.5, 1.0));
+    let scene = Scene::builder()
+        .mesh(&cube, &cube_faces, white)
+        .mesh(&bar, &bar_faces, white)
+        .light(PointLight::new(Vec3::new(1.0, 1.0, -3.0), Vec3::splat(10.0)))
+        .build()
+        .unwrap();
+    let contact = Contact::default().partition(scene).unwrap();
+    let record = contact.record().unwrap();
+    assert_eq!(record.barriers().len(), 4, "{:?}", record.barriers().segments());
+    let split = contact.scene();
+    let mut sealed_area = [0.0f64; 2];
+    let mut end_sealed = false;
+    for (m, mesh) in split.meshes().iter().enumerate() {
+        let half_edges = mesh.half_edge_mesh();
+        for face in half_edges.faces() {
+            let part = mesh.part_of_face(face);
+            if !record.is_sealed(part) {
+                continue;
+            }
+            sealed_area[m] += half_edges.face_area(face) as f64;
+            end_sealed |= half_edges.face_polygon(face).all(|p| (p.z - 1.0).abs() < 1e-6);
+        }
+    }
+    assert!(end_sealed, "the bar's end face lies inside the cube");
+    // Cube: its face z = 0 inside the bar's square (1 m²); bar: four sides (4 m²) and the end.
+    assert!((sealed_area[0] - 1.0).abs() < 1e-4, "{sealed_area:?}");
+    assert!((sealed_area[1] - 5.0).abs() < 1e-4, "{sealed_area:?}");
+}

@@ -4,6 +4,7 @@
 use super::budget::ArrangementError;
 use super::counts::IntersectionCounts;
 use super::cut::{Cut, add_cut};
+use super::dedup::dedup_segments;
 use super::options::ArrangementOptions;
 use super::pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
 use crate::aabb::Aabb;
@@ -89,10 +90,12 @@ pub(super) fn find_meetings(
             }
         }
     });
-    match failure {
-        Some(error) => Err(error),
-        None => Ok(found),
+    if let Some(error) = failure {
+        return Err(error);
     }
+    // A piercing or in-plane meeting reports its segment for both faces: keep it once.
+    found.barriers = dedup_segments(std::mem::take(&mut found.barriers), tolerance);
+    Ok(found)
 }
 
 /// Calls `f(i, j)`, `i < j`, for every pair of faces whose bounds come within `gap` of each

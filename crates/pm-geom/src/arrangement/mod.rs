@@ -17,6 +17,7 @@ mod contact_tests;
 mod copies;
 mod counts;
 mod cut;
+mod dedup;
 mod inside;
 mod junctions;
 mod meetings;
@@ -52,7 +53,8 @@ pub struct Arrangement {
     pub sealed: Vec<bool>,
     /// Every segment along which faces meet and no photon map may join: piercing and in-plane
     /// contacts, near-contacts, and overlaps of faces facing opposite ways. Overlaps of faces
-    /// facing the same way are not barriers (the hidden copy is dropped instead).
+    /// facing the same way are not barriers (the hidden copy is dropped instead). Each segment
+    /// once, though it is an edge of the pieces on both faces.
     pub barriers: Vec<[Vec3; 2]>,
     /// What was found.
     pub counts: IntersectionCounts,
@@ -74,8 +76,9 @@ pub struct Arrangement {
 /// edge they lie on, so that welding the output links pieces on both sides of a cut.
 ///
 /// `solids` gives, for each polygon, the closed solid it bounds (its faces oriented outwards),
-/// or `None`; it may be empty. A piece of a cut face that lies inside another closed solid is
-/// marked [`Arrangement::sealed`].
+/// or `None`; it may be empty. A piece that lies inside another closed solid is marked
+/// [`Arrangement::sealed`]: a piece of a cut face, and also a face wholly inside a solid, which
+/// meets none of its faces and so is never cut (the end of a bar pushed into a cube).
 ///
 /// Degenerate polygons (fewer than 3 vertices, zero area, non-finite) pass through unchanged.
 /// The area of every input polygon is kept by its pieces, except duplicates dropped.
@@ -116,7 +119,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
         &mut counts,
     );
     let mut sealed = vec![false; pieces.polygons.len()];
-    if !solids.is_empty() && pieces.was_cut.iter().any(|&c| c) {
+    if solids.iter().any(Option::is_some) {
         let Pieces {
             polygons,
             source,

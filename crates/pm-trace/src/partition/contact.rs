@@ -85,7 +85,7 @@ impl Contact {
     /// interpolated over the original triangle, so [`Scene::albedo_at`] and
     /// [`Scene::shading_normal_at`] give what they gave before the split); lights, analytic
     /// shapes and the camera are unchanged, and so is the total area of every face except the
-    /// hidden copies of duplicated faces. A scene where no faces meet comes back unchanged.
+    /// hidden copies of duplicated faces. A scene where no faces meet (and none lies inside a solid) comes back unchanged.
     ///
     /// Fails with [`SceneError::Arrangement`] when the faces meet in more places than the
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
@@ -97,7 +97,7 @@ impl Contact {
         let faces = mesh_faces(&scene);
         let split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
         let counts = split.counts;
-        if counts.meetings() == 0 && counts.duplicate_pieces == 0 {
+        if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
             let record = ContactRecord {
                 seconds: start.elapsed().as_secs_f64(),
                 ..ContactRecord::default()
