@@ -131,7 +131,7 @@ pub use light::{
     SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
-pub use part::{PartId, PartSource};
+pub use part::{PartId, PartSource, SourceFace};
 pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };

@@ -301,3 +301,87 @@ fn bar_pushed_into_a_cube_seals_its_end_and_reports_four_barriers() {
     assert!((sealed_area[0] - 1.0).abs() < 1e-4, "{sealed_area:?}");
     assert!((sealed_area[1] - 5.0).abs() < 1e-4, "{sealed_area:?}");
 }
+
+/// Every piece of the split scene names the face it came from; per source face, the pieces'
+/// areas sum to the face's area and every piece keeps its surface.
+fn pieces_tile_their_source_faces(name: &str) {
+    let scene = scenes::build(name).unwrap();
+    let contact = Contact::default().partition(scene.clone()).unwrap();
+    let record = contact.record().unwrap();
+    assert!(
+        record.counts().meetings() > 0,
+        "{name}: the scene must test the case"
+    );
+    assert_eq!(record.counts().duplicate_pieces, 0, "{name}: no copies dropped");
+    let split = contact.scene();
+    let mut area: std::collections::BTreeMap<pm_trace::SourceFace, f64> = Default::default();
+    for p in 0..split.part_count() as u32 {
+        let part = pm_trace::PartId(p);
+        let Some(source) = contact.source_face(part) else {
+            assert!(!matches!(split.part_source(part), PartSource::MeshFace { .. }));
+            continue;
+        };
+        let original = scene.meshes()[source.mesh as usize].half_edge_mesh();
+        let face = original
+            .faces()
+            .find(|&f| original.source_face(f) == source.face as usize)
+            .expect("the source face is in the scene as built");
+        let original_part = scene.meshes()[source.mesh as usize].part_of_face(face);
+        assert_eq!(
+            split.part_surface(part),
+            scene.part_surface(original_part),
+            "{name}: {source:?}"
+        );
+        let PartSource::MeshFace { mesh, face: piece } = split.part_source(part) else {
+            panic!("a mesh part")
+        };
+        *area.entry(source).or_default() +=
+            split.meshes()[mesh as usize].half_edge_mesh().face_area(piece) as f64;
+    }
+    // Every face of the scene as built is tiled by its pieces.
+    let mut faces = 0;
+    for (m, mesh) in scene.meshes().iter().enumerate() {
+        let half_edges = mesh.half_edge_mesh();
+        for face in half_edges.faces() {
+            let source = pm_trace::SourceFace {
+                mesh: m as u32,
+                face: half_edges.source_face(face) as u32,
+            };
+            assert_eq!(scene.source_face(mesh.part_of_face(face)), Some(source));
+            let whole = half_edges.face_area(face) as f64;
+            let pieces = area.get(&source).copied().unwrap_or(0.0);
+            assert!(
+                (pieces - whole).abs() <= 1e-5 * whole.max(1.0),
+                "{name}: {source:?} {pieces} of {whole}"
+            );
+            faces += 1;
+        }
+    }
+    assert_eq!(area.len(), faces, "{name}: no piece names a face the scene lacks");
+}
+
+#[test]
+fn pieces_of_each_face_tile_it_and_keep_its_surface() {
+    for name in [
+        "touching-rooms",
+        "solid-rooms-pierce",
+        "solid-rooms-stand",
+        "solid-rooms-sunk-box",
+    ] {
+        pieces_tile_their_source_faces(name);
+    }
+}
+
+#[test]
+fn source_faces_without_a_split_are_the_scene_s_own() {
+    let scene = scenes::build("cornell-box").unwrap();
+    let crease = CreaseAngle::default().partition(scene.clone()).unwrap();
+    for p in 0..scene.part_count() as u32 {
+        let part = pm_trace::PartId(p);
+        assert_eq!(crease.source_face(part), scene.source_face(part));
+        assert_eq!(
+            scene.source_face(part).is_some(),
+            matches!(scene.part_source(part), PartSource::MeshFace { .. })
+        );
+    }
+}

@@ -11,7 +11,7 @@ use super::partitioned::{PartitionError, Partitioned};
 use super::record::ContactRecord;
 use crate::error::SceneError;
 use crate::material::Surface;
-use crate::part::{PartId, PartSource};
+use crate::part::{PartId, PartSource, SourceFace};
 use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{
@@ -99,6 +99,9 @@ impl Contact {
         let counts = split.counts;
         if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
             let record = ContactRecord {
+                source_faces: (0..scene.part_count() as u32)
+                    .map(|p| scene.source_face(PartId(p)))
+                    .collect(),
                 seconds: start.elapsed().as_secs_f64(),
                 ..ContactRecord::default()
             };
@@ -112,6 +115,7 @@ impl Contact {
         let mut face_surfaces: Vec<Vec<Surface>> = vec![Vec::new(); mesh_count];
         let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
         let mut piece_index: Vec<Vec<usize>> = vec![Vec::new(); mesh_count];
+        let mut piece_sources: Vec<Vec<SourceFace>> = vec![Vec::new(); mesh_count];
         for (index, (piece, &source)) in split.polygons.iter().zip(&split.source).enumerate() {
             let m = faces.mesh_of[source];
             let start = positions[m].len() as u32;
@@ -120,6 +124,10 @@ impl Contact {
             face_surfaces[m].push(faces.surfaces[source]);
             piece_faces[m].push(faces.face_of[source]);
             piece_index[m].push(index);
+            piece_sources[m].push(SourceFace {
+                mesh: m as u32,
+                face: faces.user_face[source],
+            });
         }
         // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
         // shaded by interpolating over the whole original triangle it lies in.
@@ -143,15 +151,19 @@ impl Contact {
         }
         let rebuilt = builder.build()?;
         let mut sealed_parts = vec![false; rebuilt.part_count()];
+        let mut source_faces = vec![None; rebuilt.part_count()];
         for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {
             for face in mesh.half_edge_mesh().faces() {
-                let piece = piece_index[m][mesh.half_edge_mesh().source_face(face)];
-                sealed_parts[mesh.part_of_face(face).0 as usize] = split.sealed[piece];
+                let k = mesh.half_edge_mesh().source_face(face);
+                let part = mesh.part_of_face(face).0 as usize;
+                sealed_parts[part] = split.sealed[piece_index[m][k]];
+                source_faces[part] = Some(piece_sources[m][k]);
             }
         }
         let record = ContactRecord {
             barriers: BarrierSet::new(split.barriers, tolerance),
             sealed_parts,
+            source_faces,
             counts,
             seconds: start.elapsed().as_secs_f64(),
         };
@@ -281,6 +293,8 @@ struct MeshFaces {
     surfaces: Vec<Surface>,
     mesh_of: Vec<usize>,
     face_of: Vec<FaceId>,
+    /// The face's index in its mesh's face list as the user gave it.
+    user_face: Vec<u32>,
     /// The mesh's index when the mesh is a closed solid (every edge shared by two faces).
     solids: Vec<Option<u32>>,
 }
@@ -291,6 +305,7 @@ fn mesh_faces(scene: &Scene) -> MeshFaces {
         surfaces: Vec::new(),
         mesh_of: Vec::new(),
         face_of: Vec::new(),
+        user_face: Vec::new(),
         solids: Vec::new(),
     };
     for (m, mesh) in scene.meshes().iter().enumerate() {
@@ -301,6 +316,7 @@ fn mesh_faces(scene: &Scene) -> MeshFaces {
             out.surfaces.push(*scene.part_surface(mesh.part_of_face(face)));
             out.mesh_of.push(m);
             out.face_of.push(face);
+            out.user_face.push(half_edges.source_face(face) as u32);
             out.solids.push(closed.then_some(m as u32));
         }
     }

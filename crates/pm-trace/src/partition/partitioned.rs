@@ -5,6 +5,7 @@ use super::assignment::MapAssignment;
 use super::record::ContactRecord;
 use crate::camera::Camera;
 use crate::error::SceneError;
+use crate::part::{PartId, SourceFace};
 use crate::scene::Scene;
 
 /// A scene with the photon map of each of its parts: what a [`super::Partitioner`] returns and
@@ -72,6 +73,16 @@ impl Partitioned {
             scene: self.scene.with_camera(camera)?,
             ..self
         })
+    }
+
+    /// The face the user gave that `part` of [`Partitioned::scene`] is (or, after the contact
+    /// split, is a piece of): its mesh and face index in the scene as built, so per-face data
+    /// (a material id, an object id) can be looked up. `None` for analytic parts.
+    pub fn source_face(&self, part: PartId) -> Option<SourceFace> {
+        match &self.record {
+            Some(record) => record.source_face(part),
+            None => self.scene.source_face(part),
+        }
     }
 
     /// The scene, the assignment and the record, by value.

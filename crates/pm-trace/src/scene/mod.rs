@@ -19,7 +19,7 @@ use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::light::Light;
 use crate::material::{Material, Surface};
-use crate::part::{PartId, PartSource};
+use crate::part::{PartId, PartSource, SourceFace};
 use crate::shape::Shape;
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
@@ -300,6 +300,19 @@ impl Scene {
             }
         } else {
             self.shape_parts[(part.0 - self.mesh_part_count) as usize]
+        }
+    }
+
+    /// The face the user gave for mesh part `part` (`None` for an analytic part). For a scene
+    /// the contact partition has split, ask the [`Partitioned`](crate::partition::Partitioned)
+    /// instead: its scene was rebuilt from pieces, and this would name the pieces.
+    pub fn source_face(&self, part: PartId) -> Option<SourceFace> {
+        match self.part_source(part) {
+            PartSource::MeshFace { mesh, face } => Some(SourceFace {
+                mesh,
+                face: self.meshes[mesh as usize].mesh.source_face(face) as u32,
+            }),
+            PartSource::Sphere { .. } | PartSource::Ring { .. } => None,
         }
     }
 
