@@ -124,7 +124,7 @@ pub mod gltf;
 
 pub use camera::Camera;
 pub use emission::EmissionTexture;
-pub use error::{MapError, SceneError, TraceError};
+pub use error::{MapError, PhotonFault, SceneError, TraceError};
 pub use glam;
 pub use light::{
     AreaLight, DirectionalLight, EmittedRay, IncidentPdf, Light, LightClone, LightSample, PointLight,
