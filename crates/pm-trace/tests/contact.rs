@@ -243,25 +243,18 @@ fn contact_maps_come_only_with_the_split_scene() {
     assert_eq!(crease.scene().part_count(), parts);
 }
 
-/// The six outward quads of the box `[lo, hi]` as one closed mesh.
+/// The six outward quads of the box `[lo, hi]` as one closed mesh: the unit room, scaled,
+/// turned inside out.
 fn solid_box(lo: Vec3, hi: Vec3) -> (Vec<Vec3>, Vec<[u32; 4]>) {
-    let corners = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 != 0 { hi.x } else { lo.x },
-                if i & 2 != 0 { hi.y } else { lo.y },
-                if i & 4 != 0 { hi.z } else { lo.z },
-            )
+    let (unit, inward) = common::unit_box();
+    let corners = unit.iter().map(|&c| lo + c * (hi - lo)).collect();
+    let faces = inward
+        .into_iter()
+        .map(|mut f| {
+            f.reverse();
+            f
         })
         .collect();
-    let faces = vec![
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [4, 5, 7, 6],
-        [0, 2, 3, 1],
-    ];
     (corners, faces)
 }
 
