@@ -3,10 +3,19 @@
 
 use glam::Vec3;
 
+/// Which way a box's faces point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Facing {
+    /// Into the box: a room, seen from inside.
+    Inward,
+    /// Out of the box: a solid, seen from outside.
+    Outward,
+}
+
 /// Faces of the box `[min, max]` as quads over the 8 corners `i → (x: bit 0, y: bit 1,
 /// z: bit 2)`, in the order floor (y min), ceiling, x min, x max, z max (back), z min (front).
-/// `inward` winds them so their normals point into the box, otherwise out of it.
-pub(crate) fn box_mesh(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<[u32; 4]>) {
+/// `facing` says which way their normals point.
+pub(crate) fn box_mesh(min: Vec3, max: Vec3, facing: Facing) -> (Vec<Vec3>, Vec<[u32; 4]>) {
     let corners = (0..8)
         .map(|i| {
             Vec3::new(
@@ -24,7 +33,7 @@ pub(crate) fn box_mesh(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<[u
         [4, 6, 7, 5],
         [0, 1, 3, 2],
     ];
-    if !inward {
+    if facing == Facing::Outward {
         for f in &mut faces {
             f.reverse();
         }

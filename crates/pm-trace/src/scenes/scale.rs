@@ -2,7 +2,7 @@
 //! into an `n × n` grid of quads, and a field of many separate cubes. Their light transport is
 //! the same at every `n` (the split faces are coplanar), so their images can be compared.
 
-use super::box_mesh::box_mesh;
+use super::box_mesh::{Facing, box_mesh};
 use super::rooms;
 use crate::error::SceneError;
 use crate::light::point::PointLight;
@@ -66,7 +66,7 @@ fn add_split_room(builder: SceneBuilder, x0: f32, n: u32) -> SceneBuilder {
     let (corners, quads) = box_mesh(
         Vec3::new(x0, 0.0, 0.0),
         Vec3::new(x0 + rooms::ROOM, rooms::ROOM, rooms::ROOM),
-        true,
+        Facing::Inward,
     );
     let (positions, faces) = split_quads(&corners, &quads, n);
     let w = Surface::diffuse(Vec3::splat(0.75));
@@ -118,7 +118,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
             half * (1.0 + 2.0 * rng.next_f32()),
             (gz + 0.5) * cell,
         ) + jitter;
-        let (corners, quads) = box_mesh(c - Vec3::splat(half), c + Vec3::splat(half), false);
+        let (corners, quads) = box_mesh(c - Vec3::splat(half), c + Vec3::splat(half), Facing::Outward);
         let first = positions.len() as u32;
         positions.extend(corners);
         faces.extend(quads.iter().map(|q| q.map(|v| v + first)));
