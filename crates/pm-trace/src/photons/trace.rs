@@ -27,6 +27,31 @@ pub fn trace_photons(
     options: &TraceOptions,
 ) -> Result<TracedPhotons, TraceError> {
     let start = Instant::now();
+    check_request(scene, assignment, options)?;
+    let picker = LightPicker::new(scene, options.photons)?;
+    let (merged, near_light) = trace_in_waves(scene, assignment, options, &picker)?;
+    let Merged { photons, stored, .. } = merged;
+    let near_light_fraction = if near_light.emitted > 0.0 {
+        near_light.near / near_light.emitted
+    } else {
+        0.0
+    };
+    let stats = TraceStats {
+        emitted: options.photons as u64,
+        stored,
+        near_light_fraction,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok(TracedPhotons { photons, stats })
+}
+
+/// Refuses zero photons, more than [`MAX_PHOTON_PATHS`], and an assignment made for another
+/// scene.
+fn check_request(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+) -> Result<(), TraceError> {
     if options.photons == 0 {
         return Err(TraceError::ZeroPhotons);
     }
@@ -41,15 +66,25 @@ pub fn trace_photons(
             parts: scene.part_count(),
         });
     }
-    let picker = LightPicker::new(scene, options.photons)?;
+    Ok(())
+}
+
+/// Traces every path in waves of chunks: each wave in parallel into buffers that are reused
+/// (cache-warm, no fresh pages), merged in path order while the next one traces. Returns the
+/// merged photons and the near-light figures summed in chunk order (so they do not depend on
+/// the thread count).
+fn trace_in_waves(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    picker: &LightPicker,
+) -> Result<(Merged, NearLight), TraceError> {
     let maps = assignment.map_count() as usize;
     let mut merged = Merged {
         photons: vec![Vec::new(); maps],
         stored: vec![[0u64; 3]; maps],
         total: 0,
     };
-    // Waves of chunks traced in parallel into buffers that are reused (cache-warm, no fresh
-    // pages); each wave is merged in path order while the next one traces.
     let chunks = options.photons.div_ceil(CHUNK);
     // At most one wave of buffers beyond what the run needs (and no u32 overflow below).
     let wave = (16 * rayon::current_num_threads()).min(chunks as usize).max(1) as u32;
@@ -72,7 +107,7 @@ pub fn trace_photons(
                     scene,
                     assignment,
                     options,
-                    &picker,
+                    picker,
                     (begin, end),
                     paired,
                     out,
@@ -84,7 +119,6 @@ pub fn trace_photons(
     let mut tracing: Vec<Vec<(u32, Photon)>> = vec![Vec::new(); wave as usize];
     let mut traced_near = vec![NearLight::default(); wave as usize];
     let mut tracing_near = vec![NearLight::default(); wave as usize];
-    // Summed in chunk order, so the figure does not depend on the thread count.
     let mut near_light = NearLight::default();
     let mut add_near = |near: &[NearLight]| {
         for n in near {
@@ -109,19 +143,7 @@ pub fn trace_photons(
     }
     merged.append(&traced)?;
     add_near(&traced_near);
-    let Merged { photons, stored, .. } = merged;
-    let near_light_fraction = if near_light.emitted > 0.0 {
-        near_light.near / near_light.emitted
-    } else {
-        0.0
-    };
-    let stats = TraceStats {
-        emitted: options.photons as u64,
-        stored,
-        near_light_fraction,
-        seconds: start.elapsed().as_secs_f64(),
-    };
-    Ok(TracedPhotons { photons, stats })
+    Ok((merged, near_light))
 }
 
 /// The photons of each map in path order, and their counts by kind.
