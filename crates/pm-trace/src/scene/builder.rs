@@ -258,7 +258,7 @@ impl SceneBuilder {
     }
 
     /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
-    /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
+    /// [`HalfEdgeMesh::dropped_face_count`](pm_geom::HalfEdgeMesh::dropped_face_count)); everything else invalid is an error.
     pub fn build(self) -> Result<Scene, SceneError> {
         let triangle_count = self
             .meshes
