@@ -26,7 +26,7 @@ struct Query {
 }
 
 fn maps(scene: &Scene, partitioner: &dyn Partitioner) -> PhotonMaps {
-    let assignment = partitioner.partition(scene);
+    let assignment = partitioner.partition(scene.clone()).unwrap().assignment().clone();
     let options = TraceOptions {
         photons: 100_000,
         seed: 0,

@@ -22,7 +22,11 @@ use std::time::Duration;
 const GRID: u32 = 32;
 
 fn maps(scene: &Scene) -> PhotonMaps {
-    let assignment = CreaseAngle::default().partition(scene);
+    let assignment = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let options = TraceOptions {
         photons: 100_000,
         seed: 0,

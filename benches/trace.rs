@@ -11,7 +11,11 @@ use std::time::Duration;
 
 fn bench_trace(c: &mut Criterion) {
     let scene = scenes::build("cornell-box").expect("built-in scene");
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let photons = 200_000;
     let options = TraceOptions {
         photons,

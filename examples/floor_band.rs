@@ -82,7 +82,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if !wanted.split(',').any(|w| w == name) {
             continue;
         }
-        let prepared = partition.prepare_scene(scene.clone())?;
+        let partitioned = partition.partition(scene.clone())?;
         for &seed in &seeds {
             let settings = RenderSettings { seed, ..settings };
             let mut sum = vec![DVec3::ZERO; (SIZE * SIZE) as usize];
@@ -91,11 +91,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     first_pass: w[0],
                     ..ProgressiveSettings::new(settings, w[1] - w[0])
                 };
-                let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, progressive).render(
-                    &prepared,
-                    &*partition,
-                    &(),
-                )?;
+                let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, progressive)
+                    .render(&partitioned, &())?;
                 for (s, x) in sum.iter_mut().zip(out.accumulation.sums().parts().0) {
                     *s += *x;
                 }
@@ -128,7 +125,7 @@ fn reference(
             ..settings
         };
         let image = Renderer::new(EstimatorKind::GeometryCube, s)
-            .render(scene, &CreaseAngle::default(), &())?
+            .render(&CreaseAngle::default().partition(scene.clone())?, &())?
             .image;
         replicates.push(band_luminance(
             image.pixels().iter().map(|p| p.as_dvec3()),

@@ -244,18 +244,22 @@ fn run(args: &Args) -> Result<(), String> {
     let mut records = Vec::new();
     // The file is parsed once. A partition may re-mesh the scene (contact splits faces); only
     // `--compare` renders several variants, and its partitions (single, crease) leave the
-    // scene as it is, so the prepared scene serves the next variant.
+    // scene as it is, so the partitioned scene serves the next variant.
     let mut scene = Some(scene);
     for variant in &variants {
         let partition = variant.maps.partitioner();
-        let prepared = partition
-            .prepare_scene(scene.take().ok_or("no scene")?)
+        let partitioned = partition
+            .partition(scene.take().ok_or("no scene")?)
             .map_err(|e| e.to_string())?;
-        let scene = scene.insert(prepared);
         let bar = TileBar::new(variant.label);
         let out = Renderer::new(variant.estimator, settings)
-            .render(scene, &*partition, &bar)
+            .render(&partitioned, &bar)
             .map_err(|e| e.to_string())?;
+        let contacts = (
+            contacts_summary(partitioned.record()),
+            contacts_json(partitioned.record()),
+        );
+        scene = Some(partitioned.into_parts().0);
         bar.0.finish_and_clear();
         let mean = out.image.mean().to_array();
         let record = Record {
@@ -265,7 +269,7 @@ fn run(args: &Args) -> Result<(), String> {
             settings: &settings,
             stats: out.stats,
             mean,
-            contacts: (contacts_summary(scene), contacts_json(scene)),
+            contacts,
         };
         say(&summary(&record));
         records.push(record);

@@ -301,13 +301,13 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
     };
     let mut cases = Vec::new();
     for case in &CASES {
-        let partition = partitioner(case.maps);
+        let partitioned = partitioner(case.maps)
+            .partition(scene.clone())
+            .map_err(|e| e.to_string())?;
         let renderer = Renderer::new(case.estimator, settings(config, Mode::PhotonMap, 1, 0));
         let mut best: Option<(RenderStats, Image)> = None;
         for _ in 0..config.repeats {
-            let out = renderer
-                .render(&scene, &*partition, &())
-                .map_err(|e| e.to_string())?;
+            let out = renderer.render(&partitioned, &()).map_err(|e| e.to_string())?;
             if best.as_ref().is_none_or(|(s, _)| out.stats.total() < s.total()) {
                 best = Some((out.stats, out.image));
             }
@@ -316,8 +316,8 @@ fn run_scene(spec: &'static SceneSpec, config: &Config) -> Result<SceneResult, S
         // The same pixel samples over photon maps of another seed: the photons' own noise.
         let other_maps = Renderer::new(case.estimator, settings(config, Mode::PhotonMap, 1, 1))
             .build_maps(
-                &scene,
-                &partition.partition(&scene),
+                partitioned.scene(),
+                partitioned.assignment(),
                 &(),
                 &mut RenderStats::default(),
             )

@@ -8,7 +8,7 @@
 
 use clap::Parser;
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, Scene, scenes};
+use photon_maps::trace::{CreaseAngle, Partitioner, Scene, scenes};
 use std::time::Instant;
 
 use tracking_allocator::{peak, reset_peak};
@@ -35,13 +35,16 @@ fn triangle_row(name: &str) -> Result<String, String> {
         photons: 1_000_000,
         ..RenderSettings::default()
     };
+    let crease = CreaseAngle::default()
+        .partition(scene)
+        .map_err(|e| e.to_string())?;
     reset_peak();
     let cube = Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&crease, &())
         .map_err(|e| e.to_string())?;
     let render_peak = peak() - base;
     let disc = Renderer::new(EstimatorKind::Disc, settings)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&crease, &())
         .map_err(|e| e.to_string())?;
     let path_traced = Renderer::new(
         EstimatorKind::Disc,
@@ -51,7 +54,7 @@ fn triangle_row(name: &str) -> Result<String, String> {
             ..settings
         },
     )
-    .render(&scene, &CreaseAngle::default(), &())
+    .render(&crease, &())
     .map_err(|e| e.to_string())?;
     let s = &cube.stats;
     Ok(format!(
@@ -77,9 +80,12 @@ fn photon_row(photons: u32) -> Result<String, String> {
         photons,
         ..RenderSettings::default()
     };
+    let crease = CreaseAngle::default()
+        .partition(scene)
+        .map_err(|e| e.to_string())?;
     let base = reset_peak();
     let out = Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&crease, &())
         .map_err(|e| e.to_string())?;
     let peak = peak() - base;
     let s = &out.stats;

@@ -21,10 +21,10 @@
 //!
 //! // The two rooms whose floor runs under the dividing wall: crease maps leak along the floor,
 //! // contact maps do not.
-//! let contact = Contact::default();
-//! let scene = contact.prepare_scene(scenes::build("touching-rooms")?)?;
+//! // Partitioning takes the scene and gives it back split where faces meet, with its maps.
+//! let partitioned = Contact::default().partition(scenes::build("touching-rooms")?)?;
 //! let settings = RenderSettings { width: 48, height: 24, photons: 10_000, ..Default::default() };
-//! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&scene, &contact, &())?;
+//! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&partitioned, &())?;
 //! assert!(out.stats.map_count > 10, "the floor is split at the wall");
 //! println!("mean radiance {:?}, {} maps", out.image.mean(), out.stats.map_count);
 //! # Ok::<(), Box<dyn std::error::Error>>(())

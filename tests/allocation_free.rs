@@ -114,7 +114,11 @@ fn clipping_allocates_nothing_once_warm() {
 #[test]
 fn queries_ray_casts_and_estimators_allocate_nothing_once_warm() {
     let scene = scenes::build("cornell-box").unwrap();
-    let assignment = CreaseAngle::default().partition(&scene);
+    let assignment = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let options = TraceOptions {
         photons: 20_000,
         seed: 3,

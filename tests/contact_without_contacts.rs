@@ -24,20 +24,17 @@ fn scenes_where_nothing_meets_render_exactly_the_crease_maps_image() {
         "cube-field-8",
     ];
     for name in names {
-        let contact = Contact::default();
-        let split = contact.prepare_scene(scenes::build(name).unwrap()).unwrap();
-        let counts = split.contact_record().unwrap().counts();
+        let contact = Contact::default()
+            .partition(scenes::build(name).unwrap())
+            .unwrap();
+        let counts = contact.record().unwrap().counts();
         assert_eq!(counts.meetings(), 0, "{name}: {counts:?}");
-        let crease_scene = scenes::build(name).unwrap();
+        let crease = CreaseAngle::default()
+            .partition(scenes::build(name).unwrap())
+            .unwrap();
         for kind in EstimatorKind::ALL {
-            let a = Renderer::new(kind, settings)
-                .render(&split, &contact, &())
-                .unwrap()
-                .image;
-            let b = Renderer::new(kind, settings)
-                .render(&crease_scene, &CreaseAngle::default(), &())
-                .unwrap()
-                .image;
+            let a = Renderer::new(kind, settings).render(&contact, &()).unwrap().image;
+            let b = Renderer::new(kind, settings).render(&crease, &()).unwrap().image;
             let bits = |i: &photon_maps::render::Image| {
                 i.pixels()
                     .iter()

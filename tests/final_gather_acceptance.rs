@@ -52,6 +52,7 @@
 
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{CreaseAngle, Material, RayKind, Scene, scenes};
 use std::time::Instant;
 
@@ -60,7 +61,7 @@ const SIZE: u32 = 128;
 fn render(scene: &Scene, settings: RenderSettings) -> (Image, f64) {
     let start = Instant::now();
     let out = Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap();
     (out.image, start.elapsed().as_secs_f64())
 }
@@ -271,7 +272,7 @@ fn the_consistent_variants_bias_falls_with_passes() {
             };
             means(
                 &Renderer::new(EstimatorKind::Disc, s)
-                    .render(&scene, &CreaseAngle::default(), &())
+                    .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                     .unwrap()
                     .image,
             )
@@ -310,13 +311,17 @@ fn the_consistent_variants_bias_falls_with_passes() {
             )
         };
         ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
-            .render_observed(&scene, &CreaseAngle::default(), &(), &mut |sum, stats| {
-                if let Some(i) = counts.iter().position(|&c| c == stats.passes) {
-                    let m = means(&sum.mean());
-                    errors[i].push((0..7).map(|r| m[r] / reference[r] - 1.0).collect::<Vec<f64>>());
-                }
-                std::ops::ControlFlow::Continue(())
-            })
+            .render_observed(
+                &CreaseAngle::default().partition(scene.clone()).unwrap(),
+                &(),
+                &mut |sum, stats| {
+                    if let Some(i) = counts.iter().position(|&c| c == stats.passes) {
+                        let m = means(&sum.mean());
+                        errors[i].push((0..7).map(|r| m[r] / reference[r] - 1.0).collect::<Vec<f64>>());
+                    }
+                    std::ops::ControlFlow::Continue(())
+                },
+            )
             .unwrap();
     }
     println!("| passes | image mean | largest region |");

@@ -62,7 +62,7 @@ fn load(path: &Path, light_units: LightUnits) -> Scene {
 /// Traces `n` photons (black walls: each stored once, at its first hit) and returns each
 /// stored photon's position and power.
 fn photons(scene: &Scene, n: u32, seed: u64) -> Vec<(Vec3, Vec3)> {
-    let maps = SingleMap.partition(scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         scene,
         &maps,

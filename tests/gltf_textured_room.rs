@@ -58,7 +58,7 @@ fn textured_room_photon_map_matches_the_path_tracer() {
         ..RenderSettings::default()
     };
     let photon_map = Renderer::new(GeometryCube, settings)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
         .mean();
@@ -70,7 +70,7 @@ fn textured_room_photon_map_matches_the_path_tracer() {
             ..settings
         },
     )
-    .render(&scene, &CreaseAngle::default(), &())
+    .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
     .unwrap()
     .image
     .mean();

@@ -10,7 +10,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, SingleMap, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioned, Partitioner, Scene, SingleMap, scenes};
 
 const GOLDEN: &str = include_str!("data/golden_hashes.txt");
 
@@ -50,86 +50,52 @@ fn settings(mode: Mode) -> RenderSettings {
     }
 }
 
-/// Every variant's name and image for one scene (`split` is the scene split for contact maps).
-fn render_all(scene: &Scene, split: &Scene) -> Vec<(String, Image)> {
+/// Every variant's name and image for one scene, partitioned each way (`contact` holds the
+/// scene split for contact maps).
+fn render_all(
+    scene: &Scene,
+    single: &Partitioned,
+    crease: &Partitioned,
+    contact: &Partitioned,
+) -> Vec<(String, Image)> {
     let mut out = Vec::new();
-    let partitions: [(&str, &dyn Partitioner, &Scene); 3] = [
-        ("single", &SingleMap, scene),
-        ("crease", &CreaseAngle::default(), scene),
-        ("contact", &Contact::default(), split),
-    ];
-    for (pname, partition, on) in partitions {
+    let partitions = [("single", single), ("crease", crease), ("contact", contact)];
+    for (pname, partitioned) in partitions {
         for kind in EstimatorKind::ALL {
             let image = Renderer::new(kind, settings(Mode::PhotonMap))
-                .render(on, partition, &())
+                .render(partitioned, &())
                 .unwrap()
                 .image;
             out.push((format!("photon-map {kind} {pname}"), image));
         }
         for mode in [Mode::ShadowRays, Mode::FinalGather] {
             let image = Renderer::new(EstimatorKind::GeometryCube, settings(mode))
-                .render(on, partition, &())
+                .render(partitioned, &())
                 .unwrap()
                 .image;
             out.push((format!("{mode} cube {pname}"), image));
         }
     }
     let image = Renderer::new(EstimatorKind::Disc, settings(Mode::PathTrace))
-        .render(scene, &CreaseAngle::default(), &())
+        .render(crease, &())
         .unwrap()
         .image;
     out.push(("path-trace".to_owned(), image));
     let image = Renderer::new(EstimatorKind::Disc, settings(Mode::PathTrace))
-        .render(split, &Contact::default(), &())
+        .render(contact, &())
         .unwrap()
         .image;
     out.push(("path-trace contact".to_owned(), image));
-    for (mode, kind, pname, partition, on) in [
-        (
-            Mode::PhotonMap,
-            EstimatorKind::Disc,
-            "crease",
-            &CreaseAngle::default() as &dyn Partitioner,
-            scene,
-        ),
-        (
-            Mode::PhotonMap,
-            EstimatorKind::GeometryCube,
-            "contact",
-            &Contact::default(),
-            split,
-        ),
-        (
-            Mode::PhotonMap,
-            EstimatorKind::GeometryBall,
-            "single",
-            &SingleMap,
-            scene,
-        ),
-        (
-            Mode::ShadowRays,
-            EstimatorKind::GeometryCube,
-            "crease",
-            &CreaseAngle::default(),
-            scene,
-        ),
-        (
-            Mode::FinalGather,
-            EstimatorKind::GeometryCube,
-            "crease",
-            &CreaseAngle::default(),
-            scene,
-        ),
-        (
-            Mode::FinalGather,
-            EstimatorKind::Disc,
-            "contact",
-            &Contact::default(),
-            split,
-        ),
+    for (mode, kind, pname, partitioned) in [
+        (Mode::PhotonMap, EstimatorKind::Disc, "crease", crease),
+        (Mode::PhotonMap, EstimatorKind::GeometryCube, "contact", contact),
+        (Mode::PhotonMap, EstimatorKind::GeometryBall, "single", single),
+        (Mode::ShadowRays, EstimatorKind::GeometryCube, "crease", crease),
+        (Mode::FinalGather, EstimatorKind::GeometryCube, "crease", crease),
+        (Mode::FinalGather, EstimatorKind::Disc, "contact", contact),
     ] {
         let out_image = ProgressiveRenderer::new(kind, ProgressiveSettings::new(settings(mode), 3))
-            .render(on, partition, &())
+            .render(partitioned, &())
             .unwrap()
             .accumulation
             .mean();
@@ -152,8 +118,10 @@ fn every_mode_estimator_and_partition_renders_the_golden_bits() {
     let mut lines = Vec::new();
     for name in &names {
         let scene = scenes::build(name).unwrap();
-        let split = Contact::default().prepare_scene(scene.clone()).unwrap();
-        for (variant, image) in render_all(&scene, &split) {
+        let single = SingleMap.partition(scene.clone()).unwrap();
+        let crease = CreaseAngle::default().partition(scene.clone()).unwrap();
+        let contact = Contact::default().partition(scene.clone()).unwrap();
+        for (variant, image) in render_all(&scene, &single, &crease, &contact) {
             assert!(image.pixels().iter().all(|p| p.is_finite()), "{name} {variant}");
             lines.push(format!("{name} | {variant} | {:016x}", hash(&image)));
         }

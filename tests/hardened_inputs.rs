@@ -72,7 +72,7 @@ fn photon_counts_past_the_limit_are_refused_before_tracing() {
     let scene = build_with(None, None).unwrap();
     let err = trace_photons(
         &scene,
-        &SingleMap.partition(&scene),
+        &SingleMap.partition(scene.clone()).unwrap().assignment().clone(),
         &TraceOptions {
             photons: MAX_PHOTON_PATHS + 1,
             ..TraceOptions::default()

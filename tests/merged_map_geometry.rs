@@ -33,7 +33,11 @@ fn area_inside(volume: &impl GatherVolume, set: &PolygonSet, scratch: &mut ClipS
 #[test]
 fn split_rooms_maps_merge_to_one_polygon_per_wall_with_the_same_area_in_any_volume() {
     let scene = scenes::build("split-rooms-10").unwrap();
-    let assignment = CreaseAngle::default().partition(&scene);
+    let assignment = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let (merged, per_face) = (
         maps(&scene, &assignment, MapGeometry::Merged, 2_000),
         maps(&scene, &assignment, MapGeometry::PerFace, 2_000),
@@ -100,7 +104,11 @@ fn split_rooms_maps_merge_to_one_polygon_per_wall_with_the_same_area_in_any_volu
 #[test]
 fn cube_and_ball_estimators_render_the_same_image_from_merged_and_per_face_maps() {
     let scene = scenes::build("split-rooms-10").unwrap();
-    let assignment = CreaseAngle::default().partition(&scene);
+    let assignment = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let photons = 20_000;
     let (merged, per_face) = (
         maps(&scene, &assignment, MapGeometry::Merged, photons),

@@ -98,15 +98,13 @@ fn the_library_source_rendered_by_hand_is_the_mode_bit_for_bit() {
         ..settings()
     };
     let renderer = Renderer::new(EstimatorKind::GeometryCube, s);
-    let by_mode = renderer
-        .render(&scene, &CreaseAngle::default(), &())
-        .unwrap()
-        .image;
+    let partitioned = CreaseAngle::default().partition(scene.clone()).unwrap();
+    let by_mode = renderer.render(&partitioned, &()).unwrap().image;
 
-    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
+    let assignment = partitioned.assignment();
     let traced = trace_photons(
         &scene,
-        &assignment,
+        assignment,
         &TraceOptions {
             photons: s.photons,
             seed: s.seed,
@@ -114,7 +112,7 @@ fn the_library_source_rendered_by_hand_is_the_mode_bit_for_bit() {
         },
     )
     .unwrap();
-    let maps = PhotonMaps::build(&scene, &assignment, traced).unwrap();
+    let maps = PhotonMaps::build(&scene, assignment, traced).unwrap();
     let options = s.estimator_options(&scene.bounds());
     let source = PhotonMapSource {
         scene: &scene,

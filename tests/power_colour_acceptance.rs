@@ -13,6 +13,7 @@
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{CreaseAngle, scenes};
 
 const SIZE: u32 = 48;
@@ -49,7 +50,7 @@ fn progressive_colour_ratios_match_the_path_tracer() {
                 EstimatorKind::GeometryCube,
                 settings(Mode::PathTrace, 2048, 100 + seed),
             )
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
             ratios(mean(&out.image))
         })
@@ -58,7 +59,7 @@ fn progressive_colour_ratios_match_the_path_tracer() {
         .map(|seed| {
             let s = ProgressiveSettings::new(settings(Mode::PhotonMap, 1, 200 + seed), 256);
             let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, s)
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap();
             ratios(mean(&out.accumulation.mean()))
         })

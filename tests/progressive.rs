@@ -6,7 +6,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, Shard, ShardError, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioned, Partitioner, Scene, scenes};
 
 #[path = "support/dark_room.rs"]
 mod dark_room;
@@ -39,8 +39,8 @@ fn progressive(first_pass: u64, passes: u64, threads: usize) -> ProgressiveSetti
 }
 
 /// Renders passes 0..4 one at a time and checks the dark room in each pass's own image.
-fn assert_dark_at_every_pass(scene: &Scene, partitioner: &dyn Partitioner, label: &str) {
-    let dark = dark_room_pixels(scene);
+fn assert_dark_at_every_pass(partitioned: &Partitioned, label: &str) {
+    let dark = dark_room_pixels(partitioned.scene());
     assert!(
         dark.len() > (W * H / 20) as usize,
         "{label}: {} dark pixels",
@@ -49,7 +49,7 @@ fn assert_dark_at_every_pass(scene: &Scene, partitioner: &dyn Partitioner, label
     for kind in EstimatorKind::ALL {
         for pass in [0, 1, 2, 7] {
             let out = ProgressiveRenderer::new(kind, progressive(pass, 1, 0))
-                .render(scene, partitioner, &())
+                .render(partitioned, &())
                 .unwrap();
             let image = out.accumulation.mean();
             for &i in &dark {
@@ -67,16 +67,16 @@ fn assert_dark_at_every_pass(scene: &Scene, partitioner: &dyn Partitioner, label
 #[test]
 fn crease_maps_keep_the_dark_room_black_at_every_pass() {
     let scene = scenes::build("lit-unlit-rooms").unwrap();
-    assert_dark_at_every_pass(&scene, &CreaseAngle::default(), "lit-unlit-rooms");
+    let crease = CreaseAngle::default().partition(scene).unwrap();
+    assert_dark_at_every_pass(&crease, "lit-unlit-rooms");
 }
 
 #[test]
 fn contact_maps_keep_the_touching_dark_room_black_at_every_pass() {
-    let contact = Contact::default();
-    let scene = contact
-        .prepare_scene(scenes::build("touching-rooms").unwrap())
+    let contact = Contact::default()
+        .partition(scenes::build("touching-rooms").unwrap())
         .unwrap();
-    assert_dark_at_every_pass(&scene, &contact, "touching-rooms");
+    assert_dark_at_every_pass(&contact, "touching-rooms");
 }
 
 #[test]
@@ -106,7 +106,7 @@ fn one_two_and_three_threads_give_bit_identical_images() {
     for kind in EstimatorKind::ALL {
         let render = |threads| {
             let out = ProgressiveRenderer::new(kind, progressive(0, 3, threads))
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap();
             bits(&out.accumulation.mean())
         };
@@ -130,7 +130,7 @@ fn merged_shards_equal_the_single_run() {
     let run = |first, passes| {
         let settings = progressive(first, passes, 0);
         let out = ProgressiveRenderer::new(kind, settings)
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
         let a = &out.accumulation;
         assert_eq!(a.pass_range(), first..first + passes);
@@ -224,7 +224,7 @@ fn a_time_budget_stops_after_the_pass_that_spends_it() {
         ..progressive(0, 1, 0)
     };
     let out = ProgressiveRenderer::new(EstimatorKind::Disc, settings)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap();
     assert_eq!(out.stats.passes, 1);
     assert_eq!(out.accumulation.passes(), 1);

@@ -8,6 +8,7 @@
 use glam::Vec3;
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, Shard};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
 use std::f32::consts::PI;
 
@@ -104,7 +105,7 @@ fn progressive_mean_converges_to_the_point_lit_plane() {
         for j in 0..7u32 {
             let count = if j == 0 { 4 } else { first };
             let out = ProgressiveRenderer::new(kind, settings(first, count))
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap();
             let a = &out.accumulation;
             shards.push(Shard::new(a.mean(), first, a.passes(), "plane", "s").unwrap());

@@ -5,6 +5,7 @@
 
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, Shard};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{CreaseAngle, scenes};
 
 struct Case {
@@ -40,7 +41,7 @@ fn run(case: &Case) -> (f32, f32, f32) {
             ..base
         },
     )
-    .render(&scene, &CreaseAngle::default(), &())
+    .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
     .unwrap()
     .image;
     let shard = |first, passes| {
@@ -49,7 +50,7 @@ fn run(case: &Case) -> (f32, f32, f32) {
             ..ProgressiveSettings::new(base, passes)
         };
         let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
         Shard::new(out.accumulation.mean(), first, passes, "cornell-box", "").unwrap()
     };

@@ -11,6 +11,7 @@ use photon_maps::trace::{CreaseAngle, Material, RayKind, Scene, scenes};
 #[path = "support/furnace_sphere.rs"]
 mod furnace_sphere;
 use furnace_sphere::furnace_sphere;
+use photon_maps::trace::Partitioner;
 
 const SIZE: u32 = 32;
 
@@ -37,7 +38,7 @@ fn progressive(scene: &Scene, first: u64, passes: u64, threads: usize) -> Shard 
         ..ProgressiveSettings::new(settings(Mode::FinalGather, 1, 5_000, threads), passes)
     };
     let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, s)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap();
     assert!(out.stats.precompute > std::time::Duration::ZERO);
     Shard::from_accumulation(&out.accumulation, "cornell-box", &s.identity()).unwrap()
@@ -106,7 +107,7 @@ fn the_error_against_the_path_tracer_falls_with_passes() {
             ..settings(Mode::PathTrace, 1024, 1, 0)
         };
         Renderer::new(EstimatorKind::GeometryCube, s)
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap()
             .image
     };
@@ -182,7 +183,7 @@ fn the_consistent_gather_sees_radiance_one_in_the_furnace() {
                 ..RenderSettings::default()
             };
             let out = ProgressiveRenderer::new(EstimatorKind::Disc, ProgressiveSettings::new(s, 32))
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap();
             f64::from(out.accumulation.mean().mean().element_sum()) / 3.0
         })

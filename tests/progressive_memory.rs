@@ -12,6 +12,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, ProgressiveStats, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{CreaseAngle, Scene, scenes};
 use tracking_allocator::{peak, reset_peak};
 
@@ -39,7 +40,7 @@ fn measure(f: impl FnOnce() -> ProgressiveStats) -> (usize, ProgressiveStats) {
 fn progressive(scene: &Scene, passes: u64) -> ProgressiveStats {
     let s = ProgressiveSettings::new(settings(), passes);
     ProgressiveRenderer::new(EstimatorKind::GeometryCube, s)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .stats
 }

@@ -11,6 +11,7 @@ use std::f32::consts::PI;
 #[path = "support/furnace_sphere.rs"]
 mod furnace_sphere;
 use furnace_sphere::furnace_sphere;
+use photon_maps::trace::Partitioner;
 
 fn furnace() -> Scene {
     furnace_sphere(Vec3::splat(4.0 * PI * PI))
@@ -41,7 +42,7 @@ fn every_estimator_sees_radiance_one_inside_the_sphere() {
     let scene = furnace();
     for kind in EstimatorKind::ALL {
         let out = Renderer::new(kind, settings(Mode::PhotonMap))
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
         assert_mean_is_one(kind.name(), out.image.mean());
     }
@@ -55,7 +56,7 @@ fn path_tracer_sees_radiance_one_inside_the_sphere() {
         ..settings(Mode::PathTrace)
     };
     let out = Renderer::new(EstimatorKind::Disc, s)
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap();
     assert_mean_is_one("path tracer", out.image.mean());
 }
@@ -64,7 +65,7 @@ fn path_tracer_sees_radiance_one_inside_the_sphere() {
 fn shadow_rays_see_radiance_one_inside_the_sphere() {
     let scene = furnace();
     let out = Renderer::new(EstimatorKind::GeometryBall, settings(Mode::ShadowRays))
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap();
     assert_mean_is_one("shadow rays", out.image.mean());
 }

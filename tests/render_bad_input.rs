@@ -95,7 +95,11 @@ fn huge_images_and_maps_of_another_scene_are_typed_errors() {
     let maps = renderer
         .build_maps(
             &cornell,
-            &CreaseAngle::default().partition(&cornell),
+            &CreaseAngle::default()
+                .partition(cornell.clone())
+                .unwrap()
+                .assignment()
+                .clone(),
             &(),
             &mut RenderStats::default(),
         )
@@ -154,7 +158,7 @@ fn a_scene_without_lights_is_a_typed_trace_error() {
     let error = renderer
         .build_maps(
             &dark,
-            &SingleMap.partition(&dark),
+            &SingleMap.partition(dark.clone()).unwrap().assignment().clone(),
             &(),
             &mut RenderStats::default(),
         )

@@ -145,7 +145,7 @@ fn first_bounce_absorbs_one_minus_the_mean_albedo_of_the_checkerboard() {
             .max_element()
             < 1e-3
     );
-    let maps = SingleMap.partition(&scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let rho = mean_albedo();
     let (mut absorbed, mut reflected) = (Vec::new(), Vec::new());
     for seed in 0..8 {
@@ -241,7 +241,7 @@ fn rendered_mean_is_the_mean_albedo_over_pi_times_the_irradiance() {
         };
         let render = |settings: RenderSettings| {
             Renderer::new(EstimatorKind::Disc, settings)
-                .render(&scene, &SingleMap, &())
+                .render(&SingleMap.partition(scene.clone()).unwrap(), &())
                 .unwrap()
                 .image
                 .mean()

@@ -5,7 +5,7 @@
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::progressive::{SppmRenderer, SppmSettings};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Camera, CreaseAngle, PointLight, RayKind, Scene, Surface};
+use photon_maps::trace::{Camera, CreaseAngle, Partitioner, PointLight, RayKind, Scene, Surface};
 
 const EMISSION: Vec3 = Vec3::new(3.0, 2.0, 1.0);
 
@@ -36,7 +36,7 @@ fn render(scene: &Scene, mode: Mode) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::Disc, s)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

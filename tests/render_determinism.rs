@@ -3,6 +3,7 @@
 //! images, also at the smallest image size.
 
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{CreaseAngle, scenes};
 
 #[test]
@@ -26,7 +27,7 @@ fn one_to_sixty_four_threads_give_bit_identical_images() {
                 ..RenderSettings::default()
             };
             Renderer::new(kind, s)
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap()
                 .image
         };
@@ -66,7 +67,7 @@ fn a_one_pixel_image_renders_the_same_on_one_and_sixty_four_threads() {
                 ..RenderSettings::default()
             };
             Renderer::new(EstimatorKind::GeometryCube, s)
-                .render(&scene, &CreaseAngle::default(), &())
+                .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
                 .unwrap()
                 .image
         };

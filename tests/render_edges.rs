@@ -116,7 +116,7 @@ fn check<P: Partitioner>(partition: &P, label: &str) {
     let maps = renderer
         .build_maps(
             &scene,
-            &partition.partition(&scene),
+            &partition.partition(scene.clone()).unwrap().assignment().clone(),
             &(),
             &mut RenderStats::default(),
         )

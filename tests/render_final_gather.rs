@@ -8,7 +8,7 @@ mod dark_room;
 
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Contact, CreaseAngle, Material, Partitioner, RayKind, Scene, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Material, Partitioned, Partitioner, RayKind, Scene, scenes};
 
 const SIZE: u32 = 48;
 
@@ -30,7 +30,7 @@ fn settings(mode: Mode, spp: u32, seed: u64) -> RenderSettings {
 
 fn render<P: Partitioner>(scene: &Scene, partitioner: &P, settings: RenderSettings) -> Image {
     Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(scene, partitioner, &())
+        .render(&partitioner.partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }
@@ -183,9 +183,9 @@ fn accordion_agrees_with_the_path_tracer() {
     agrees_with_the_path_tracer("accordion", 0.02, 0.03);
 }
 
-/// The dark room's pixels are exactly zero and the lit room is lit, under `partitioner`.
-fn dark_room_stays_black<P: Partitioner>(scene: &Scene, partitioner: &P) {
-    let dark = dark_room::dark_room_pixels(scene, SIZE, SIZE);
+/// The dark room's pixels are exactly zero and the lit room is lit, under the partition.
+fn dark_room_stays_black(partitioned: &Partitioned) {
+    let dark = dark_room::dark_room_pixels(partitioned.scene(), SIZE, SIZE);
     assert!(
         dark.len() > (SIZE * SIZE / 20) as usize,
         "{} dark pixels",
@@ -196,9 +196,7 @@ fn dark_room_stays_black<P: Partitioner>(scene: &Scene, partitioner: &P) {
             photons: 50_000,
             ..settings(Mode::FinalGather, 2, 3)
         };
-        let out = Renderer::new(kind, settings)
-            .render(scene, partitioner, &())
-            .unwrap();
+        let out = Renderer::new(kind, settings).render(partitioned, &()).unwrap();
         for &i in &dark {
             assert_eq!(
                 out.image.pixels()[i].to_array(),
@@ -217,19 +215,16 @@ fn dark_room_stays_black<P: Partitioner>(scene: &Scene, partitioner: &P) {
 
 #[test]
 fn lit_unlit_rooms_dark_room_is_exactly_black_with_crease_maps() {
-    dark_room_stays_black(
-        &scenes::build("lit-unlit-rooms").unwrap(),
-        &CreaseAngle::default(),
-    );
+    let scene = scenes::build("lit-unlit-rooms").unwrap();
+    dark_room_stays_black(&CreaseAngle::default().partition(scene).unwrap());
 }
 
 #[test]
 fn touching_rooms_dark_room_is_exactly_black_with_contact_maps() {
-    let contact = Contact::default();
-    let scene = contact
-        .prepare_scene(scenes::build("touching-rooms").unwrap())
-        .unwrap();
-    dark_room_stays_black(&scene, &contact);
+    let scene = scenes::build("touching-rooms").unwrap();
+    let contact = Contact::default().partition(scene).unwrap();
+    assert!(contact.record().is_some_and(|r| r.counts().meetings() > 0));
+    dark_room_stays_black(&contact);
 }
 
 #[test]
@@ -281,8 +276,8 @@ fn bad_final_gather_settings_are_typed_errors() {
             final_gather: options,
             ..settings(Mode::FinalGather, 1, 1)
         };
-        let result =
-            Renderer::new(EstimatorKind::Disc, settings).render(&scene, &CreaseAngle::default(), &());
+        let result = Renderer::new(EstimatorKind::Disc, settings)
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &());
         assert!(
             matches!(result, Err(RenderError::BadFinalGather(_))),
             "{options:?}"
@@ -296,17 +291,18 @@ fn bad_final_gather_settings_are_typed_errors() {
     }
     // The cache on its own refuses a point in every photon (none would be left to estimate
     // from) and takes one in two.
-    let assignment = CreaseAngle::default().try_partition(&scene).unwrap();
+    let partitioned = CreaseAngle::default().partition(scene.clone()).unwrap();
+    let assignment = partitioned.assignment();
     let traced = photon_maps::trace::trace_photons(
         &scene,
-        &assignment,
+        assignment,
         &photon_maps::trace::TraceOptions {
             photons: 1000,
             ..Default::default()
         },
     )
     .unwrap();
-    let maps = photon_maps::trace::PhotonMaps::build(&scene, &assignment, traced).unwrap();
+    let maps = photon_maps::trace::PhotonMaps::build(&scene, assignment, traced).unwrap();
     let options = EstimatorOptions::for_scene(&scene.bounds());
     for every in [0, 1] {
         assert!(matches!(

@@ -75,7 +75,7 @@ fn scene(ball: Ball) -> Scene {
 
 /// The photons stored on the floor (y ≈ 0).
 fn floor_photons(scene: &Scene, photons: u32) -> Vec<Photon> {
-    let maps = SingleMap.partition(scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let options = TraceOptions {
         photons,
         seed: 5,
@@ -159,7 +159,7 @@ fn view(ball: Ball) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::Disc, settings)
-        .render(&scene, &SingleMap, &())
+        .render(&SingleMap.partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

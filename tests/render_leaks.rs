@@ -39,7 +39,7 @@ fn crease_maps_keep_the_dark_room_exactly_black() {
     );
     for kind in EstimatorKind::ALL {
         let out = Renderer::new(kind, settings())
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
         for &i in &dark {
             assert_eq!(
@@ -57,7 +57,7 @@ fn single_map_disc_leaks_light_into_the_dark_room() {
     let scene = scenes::build("lit-unlit-rooms").unwrap();
     let dark = dark_room_pixels(&scene);
     let out = Renderer::new(EstimatorKind::Disc, settings())
-        .render(&scene, &SingleMap, &())
+        .render(&SingleMap.partition(scene.clone()).unwrap(), &())
         .unwrap();
     let lit = dark.iter().filter(|&&i| out.image.pixels()[i].x > 0.0).count();
     assert!(
@@ -72,7 +72,7 @@ fn touching_rooms_leak_through_the_shared_floor_with_crease_maps() {
     let dark = dark_room_pixels(&scene);
     for kind in EstimatorKind::ALL {
         let out = Renderer::new(kind, settings())
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
         let lit = dark.iter().filter(|&&i| out.image.pixels()[i].x > 0.0).count();
         assert!(
@@ -84,16 +84,13 @@ fn touching_rooms_leak_through_the_shared_floor_with_crease_maps() {
 
 #[test]
 fn touching_rooms_contact_maps_keep_the_dark_room_exactly_black() {
-    let contact = Contact::default();
-    let scene = contact
-        .prepare_scene(scenes::build("touching-rooms").unwrap())
+    let contact = Contact::default()
+        .partition(scenes::build("touching-rooms").unwrap())
         .unwrap();
-    let dark = dark_room_pixels(&scene);
+    let dark = dark_room_pixels(contact.scene());
     assert!(dark.len() > (W * H / 20) as usize, "{} dark pixels", dark.len());
     for kind in EstimatorKind::ALL {
-        let out = Renderer::new(kind, settings())
-            .render(&scene, &contact, &())
-            .unwrap();
+        let out = Renderer::new(kind, settings()).render(&contact, &()).unwrap();
         for &i in &dark {
             assert_eq!(
                 out.image.pixels()[i].to_array(),

@@ -6,6 +6,7 @@
 
 use photon_maps::render::glam::{Vec3, vec3};
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::light::{EmittedRay, LightSample};
 use photon_maps::trace::{AreaLight, Camera, CreaseAngle, Light, Rng, Scene, Surface};
 
@@ -83,7 +84,7 @@ fn render(scene: &Scene, mode: Mode, spp: u32, seed: u64) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

@@ -11,6 +11,7 @@ use std::f32::consts::PI;
 #[path = "support/furnace_sphere.rs"]
 mod furnace_sphere;
 use furnace_sphere::furnace_sphere;
+use photon_maps::trace::Partitioner;
 
 const SIZE: u32 = 48;
 
@@ -25,7 +26,7 @@ fn render(scene: &Scene, mode: Mode, photons: u32, spp: u32, seed: u64) -> Rende
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::GeometryCube, settings)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .expect("renders")
 }
 

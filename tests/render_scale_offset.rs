@@ -7,7 +7,7 @@
 
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
+use photon_maps::trace::{Camera, CreaseAngle, Partitioner, PointLight, Scene, Surface};
 
 /// Faces of the box `[min, max]` as quads, wound inward or outward.
 fn box_faces(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<Vec<u32>>) {
@@ -81,7 +81,7 @@ fn render(scene: &Scene, mode: Mode, spp: u32, seed: u64) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::GeometryCube, s)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

@@ -5,6 +5,7 @@
 
 use glam::Vec3;
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{Camera, CreaseAngle, PointLight, Scene, SceneBuilder, Surface, VertexAttributes};
 use std::f32::consts::PI;
 
@@ -71,7 +72,7 @@ fn render(scene: &Scene) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::Disc, settings)
-        .render(scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

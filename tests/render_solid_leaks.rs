@@ -7,7 +7,7 @@
 
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioned, Partitioner, scenes};
 
 #[path = "support/dark_room.rs"]
 mod dark_room;
@@ -26,10 +26,11 @@ fn settings(mode: Mode) -> RenderSettings {
     }
 }
 
-fn contact_scene(name: &str) -> (Scene, Contact) {
-    let contact = Contact::default();
-    let scene = contact.prepare_scene(scenes::build(name).unwrap()).unwrap();
-    (scene, contact)
+/// The scene split by the contact partition, with its maps.
+fn contact_scene(name: &str) -> Partitioned {
+    Contact::default()
+        .partition(scenes::build(name).unwrap())
+        .unwrap()
 }
 
 fn dark_mean(image: &Image, dark: &[usize]) -> f64 {
@@ -38,12 +39,12 @@ fn dark_mean(image: &Image, dark: &[usize]) -> f64 {
 
 /// Every image the acceptance asks for: three estimators × visualize, shadow rays and two
 /// progressive passes.
-fn images(scene: &Scene, partitioner: &dyn Partitioner) -> Vec<(String, Image)> {
+fn images(partitioned: &Partitioned) -> Vec<(String, Image)> {
     let mut out = Vec::new();
     for kind in EstimatorKind::ALL {
         for mode in [Mode::PhotonMap, Mode::ShadowRays] {
             let image = Renderer::new(kind, settings(mode))
-                .render(scene, partitioner, &())
+                .render(partitioned, &())
                 .unwrap()
                 .image;
             out.push((format!("{kind} {mode:?}"), image));
@@ -54,7 +55,7 @@ fn images(scene: &Scene, partitioner: &dyn Partitioner) -> Vec<(String, Image)> 
                 ..ProgressiveSettings::new(settings(Mode::PhotonMap), 1)
             };
             let image = ProgressiveRenderer::new(kind, progressive)
-                .render(scene, partitioner, &())
+                .render(partitioned, &())
                 .unwrap()
                 .accumulation
                 .mean();
@@ -65,14 +66,15 @@ fn images(scene: &Scene, partitioner: &dyn Partitioner) -> Vec<(String, Image)> 
 }
 
 fn assert_dark_room_black(name: &str) {
-    let (scene, contact) = contact_scene(name);
-    let dark = dark_room::dark_room_pixels(&scene, W, H);
+    let contact = contact_scene(name);
+    let scene = contact.scene();
+    let dark = dark_room::dark_room_pixels(scene, W, H);
     assert!(
         dark.len() > (W * H / 20) as usize,
         "{name}: {} dark pixels",
         dark.len()
     );
-    for (label, image) in images(&scene, &contact) {
+    for (label, image) in images(&contact) {
         for &i in &dark {
             assert_eq!(
                 image.pixels()[i].to_array(),
@@ -117,7 +119,7 @@ fn crease_maps_leak_through_the_floor_slab() {
         let scene = scenes::build(name).unwrap();
         let dark = dark_room::dark_room_pixels(&scene, W, H);
         let image = Renderer::new(EstimatorKind::Disc, settings(Mode::PhotonMap))
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap()
             .image;
         assert!(dark_mean(&image, &dark) > 0.0, "{name}: crease maps should leak");
@@ -126,8 +128,9 @@ fn crease_maps_leak_through_the_floor_slab() {
 
 #[test]
 fn gap_lets_through_no_more_than_three_times_the_path_traced_light() {
-    let (scene, contact) = contact_scene("solid-rooms-gap");
-    let dark = dark_room::dark_room_pixels(&scene, W, H);
+    let contact = contact_scene("solid-rooms-gap");
+    let scene = contact.scene();
+    let dark = dark_room::dark_room_pixels(scene, W, H);
     let truth = Renderer::new(
         EstimatorKind::GeometryCube,
         RenderSettings {
@@ -135,19 +138,19 @@ fn gap_lets_through_no_more_than_three_times_the_path_traced_light() {
             ..settings(Mode::PathTrace)
         },
     )
-    .render(&scene, &contact, &())
+    .render(&contact, &())
     .unwrap()
     .image;
     let truth = dark_mean(&truth, &dark);
     let crease = Renderer::new(EstimatorKind::Disc, settings(Mode::PhotonMap))
-        .render(&scene, &CreaseAngle::default(), &())
+        .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image;
     println!(
         "gap: path-traced dark-room mean {truth:.3e}, crease disc {:.3e}",
         dark_mean(&crease, &dark)
     );
-    for (label, image) in images(&scene, &contact) {
+    for (label, image) in images(&contact) {
         let mean = dark_mean(&image, &dark);
         println!(
             "gap {label}: dark-room mean {mean:.3e} ({:.2}x the path tracer)",
@@ -162,7 +165,7 @@ fn gap_lets_through_no_more_than_three_times_the_path_traced_light() {
 
 #[test]
 fn contact_maps_are_bit_identical_across_thread_counts() {
-    let (scene, contact) = contact_scene("solid-rooms-tee");
+    let contact = contact_scene("solid-rooms-tee");
     let render = |threads| {
         let image = Renderer::new(
             EstimatorKind::GeometryBall,
@@ -171,7 +174,7 @@ fn contact_maps_are_bit_identical_across_thread_counts() {
                 ..settings(Mode::PhotonMap)
             },
         )
-        .render(&scene, &contact, &())
+        .render(&contact, &())
         .unwrap()
         .image;
         image
@@ -198,15 +201,18 @@ fn print_dark_room_table() {
     println!("| scene | crease maps | contact maps | path-traced | image mean (contact) |");
     println!("|---|---|---|---|---|");
     for name in scenes::SOLID_NAMES {
-        let (scene, contact) = contact_scene(name);
+        let contact = contact_scene(name);
         let crease_scene = scenes::build(name).unwrap();
-        let dark = dark_room::dark_room_pixels(&scene, W, H);
+        let dark = dark_room::dark_room_pixels(contact.scene(), W, H);
         let crease = Renderer::new(EstimatorKind::GeometryCube, base)
-            .render(&crease_scene, &CreaseAngle::default(), &())
+            .render(
+                &CreaseAngle::default().partition(crease_scene.clone()).unwrap(),
+                &(),
+            )
             .unwrap()
             .image;
         let contact_image = Renderer::new(EstimatorKind::GeometryCube, base)
-            .render(&scene, &contact, &())
+            .render(&contact, &())
             .unwrap()
             .image;
         let traced = Renderer::new(
@@ -216,7 +222,7 @@ fn print_dark_room_table() {
                 ..settings(Mode::PathTrace)
             },
         )
-        .render(&scene, &contact, &())
+        .render(&contact, &())
         .unwrap()
         .image;
         println!(

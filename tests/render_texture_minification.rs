@@ -7,6 +7,7 @@
 //! the mip chain, so every pixel is close to 0.5.
 
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::glam::{Vec2, Vec3};
 use photon_maps::trace::{
     Camera, DirectionalLight, Sampler, Scene, SingleMap, Surface, Texture, VertexAttributes,
@@ -67,7 +68,7 @@ fn render(scene: &Scene, mode: Mode) -> Image {
         ..RenderSettings::default()
     };
     Renderer::new(EstimatorKind::Disc, settings)
-        .render(scene, &SingleMap, &())
+        .render(&SingleMap.partition(scene.clone()).unwrap(), &())
         .unwrap()
         .image
 }

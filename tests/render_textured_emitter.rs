@@ -7,6 +7,7 @@
 
 use glam::{Vec2, Vec3};
 use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
+use photon_maps::trace::Partitioner;
 use photon_maps::trace::{
     Camera, CreaseAngle, EmissionTexture, Ray, RayKind, Sampler, Scene, Sides, Surface, Texture,
     TexturedAreaLight, VertexAttributes, Wrap,
@@ -167,7 +168,7 @@ fn path_tracer_and_photon_map_light_the_floor_by_the_texture() {
             ..settings
         },
     )
-    .render(&scene, &CreaseAngle::default(), &())
+    .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
     .unwrap()
     .image
     .mean();
@@ -190,7 +191,7 @@ fn path_tracer_and_photon_map_light_the_floor_by_the_texture() {
             ..settings
         },
     )
-    .render(&scene, &CreaseAngle::default(), &())
+    .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
     .unwrap()
     .image
     .mean();
@@ -246,7 +247,7 @@ fn textured_two_sided_light_renders_bit_identically_on_one_and_three_threads() {
                     ..RenderSettings::default()
                 },
             )
-            .render(&scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap();
             out.image
                 .pixels()

@@ -7,7 +7,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, RenderSettings};
-use photon_maps::trace::{CreaseAngle, Scene};
+use photon_maps::trace::{CreaseAngle, Partitioner, Scene};
 
 /// One run's figures.
 #[derive(serde::Serialize, serde::Deserialize)]
@@ -37,8 +37,11 @@ pub fn rows(scene: &Scene, base: RenderSettings, counts: &[u64]) -> Result<Vec<M
                     .stats
             } else {
                 let settings = ProgressiveSettings::new(base, passes);
+                let crease = CreaseAngle::default()
+                    .partition(scene.clone())
+                    .map_err(|e| e.to_string())?;
                 ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
-                    .render(scene, &CreaseAngle::default(), &())
+                    .render(&crease, &())
                     .map_err(|e| e.to_string())?
                     .stats
             };

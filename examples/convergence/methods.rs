@@ -9,7 +9,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, Scene, SingleMap};
+use photon_maps::trace::{CreaseAngle, Partitioner, Scene, SingleMap};
 use std::ops::ControlFlow;
 use std::path::Path;
 
@@ -231,6 +231,12 @@ pub fn run(
         // photons), averaged.
         Method::PathTrace | Method::FinalGather => {
             let mut sum = vec![DVec3::ZERO; reference.pixels().len()];
+            let partitioned = if method == Method::PathTrace {
+                SingleMap.partition(scene.clone())
+            } else {
+                CreaseAngle::default().partition(scene.clone())
+            }
+            .map_err(|e| e.to_string())?;
             for batch in 0u64.. {
                 let seed = base.seed.wrapping_add(batch);
                 let image = if method == Method::PathTrace {
@@ -240,7 +246,7 @@ pub fn run(
                         seed,
                         ..base
                     };
-                    Renderer::new(EstimatorKind::Disc, settings).render(scene, &SingleMap, &())
+                    Renderer::new(EstimatorKind::Disc, settings).render(&partitioned, &())
                 } else {
                     let settings = RenderSettings {
                         mode: Mode::FinalGather,
@@ -249,11 +255,7 @@ pub fn run(
                         final_gather: progressive.final_gather,
                         ..base
                     };
-                    Renderer::new(EstimatorKind::GeometryCube, settings).render(
-                        scene,
-                        &CreaseAngle::default(),
-                        &(),
-                    )
+                    Renderer::new(EstimatorKind::GeometryCube, settings).render(&partitioned, &())
                 }
                 .map_err(|e| e.to_string())?
                 .image;
@@ -304,8 +306,11 @@ pub fn run(
                 alpha: progressive.alpha,
                 ..ProgressiveSettings::new(render, 1)
             };
+            let crease = CreaseAngle::default()
+                .partition(scene.clone())
+                .map_err(|e| e.to_string())?;
             ProgressiveRenderer::new(estimator, settings)
-                .render_observed(scene, &CreaseAngle::default(), &(), &mut |sum, stats| {
+                .render_observed(&crease, &(), &mut |sum, stats| {
                     record(&mut clock, stats.passes, &|| Ok(sum.mean()))
                 })
                 .map_err(|e| e.to_string())?;

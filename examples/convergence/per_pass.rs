@@ -10,7 +10,7 @@ use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
 use photon_maps::render::{EstimatorKind, Image, RenderSettings};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, RayKind, Scene, scenes};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioned, Partitioner, RayKind, Scene, scenes};
 use std::ops::ControlFlow;
 
 /// The renderers of the per-pass tables: the progressive ones with the scene's leak-free
@@ -36,8 +36,7 @@ pub fn label(method: Option<EstimatorKind>) -> &'static str {
 /// after each of `counts` to `measure`.
 pub fn at_pass_counts(
     method: Option<EstimatorKind>,
-    scene: &Scene,
-    partitioner: &dyn Partitioner,
+    partitioned: &Partitioned,
     base: RenderSettings,
     progressive: Progressive,
     counts: &[u64],
@@ -56,7 +55,7 @@ pub fn at_pass_counts(
                 ..ProgressiveSettings::new(render, last)
             };
             ProgressiveRenderer::new(estimator, settings)
-                .render_observed(scene, partitioner, &(), &mut |sum, stats| {
+                .render_observed(partitioned, &(), &mut |sum, stats| {
                     if counts.contains(&stats.passes) {
                         measure(stats.passes, &sum.mean());
                     }
@@ -67,7 +66,7 @@ pub fn at_pass_counts(
         None => {
             let mut failure = None;
             SppmRenderer::new(SppmSettings::new(base, last))
-                .render_observed(scene, &(), &mut |snapshot| {
+                .render_observed(partitioned.scene(), &(), &mut |snapshot| {
                     let passes = snapshot.stats().passes;
                     if counts.contains(&passes) {
                         match snapshot.image() {
@@ -215,15 +214,14 @@ pub fn tables(
         ),
         ("touching-rooms", Box::new(Contact::default())),
     ] {
-        let scene = partitioner
-            .prepare_scene(scenes::build(name).map_err(|e| e.to_string())?)
+        let partitioned = partitioner
+            .partition(scenes::build(name).map_err(|e| e.to_string())?)
             .map_err(|e| e.to_string())?;
-        let rooms = Rooms::new(&scene, size, size);
+        let rooms = Rooms::new(partitioned.scene(), size, size);
         for method in METHODS {
             at_pass_counts(
                 method,
-                &scene,
-                &*partitioner,
+                &partitioned,
                 base,
                 progressive,
                 counts,
@@ -243,11 +241,13 @@ pub fn tables(
     }
     let accordion = scenes::build("accordion").map_err(|e| e.to_string())?;
     let creases = Creases::new(&accordion, size, size, 0.03)?;
+    let accordion = CreaseAngle::default()
+        .partition(accordion)
+        .map_err(|e| e.to_string())?;
     for method in METHODS {
         at_pass_counts(
             method,
             &accordion,
-            &CreaseAngle::default(),
             base,
             progressive,
             counts,

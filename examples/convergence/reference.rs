@@ -8,7 +8,7 @@
 use photon_maps::render::glam::DVec3;
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Scene, SingleMap};
+use photon_maps::trace::{Partitioner, Scene, SingleMap};
 use std::io::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -177,6 +177,7 @@ fn path_trace(
     (mut halves, start): ([Vec<DVec3>; 2], u64),
     files: &Files,
 ) -> Result<Reference, String> {
+    let partitioned = SingleMap.partition(scene.clone()).map_err(|e| e.to_string())?;
     let clock = Instant::now();
     let mut saved = Instant::now();
     let mut batches = start;
@@ -209,7 +210,7 @@ fn path_trace(
             ..base
         };
         let image = Renderer::new(EstimatorKind::Disc, settings)
-            .render(scene, &SingleMap, &())
+            .render(&partitioned, &())
             .map_err(|e| e.to_string())?
             .image;
         for (s, p) in halves[(batches % 2) as usize].iter_mut().zip(image.pixels()) {

@@ -101,12 +101,12 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         )
     } else {
         let partition = args.maps().partitioner();
-        let scene = partition
-            .prepare_scene(load_scene(&args.scene, args.light_units.into())?.0)
+        let partitioned = partition
+            .partition(load_scene(&args.scene, args.light_units.into())?.0)
             .map_err(|e| e.to_string())?;
         let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
-            .render(&scene, &*partition, &bar)
+            .render(&partitioned, &bar)
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
         let identity = format!(
@@ -119,7 +119,10 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         let a = &out.accumulation;
         let shard = Shard::from_accumulation(a, &scene_id, &identity).map_err(|e| e.to_string())?;
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
-        let contacts = (contacts_summary(&scene), contacts_json(&scene));
+        let contacts = (
+            contacts_summary(partitioned.record()),
+            contacts_json(partitioned.record()),
+        );
         (a.mean(), out.stats, a.pass_range(), identity, contacts)
     };
     let heap_peak = crate::tracking_allocator::peak().saturating_sub(heap_before);

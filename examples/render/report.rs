@@ -2,7 +2,7 @@
 
 use super::{Args, Variant};
 use photon_maps::render::{RenderSettings, RenderStats};
-use photon_maps::trace::Scene;
+use photon_maps::trace::ContactRecord;
 use std::fmt::Write as _;
 
 /// The figures of one finished render, for the summary and the JSON.
@@ -13,14 +13,14 @@ pub struct Record<'a> {
     pub settings: &'a RenderSettings,
     pub stats: RenderStats,
     pub mean: [f32; 3],
-    /// [`contacts_summary`] and [`contacts_json`] of the scene rendered.
+    /// [`contacts_summary`] and [`contacts_json`] of the partition rendered.
     pub contacts: (String, String),
 }
 
 /// What the contact partition found where faces meet, for the summary: empty when the scene
 /// was not split.
-pub fn contacts_summary(scene: &Scene) -> String {
-    let Some(record) = scene.contact_record() else {
+pub fn contacts_summary(record: Option<&ContactRecord>) -> String {
+    let Some(record) = record else {
         return String::new();
     };
     let c = record.counts();
@@ -37,8 +37,8 @@ pub fn contacts_summary(scene: &Scene) -> String {
 }
 
 /// The same as a JSON value: `null` when the scene was not split.
-pub fn contacts_json(scene: &Scene) -> String {
-    let Some(record) = scene.contact_record() else {
+pub fn contacts_json(record: Option<&ContactRecord>) -> String {
+    let Some(record) = record else {
         return "null".to_owned();
     };
     let c = record.counts();

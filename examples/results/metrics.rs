@@ -162,9 +162,9 @@ pub fn accordion_classes(scene: &Scene, config: &Config) -> Result<Vec<Facet>, S
     }
     let s = settings(config, Mode::PhotonMap, 1, 0);
     let renderer = Renderer::new(EstimatorKind::Disc, s);
-    let assignment = SingleMap.partition(scene);
+    let partitioned = SingleMap.partition(scene.clone()).map_err(|e| e.to_string())?;
     let maps = renderer
-        .build_maps(scene, &assignment, &(), &mut RenderStats::default())
+        .build_maps(scene, partitioned.assignment(), &(), &mut RenderStats::default())
         .map_err(|e| e.to_string())?;
     let tree = maps.map(0).tree();
     let max_distance = s.estimator_options(&scene.bounds()).max_distance;

@@ -32,13 +32,14 @@ pub fn reference(spec: &SceneSpec, scene: &Scene, config: &Config) -> Result<Ref
             seconds: None,
         });
     }
+    let partitioned = SingleMap.partition(scene.clone()).map_err(|e| e.to_string())?;
     let start = Instant::now();
     let render_half = |seed| {
         Renderer::new(
             EstimatorKind::Disc,
             settings(config, Mode::PathTrace, spp / 2, seed),
         )
-        .render(scene, &SingleMap, &())
+        .render(&partitioned, &())
         .map(|out| out.image)
         .map_err(|e| e.to_string())
     };

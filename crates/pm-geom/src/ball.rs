@@ -7,8 +7,8 @@
 //! in f64, which keeps the sum exact to f32 precision even when large sectors cancel or
 //! the ball is nearly tangent to the plane.
 
-use crate::ClipScratch;
-use crate::polygon_normal;
+use crate::clip::ClipScratch;
+use crate::polygon::polygon_normal;
 use glam::{DVec2, Vec3};
 use std::cmp::Ordering::{Greater, Less};
 

@@ -1,7 +1,7 @@
 //! A small bounding-volume hierarchy over boxes, answering "which boxes overlap this box"
 //! without allocating: the overlap index of [`crate::PolygonSet`].
 
-use crate::Aabb;
+use crate::aabb::Aabb;
 use glam::Vec3;
 
 /// Items per leaf; small leaves suit the few-polygons-per-query pattern of the estimator.

@@ -1,7 +1,9 @@
 //! Sutherland–Hodgman clipping of a convex polygon against an axis-aligned box or a plane,
 //! into caller-owned buffers so that the hot path allocates nothing once warm.
 
-use crate::{Aabb, Plane, polygon_vector_area};
+use crate::aabb::Aabb;
+use crate::plane::Plane;
+use crate::polygon::polygon_vector_area;
 use glam::{DVec2, Vec3};
 
 /// Reusable buffers for clipping; keep one per thread.
@@ -131,43 +133,107 @@ fn intersect(p: Vec3, dp: f32, q: Vec3, dq: f32) -> Vec3 {
 /// cleared first; a side that gets fewer than 3 vertices is left empty. Vertices on the
 /// plane go to both sides, so the two parts share the cut edge exactly.
 ///
-/// This is the tool for cutting a face along a contact line before rebuilding a mesh.
+/// This is the tool for cutting a face along a contact line before rebuilding a mesh; it is
+/// [`split_convex_polygon_by_distance`] with the plane's signed distance and no tolerance.
 pub fn split_convex_polygon_by_plane(
     polygon: &[Vec3],
     plane: &Plane,
     front: &mut Vec<Vec3>,
     back: &mut Vec<Vec3>,
 ) {
+    split_convex_polygon_by_distance(polygon, |p| plane.signed_distance(p), 0.0, front, back);
+}
+
+/// Splits the convex `polygon` by a plane given as the signed `distance` of a point to it (in
+/// the polygon's own plane that is a line, such as `side · p − offset`): the part with
+/// `distance ≥ −tolerance` goes to `front`, the part with `distance ≤ tolerance` to `back`.
+///
+/// Vertices within `tolerance` of the plane go to both sides as they are (not moved onto it);
+/// an edge is cut only where its ends lie beyond the tolerance on opposite sides, and the cut
+/// point goes to both sides, so the two parts share the cut edge exactly. Each part starts at
+/// the first of `polygon`'s vertices it keeps, in the polygon's order. Both buffers are
+/// cleared first; a side that gets fewer than 3 vertices is left empty.
+pub fn split_convex_polygon_by_distance(
+    polygon: &[Vec3],
+    distance: impl Fn(Vec3) -> f32,
+    tolerance: f32,
+    front: &mut Vec<Vec3>,
+    back: &mut Vec<Vec3>,
+) {
     front.clear();
     back.clear();
-    let Some(&last) = polygon.last() else {
-        return;
-    };
-    if polygon.len() < 3 {
-        return;
-    }
-    let mut prev = last;
-    let mut prev_d = plane.signed_distance(prev);
-    for &cur in polygon {
-        let cur_d = plane.signed_distance(cur);
-        if (prev_d > 0.0 && cur_d < 0.0) || (prev_d < 0.0 && cur_d > 0.0) {
-            let hit = intersect(prev, prev_d, cur, cur_d);
-            front.push(hit);
-            back.push(hit);
+    walk_split(polygon, distance, tolerance, |side, p| {
+        if side != Side::Back {
+            front.push(p);
         }
-        if cur_d >= 0.0 {
-            front.push(cur);
+        if side != Side::Front {
+            back.push(p);
         }
-        if cur_d <= 0.0 {
-            back.push(cur);
-        }
-        prev = cur;
-        prev_d = cur_d;
-    }
+    });
     if front.len() < 3 {
         front.clear();
     }
     if back.len() < 3 {
         back.clear();
+    }
+}
+
+/// Keeps the part of the convex `polygon` where `distance ≥ −tolerance`, into `out` (cleared
+/// first): the front part of [`split_convex_polygon_by_distance`], without building the back.
+/// Fewer than 3 vertices kept leave `out` empty.
+pub fn clip_convex_polygon_by_distance(
+    polygon: &[Vec3],
+    distance: impl Fn(Vec3) -> f32,
+    tolerance: f32,
+    out: &mut Vec<Vec3>,
+) {
+    out.clear();
+    walk_split(polygon, distance, tolerance, |side, p| {
+        if side != Side::Back {
+            out.push(p);
+        }
+    });
+    if out.len() < 3 {
+        out.clear();
+    }
+}
+
+/// Which side of a splitting plane a vertex of a split goes to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Side {
+    Front,
+    Back,
+    /// On the plane (within the tolerance), or a cut point: both parts.
+    Both,
+}
+
+/// The one walk of a split: each vertex of `polygon` in order with its side, and after it the
+/// cut point of its edge to the next vertex when that edge crosses the plane beyond the
+/// tolerance.
+fn walk_split(
+    polygon: &[Vec3],
+    distance: impl Fn(Vec3) -> f32,
+    tolerance: f32,
+    mut emit: impl FnMut(Side, Vec3),
+) {
+    let n = polygon.len();
+    if n < 3 {
+        return;
+    }
+    let first = distance(polygon[0]);
+    let mut dp = first;
+    for i in 0..n {
+        let p = polygon[i];
+        let j = i + 1;
+        let dq = if j < n { distance(polygon[j]) } else { first };
+        if dp.abs() <= tolerance {
+            emit(Side::Both, p);
+        } else {
+            emit(if dp > 0.0 { Side::Front } else { Side::Back }, p);
+            if (dp > tolerance && dq < -tolerance) || (dp < -tolerance && dq > tolerance) {
+                emit(Side::Both, p.lerp(polygon[j % n], dp / (dp - dq)));
+            }
+        }
+        dp = dq;
     }
 }

@@ -84,7 +84,10 @@ pub use arrangement::{
     split_polygons_at_intersections,
 };
 pub use ball::{Ball, polygon_area_in_ball};
-pub use clip::{ClipScratch, clip_polygon_to_aabb, split_convex_polygon_by_plane};
+pub use clip::{
+    ClipScratch, clip_convex_polygon_by_distance, clip_polygon_to_aabb, split_convex_polygon_by_distance,
+    split_convex_polygon_by_plane,
+};
 pub use error::MeshError;
 pub use glam;
 pub use merge::{CoplanarMerger, MergeOptions, merge_coplanar_polygons};

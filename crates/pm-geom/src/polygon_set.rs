@@ -1,9 +1,9 @@
 //! A set of convex polygons with precomputed normals, areas and bounds, and a bounding-volume
 //! index answering "which polygons overlap this box" (the per-map geometry of the estimator).
 
-use crate::Aabb;
+use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
-use crate::polygon_vector_area;
+use crate::polygon::polygon_vector_area;
 use glam::Vec3;
 
 /// Convex planar polygons stored flat, with an overlap index built by [`PolygonSet::build_index`].

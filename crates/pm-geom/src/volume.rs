@@ -1,8 +1,11 @@
 //! The gather-volume trait: a region that can report the area of a polygon inside it.
 //! The cube ([`Aabb`]) and the [`Ball`] implement it; new volumes plug in the same way.
 
+use crate::aabb::Aabb;
+use crate::ball::{Ball, polygon_area_in_ball};
+use crate::clip::ClipScratch;
 use crate::clip::clip_into_scratch;
-use crate::{Aabb, Ball, ClipScratch, polygon_area_in_ball, polygon_vector_area};
+use crate::polygon::polygon_vector_area;
 use glam::Vec3;
 
 /// A closed region of space over which the geometry estimator spreads photon power.

@@ -30,7 +30,9 @@
 //! scale (which an estimator does once per query, after summing): no `exp` in the hot loop.
 
 pub use crate::power_code::PowerScale;
-use crate::power_code::{POWER_BITS, POWER_MAX_CODE, POWER_TABLE, encode_channel, rounding_uniforms};
+use crate::power_code::{
+    POWER_BITS, POWER_MAX_CODE, POWER_TABLE, encode_channel, largest_channel, rounding_uniforms,
+};
 use glam::{Vec2, Vec3};
 
 /// How a photon got where it is stored.
@@ -274,6 +276,19 @@ pub(crate) fn kind_code_of_bits(bits: u64) -> u8 {
 #[inline]
 pub(crate) fn kind_bit_of_bits(bits: u64) -> u8 {
     1 << (bits >> KIND_SHIFT & 0b11)
+}
+
+impl PowerScale {
+    /// The scale for a set of photons: their largest finite positive power channel (1 W when
+    /// there is none). (Here rather than with the codes: the codes know no photon.)
+    pub fn for_photons(photons: &[Photon]) -> Self {
+        Self::new(
+            photons
+                .iter()
+                .map(|p| largest_channel(p.power))
+                .fold(0.0, f32::max),
+        )
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,6 @@
 //! map's [`PowerScale`], with unbiased (stochastic) rounding driven by a hash of the photon
 //! itself, and the compile-time table that decodes them.
 
-use crate::Photon;
 use glam::Vec3;
 
 /// Power codes per octave (factor 2): a step of 2^(1/100), so rounding errs by < 0.7 %.
@@ -82,17 +81,6 @@ impl PowerScale {
         }
     }
 
-    /// The scale for a set of photons: their largest finite positive power channel (1 W when
-    /// there is none).
-    pub fn for_photons(photons: &[Photon]) -> Self {
-        Self::new(
-            photons
-                .iter()
-                .map(|p| largest_channel(p.power))
-                .fold(0.0, f32::max),
-        )
-    }
-
     /// Watts of the top code (relative power 1).
     #[inline]
     pub fn watts(self) -> f32 {
@@ -116,7 +104,7 @@ impl PowerScale {
 }
 
 /// The largest finite positive channel of `power`, or 0.
-fn largest_channel(power: Vec3) -> f32 {
+pub(crate) fn largest_channel(power: Vec3) -> f32 {
     power
         .to_array()
         .into_iter()

@@ -6,9 +6,11 @@
 //! [`Metric::grow_bound`]) does not exceed the current k-th distance. Leaves are scanned in two
 //! passes, ranks first (vectorisable) and then the few candidates, so the scan is branch-light.
 
+use crate::metric::Metric;
+use crate::photon::KindMask;
 use crate::photon::kind_bit_of_bits;
 use crate::tree::LEAF_CAPACITY;
-use crate::{KindMask, Metric, PhotonTree};
+use crate::tree::PhotonTree;
 use glam::Vec3;
 
 /// One found photon.
@@ -351,5 +353,5 @@ impl<M: Metric, F: FnMut(u32, f32)> LeafSearch for Within<'_, M, F> {
 /// A finite query point within [`crate::MAX_COORDINATE`] on every axis (farther, squared
 /// distances to the tree's photons could overflow and rank wrongly).
 fn in_range(query: Vec3) -> bool {
-    query.is_finite() && query.abs().max_element() <= crate::MAX_COORDINATE
+    query.is_finite() && query.abs().max_element() <= crate::tree::MAX_COORDINATE
 }

@@ -7,8 +7,10 @@
 //! order with the root at 1. Positions are kept apart from the 8-byte payloads, one array
 //! per axis, so leaf scans read only coordinates and vectorise.
 
+use crate::error::BuildError;
+use crate::photon::Photon;
 use crate::photon::{CompactPhoton, kind_code_of_bits};
-use crate::{BuildError, Photon, PowerScale};
+use crate::power_code::PowerScale;
 use glam::Vec3;
 
 /// Most photons in a leaf.

@@ -36,7 +36,7 @@
 //! ```
 //! use pm_render::glam::Vec3;
 //! use pm_render::{EstimatorKind, Mode, RenderSettings, Renderer};
-//! use pm_trace::{Camera, CreaseAngle, PointLight, Scene, Surface};
+//! use pm_trace::{Camera, CreaseAngle, Partitioner, PointLight, Scene, Surface};
 //! use std::f32::consts::PI;
 //!
 //! // pbrt's analytic scene: a point light of intensity π at the centre of a closed diffuse
@@ -47,7 +47,8 @@
 //!     .camera(Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z, Vec3::Y, 1.2))
 //!     .build()?;
 //! let settings = RenderSettings { width: 32, height: 32, photons: 20_000, mode: Mode::PhotonMap, ..Default::default() };
-//! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&scene, &CreaseAngle::default(), &())?;
+//! let partitioned = CreaseAngle::default().partition(scene)?;
+//! let out = Renderer::new(EstimatorKind::GeometryCube, settings).render(&partitioned, &())?;
 //! assert!((out.image.mean().x - 1.0).abs() < 0.05);
 //! println!("{:.3} s in total", out.stats.total().as_secs_f64());
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -13,6 +13,6 @@ pub use pm_geom::{Aabb, Ball, HalfEdgeMesh, PolygonSet};
 pub use pm_kdtree::{Chebyshev, Euclidean, KindMask, Photon, PhotonKind, PhotonTree};
 pub use pm_trace::{
     AreaLight, Camera, Contact, CreaseAngle, DirectionalLight, Hit, Light, MapAssignment, Material,
-    Partitioner, PhotonMaps, PointLight, Ray, RayKind, Rng, Scene, SingleMap, SpotLight, Surface,
-    TraceOptions, scenes, trace_photons,
+    Partitioned, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Rng, Scene, SingleMap, SpotLight,
+    Surface, TraceOptions, scenes, trace_photons,
 };

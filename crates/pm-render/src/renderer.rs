@@ -4,16 +4,22 @@
 //! threads.
 
 use crate::cache::RadianceCache;
-use crate::core::{RadianceSource, SampleStreams, render_tiles};
+use crate::core::RadianceSource;
+use crate::core::tiles::SampleStreams;
+use crate::core::tiles::render_tiles;
 use crate::error::RenderError;
 use crate::estimator::Estimator;
 use crate::image::Image;
 use crate::mode::Mode;
 use crate::progress::Progress;
 use crate::settings::RenderSettings;
-use crate::source::{CacheReads, DirectLight, FinalGatherSource, PathTraced, PhotonMapSource};
+use crate::source::final_gather::CacheReads;
+use crate::source::final_gather::FinalGatherSource;
+use crate::source::path_traced::PathTraced;
+use crate::source::photon_map::DirectLight;
+use crate::source::photon_map::PhotonMapSource;
 use crate::stats::RenderStats;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene, TraceOptions, trace_photons};
 use std::time::Instant;
 
 /// An image and the figures of the render that made it.
@@ -29,9 +35,10 @@ pub struct Rendered {
 ///
 /// ```no_run
 /// # use pm_render::{Renderer, RenderSettings, GeometryCube};
-/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// # use pm_trace::Partitioner;
+/// # fn f(scene: pm_trace::Scene) -> Result<(), pm_render::RenderError> {
 /// let renderer = Renderer::new(GeometryCube, RenderSettings::default());
-/// let out = renderer.render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// let out = renderer.render(&pm_trace::CreaseAngle::default().partition(scene)?, &())?;
 /// println!("{:?} total", out.stats.total());
 /// # Ok(()) }
 /// ```
@@ -52,34 +59,30 @@ impl<E: Estimator> Renderer<E> {
         &self.settings
     }
 
-    /// Traces photons into the maps `partitioner` assigns (skipped for path tracing), builds
-    /// the maps (and for the final gather its cache) and renders the image, on
+    /// Traces photons into the maps `partitioned` assigns (skipped for path tracing), builds
+    /// the maps (and for the final gather its cache) and renders its scene, on
     /// `settings.threads` workers.
-    pub fn render<P: Partitioner + ?Sized>(
+    pub fn render(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
     ) -> Result<Rendered, RenderError> {
         self.settings.validate()?;
-        let uses_photons = self.settings.mode.uses_photons();
-        let start = Instant::now();
-        let assignment = if uses_photons {
-            Some(partitioner.try_partition(scene)?)
-        } else {
-            None
-        };
-        let partition_time = start.elapsed();
+        let scene = partitioned.scene();
+        let assignment = self
+            .settings
+            .mode
+            .uses_photons()
+            .then(|| partitioned.assignment());
         self.in_pool(|| {
             let mut stats = RenderStats {
                 threads: rayon::current_num_threads(),
                 ..RenderStats::default()
             };
-            let maps = match &assignment {
+            let maps = match assignment {
                 Some(assignment) => Some(self.build_maps(scene, assignment, progress, &mut stats)?),
                 None => None,
             };
-            stats.trace += partition_time;
             let image = self.render_mode(scene, maps.as_ref(), progress, &mut stats)?;
             Ok(Rendered { image, stats })
         })?

@@ -2,9 +2,9 @@
 //! the report's defaults (Ball & Stejko).
 
 use crate::error::RenderError;
-use crate::estimator::EstimatorOptions;
+use crate::estimator::options::EstimatorOptions;
 use crate::mode::Mode;
-use crate::source::FinalGatherOptions;
+use crate::source::final_gather::FinalGatherOptions;
 use pm_geom::Aabb;
 use pm_kdtree::KindMask;
 
@@ -103,8 +103,8 @@ impl RenderSettings {
     }
 
     /// The picture's size, samples and tiles, for the render core's tile loop.
-    pub fn frame(&self) -> crate::core::Frame {
-        crate::core::Frame {
+    pub fn frame(&self) -> crate::core::tiles::Frame {
+        crate::core::tiles::Frame {
             width: self.width,
             height: self.height,
             samples_per_pixel: self.samples_per_pixel,

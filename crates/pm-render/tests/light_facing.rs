@@ -47,7 +47,7 @@ fn a_light_facing_its_ceiling_shows_in_the_render_stats() {
     };
     let render = |scene: &Scene| {
         Renderer::new(GeometryCube, settings)
-            .render(scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap()
     };
     let down = render(&room(x, z));
@@ -72,7 +72,10 @@ fn a_light_facing_its_ceiling_shows_in_the_render_stats() {
             ..settings
         },
     )
-    .render(&room(z, x), &CreaseAngle::default(), &())
+    .render(
+        &CreaseAngle::default().partition(room(z, x).clone()).unwrap(),
+        &(),
+    )
     .unwrap();
     assert_eq!(traced.stats.near_light_fraction, 0.0);
 }
@@ -88,7 +91,7 @@ fn a_light_facing_its_ceiling_shows_in_the_progressive_and_sppm_stats() {
     };
     let progressive = |scene: &Scene| {
         ProgressiveRenderer::new(GeometryCube, ProgressiveSettings::new(render, 3))
-            .render(scene, &CreaseAngle::default(), &())
+            .render(&CreaseAngle::default().partition(scene.clone()).unwrap(), &())
             .unwrap()
             .stats
     };

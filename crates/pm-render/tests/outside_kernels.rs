@@ -48,7 +48,7 @@ fn lit_plane(photons: u32) -> PhotonMaps {
         .light(DirectionalLight::new(Vec3::NEG_Y, IRRADIANCE))
         .build()
         .unwrap();
-    let assignment: MapAssignment = SingleMap.partition(&scene);
+    let assignment: MapAssignment = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let options = TraceOptions {
         photons,
         seed: 3,

@@ -1,6 +1,6 @@
 //! The pinhole camera: position, look-at point, up vector and vertical field of view.
 
-use crate::Ray;
+use crate::ray::Ray;
 use glam::Vec3;
 
 /// A pinhole camera. Image coordinates `(u, v) ∈ [0,1]²` run left to right and top to bottom.

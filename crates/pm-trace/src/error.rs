@@ -140,6 +140,16 @@ pub enum TraceError {
         /// Its power.
         power: [f32; 3],
     },
+    /// A photon handed to [`crate::TracedPhotons::new`] that no map can hold.
+    #[error("map {map}, photon {index}: {reason}")]
+    InvalidPhoton {
+        /// The map (index in the list of maps).
+        map: usize,
+        /// The photon's index in that map's list.
+        index: usize,
+        /// What is wrong with it.
+        reason: PhotonFault,
+    },
     /// The map assignment does not belong to this scene.
     #[error("map assignment covers {assigned} parts but the scene has {parts}")]
     AssignmentMismatch {
@@ -148,6 +158,21 @@ pub enum TraceError {
         /// Parts in the scene.
         parts: usize,
     },
+}
+
+/// What is wrong with a photon handed to [`crate::TracedPhotons::new`].
+#[derive(Debug, Error, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PhotonFault {
+    /// Its position has a NaN or infinite coordinate.
+    #[error("its position is not finite")]
+    Position,
+    /// Its direction has a NaN or infinite coordinate, or is zero.
+    #[error("its direction is not finite and non-zero")]
+    Direction,
+    /// Its power has a NaN, infinite or negative channel.
+    #[error("its power is not finite and non-negative")]
+    Power,
 }
 
 /// Why photon maps could not be built.

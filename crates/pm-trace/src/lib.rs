@@ -6,7 +6,9 @@
 //! Every mesh face, sphere and ring side is a *part* ([`PartId`]); a [`Partitioner`]
 //! ([`SingleMap`], [`CreaseAngle`], and [`Contact`], the one to use unless you reproduce the
 //! report: crease-angle maps that never join across a line where faces pierce, stand on,
-//! overlap or nearly touch each other) assigns each part a photon map. [`trace_photons`] shoots
+//! overlap or nearly touch each other) takes the scene and returns a [`Partitioned`]: the
+//! scene (for [`Contact`], split where faces meet) with the photon map of each of its parts.
+//! [`trace_photons`] shoots
 //! photons from the lights and stores them per map; [`PhotonMaps::build`] turns them into
 //! kd-trees plus each map's polygons for the geometry-based estimators (coplanar, edge-connected
 //! faces merged into larger convex polygons, so a finely split wall costs one clip). Ball & Stejko's
@@ -69,13 +71,14 @@
 //!     .mesh(&floor, &[[0u32, 1, 2, 3]], Surface::diffuse(Vec3::splat(0.5)))
 //!     .light(PointLight::new(Vec3::new(0.0, 1.0, 0.0), Vec3::splat(100.0)))
 //!     .build()?;
-//! let maps = CreaseAngle::default().partition(&scene);
-//! let traced = trace_photons(&scene, &maps, &TraceOptions { photons: 10_000, seed: 1, max_bounces: 8, ..TraceOptions::default() })?;
+//! let partitioned = CreaseAngle::default().partition(scene)?;
+//! let (scene, maps) = (partitioned.scene(), partitioned.assignment());
+//! let traced = trace_photons(scene, maps, &TraceOptions { photons: 10_000, seed: 1, max_bounces: 8, ..TraceOptions::default() })?;
 //! // Seen from the light, the floor covers 1/6 of all directions: about 1,667 photons land on it
 //! // (bounced photons fly up and away).
 //! let stored = traced.stats().total_stored();
 //! assert!((1_550..1_790).contains(&stored), "{stored}");
-//! let photon_maps = PhotonMaps::build(&scene, &maps, traced)?;
+//! let photon_maps = PhotonMaps::build(scene, maps, traced)?;
 //! assert_eq!(photon_maps.len(), 1);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -103,6 +106,7 @@ pub mod emission;
 pub mod error;
 pub mod light;
 pub mod material;
+pub mod part;
 pub mod partition;
 pub mod photons;
 pub mod ray;
@@ -120,15 +124,16 @@ pub mod gltf;
 
 pub use camera::Camera;
 pub use emission::EmissionTexture;
-pub use error::{MapError, SceneError, TraceError};
+pub use error::{MapError, PhotonFault, SceneError, TraceError};
 pub use glam;
 pub use light::{
     AreaLight, DirectionalLight, EmittedRay, IncidentPdf, Light, LightClone, LightSample, PointLight,
     SpotLight, TexturedAreaLight,
 };
 pub use material::{Material, Surface};
+pub use part::{PartId, PartSource, SourceFace};
 pub use partition::{
-    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioner, SingleMap,
+    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps,
@@ -138,8 +143,8 @@ pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{
-    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, PartId, PartSource, RayKind, Scene, SceneBuilder,
-    SceneMesh, VertexAttributes,
+    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene, SceneBuilder, SceneMesh,
+    VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use sides::Sides;

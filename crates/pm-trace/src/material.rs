@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::Sides;
+use crate::sides::Sides;
 
 /// How a surface scatters light.
 #[derive(Clone, Copy, Debug, PartialEq)]

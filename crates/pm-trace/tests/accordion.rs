@@ -6,7 +6,11 @@ use pm_trace::{CreaseAngle, PartId, Partitioner, PhotonKind, TraceOptions, scene
 #[test]
 fn facet_irradiance_ratio_is_cos15_over_cos75() {
     let scene = scenes::build("accordion").unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let n = 400_000;
     let traced = trace_photons(
         &scene,

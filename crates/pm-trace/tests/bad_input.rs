@@ -25,7 +25,7 @@ fn tracing_without_photons_lights_or_power_is_an_error() {
         .mesh(&quad(), &[[0u32, 1, 2, 3]], grey())
         .build()
         .unwrap();
-    let maps = SingleMap.partition(&dark);
+    let maps = SingleMap.partition(dark.clone()).unwrap().assignment().clone();
     let opts = TraceOptions::default();
     assert_eq!(trace_photons(&dark, &maps, &opts), Err(TraceError::NoLights));
 
@@ -62,7 +62,11 @@ fn an_assignment_for_another_scene_is_an_error() {
         .build()
         .unwrap();
     let cornell = scenes::build("cornell-box").unwrap();
-    let maps = CreaseAngle::default().partition(&cornell);
+    let maps = CreaseAngle::default()
+        .partition(cornell.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     assert!(matches!(
         trace_photons(&small, &maps, &TraceOptions::default()),
         Err(TraceError::AssignmentMismatch {
@@ -70,7 +74,7 @@ fn an_assignment_for_another_scene_is_an_error() {
             parts: 1
         })
     ));
-    let own = SingleMap.partition(&small);
+    let own = SingleMap.partition(small.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         &small,
         &own,

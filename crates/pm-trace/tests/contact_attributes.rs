@@ -70,7 +70,8 @@ fn floor_hit(scene: &Scene, x: f32, z: f32) -> pm_trace::Hit {
 fn split_floor_keeps_colours_texture_and_normals() {
     let before = scene();
     let floor_parts = before.meshes()[0].half_edge_mesh().face_count();
-    let split = Contact::default().prepare_scene(before.clone()).unwrap();
+    let partitioned = Contact::default().partition(before.clone()).unwrap();
+    let split = partitioned.scene();
     let split_parts = split.meshes()[0].half_edge_mesh().face_count();
     assert!(
         split_parts > floor_parts,
@@ -80,7 +81,7 @@ fn split_floor_keeps_colours_texture_and_normals() {
     for i in 0..40 {
         for j in 0..40 {
             let (x, z) = (-0.975 + i as f32 * 0.05, -0.975 + j as f32 * 0.05);
-            let hit = floor_hit(&split, x, z);
+            let hit = floor_hit(split, x, z);
             let texel = if x < 0.0 { 1.0 } else { 0.502_886_5 };
             let truth = 0.9 * colour(hit.position) * texel;
             let albedo = split.albedo_at(&hit);

@@ -27,7 +27,11 @@ fn bits(traced: &TracedPhotons) -> Vec<Vec<[u32; 10]>> {
 #[test]
 fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
     let scene = scenes::build("cornell-box").unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     // Not a multiple of the chunk size, so the last chunk is partial.
     let options = TraceOptions {
         photons: 30_001,
@@ -60,7 +64,11 @@ fn photons_are_bit_identical_for_one_and_two_threads_and_across_runs() {
 fn pass_zero_is_the_plain_trace_and_other_passes_are_fresh_photons() {
     use pm_trace::Rng;
     let scene = scenes::build("accordion").unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let options = TraceOptions {
         photons: 3_000,
         seed: 9,

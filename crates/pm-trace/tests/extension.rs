@@ -3,8 +3,8 @@
 
 use pm_trace::glam::Vec3;
 use pm_trace::{
-    EmittedRay, Light, LightSample, MapAssignment, Partitioner, PhotonKind, PhotonMaps, Ray, Rng, Scene,
-    Surface, TraceOptions, trace_photons,
+    EmittedRay, Light, LightSample, MapAssignment, PartitionError, Partitioned, Partitioner, PhotonKind,
+    PhotonMaps, Ray, Rng, Scene, Surface, TraceOptions, trace_photons,
 };
 
 /// A laser: every photon leaves `origin` straight down.
@@ -36,9 +36,9 @@ impl Light for Laser {
 struct MapPerPart;
 
 impl Partitioner for MapPerPart {
-    fn partition(&self, scene: &Scene) -> MapAssignment {
+    fn partition(&self, scene: Scene) -> Result<Partitioned, PartitionError> {
         let n = scene.part_count() as u32;
-        MapAssignment::new((0..n).collect())
+        Partitioned::new(scene, MapAssignment::new((0..n).collect()))
     }
 }
 
@@ -61,7 +61,7 @@ fn custom_light_and_partitioner_drive_tracing() {
         })
         .build()
         .unwrap();
-    let maps = MapPerPart.partition(&scene);
+    let maps = MapPerPart.partition(scene.clone()).unwrap().assignment().clone();
     assert_eq!(maps.map_count(), 2);
     let traced = trace_photons(
         &scene,

@@ -25,7 +25,7 @@ fn floor_scene(light: impl Light + 'static) -> Scene {
 
 /// Direct photons landing where `inside` holds: (count, power per photon).
 fn count_direct(scene: &Scene, n: u32, inside: impl Fn(Vec3) -> bool) -> (u64, f64) {
-    let maps = SingleMap.partition(scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         scene,
         &maps,

@@ -27,18 +27,34 @@ fn x_ranges(scene: &Scene, maps: &MapAssignment) -> Vec<(f32, f32)> {
 #[test]
 fn lit_unlit_rooms_have_twelve_maps_none_spanning_both_rooms() {
     let scene = scenes::build("lit-unlit-rooms").unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     assert_eq!(maps.map_count(), 12);
     for (lo, hi) in x_ranges(&scene, &maps) {
         assert!(hi <= 1.0 + 1e-6 || lo >= 1.02 - 1e-6, "a map spans x {lo}..{hi}");
     }
-    assert_eq!(SingleMap.partition(&scene).map_count(), 1);
+    assert_eq!(
+        SingleMap
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone()
+            .map_count(),
+        1
+    );
 }
 
 #[test]
 fn touching_rooms_share_the_floor_map_under_crease_maps() {
     let scene = scenes::build("touching-rooms").unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     // Ten faces, all meeting at right angles or not at all: ten maps, the floor spans both rooms.
     assert_eq!(maps.map_count(), 10);
     assert!(
@@ -52,13 +68,23 @@ fn touching_rooms_share_the_floor_map_under_crease_maps() {
 fn accordion_has_one_map_per_facet() {
     let scene = scenes::build("accordion").unwrap();
     assert_eq!(scene.part_count(), 8);
-    assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 8);
+    assert_eq!(
+        CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone()
+            .map_count(),
+        8
+    );
     // Folds are 90°: a threshold above that joins them all.
     assert_eq!(
         CreaseAngle {
             max_angle: 100f32.to_radians()
         }
-        .partition(&scene)
+        .partition(scene)
+        .unwrap()
+        .assignment()
         .map_count(),
         1
     );
@@ -80,7 +106,11 @@ fn tessellated_sphere_is_one_map_and_ring_is_four() {
         .sphere(Vec3::new(-3.0, 0.0, 0.0), 1.0, Surface::diffuse(Vec3::ONE * 0.5))
         .build()
         .unwrap();
-    let maps = CreaseAngle::default().partition(&scene);
+    let maps = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     assert_eq!(maps.map_count(), 1 + 4 + 1);
     let sphere_mesh_map = maps.map_of(PartId(0));
     assert!((0..320).all(|f| maps.map_of(PartId(f)) == sphere_mesh_map));
@@ -94,7 +124,15 @@ fn cornell_box_walls_light_sphere_and_ring_get_their_own_maps() {
     let scene = scenes::build("cornell-box").unwrap();
     // 5 walls + light quad + sphere + 4 ring sides.
     assert_eq!(scene.part_count(), 11);
-    assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 11);
+    assert_eq!(
+        CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone()
+            .map_count(),
+        11
+    );
 }
 
 #[test]
@@ -103,8 +141,12 @@ fn photons_land_in_the_map_of_the_surface_they_hit_in_every_built_in_scene() {
     for name in scenes::NAMES {
         let scene = scenes::build(name).unwrap();
         for maps in [
-            CreaseAngle::default().partition(&scene),
-            SingleMap.partition(&scene),
+            CreaseAngle::default()
+                .partition(scene.clone())
+                .unwrap()
+                .assignment()
+                .clone(),
+            SingleMap.partition(scene.clone()).unwrap().assignment().clone(),
         ] {
             let traced = trace_photons(
                 &scene,

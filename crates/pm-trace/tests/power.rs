@@ -20,7 +20,7 @@ fn closed_box(albedo: f32, power: Vec3) -> Scene {
 fn black_box_stores_exactly_the_light_power_as_direct_photons() {
     let power = Vec3::new(10.0, 20.0, 5.0);
     let scene = closed_box(0.0, power);
-    let maps = SingleMap.partition(&scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         &scene,
         &maps,
@@ -64,7 +64,7 @@ fn grey_box_stores_power_over_one_minus_albedo_within_three_standard_errors() {
     let n = 200_000u32;
     let power = Vec3::splat(3.0);
     let scene = closed_box(rho, power);
-    let maps = SingleMap.partition(&scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         &scene,
         &maps,
@@ -94,7 +94,7 @@ fn cornell_box_photons_share_the_light_power() {
     // Light quad 0.13 × 0.105 m of radiance (17, 12, 4): Φ = π L A.
     let expected = Vec3::new(17.0, 12.0, 4.0) * (std::f32::consts::PI * 0.13 * 0.105);
     assert!(((total - expected) / expected).abs().max_element() < 1e-4);
-    let maps = SingleMap.partition(&scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let traced = trace_photons(
         &scene,
         &maps,
@@ -130,7 +130,7 @@ fn lossless_glass_and_mirror_spheres_pass_all_power_on_as_caustics() {
             .light(PointLight::new(Vec3::new(0.5, 0.8, 0.5), power))
             .build()
             .unwrap();
-        let maps = SingleMap.partition(&scene);
+        let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
         let n = 50_000;
         let traced = trace_photons(
             &scene,

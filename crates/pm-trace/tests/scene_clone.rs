@@ -35,8 +35,16 @@ fn scene_clones_and_takes_another_camera() {
     assert_eq!(clone.part_count(), scene.part_count());
     assert_eq!(clone.lights().len(), scene.lights().len());
     assert_eq!(
-        CreaseAngle::default().partition(&clone),
-        CreaseAngle::default().partition(&scene)
+        CreaseAngle::default()
+            .partition(clone.clone())
+            .unwrap()
+            .assignment()
+            .clone(),
+        CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone()
     );
     // The clone answers ray queries as the original does.
     let ray = Ray::new(scene.bounds().center(), Vec3::new(0.3, -1.0, 0.2).normalize());

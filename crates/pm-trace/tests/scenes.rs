@@ -102,36 +102,3 @@ fn accordion_facets_are_quarter_metre_by_metre_at_right_angles() {
             .all(|a| (a - std::f32::consts::FRAC_PI_2).abs() < 1e-4)
     );
 }
-
-#[test]
-fn a_scene_rebuilds_from_its_own_meshes_with_the_same_parts_and_hits() {
-    let scene = scenes::build("cornell-box").unwrap();
-    // Collect every mesh as polygons with their surfaces, then rebuild.
-    let mut meshes = Vec::new();
-    for m in scene.meshes() {
-        let mesh = m.half_edge_mesh();
-        let mut positions = Vec::new();
-        let mut faces = Vec::new();
-        let mut surfaces = Vec::new();
-        for f in mesh.faces() {
-            let start = positions.len() as u32;
-            positions.extend(mesh.face_polygon(f));
-            faces.push((start..positions.len() as u32).collect::<Vec<u32>>());
-            surfaces.push(*scene.part_surface(m.part_of_face(f)));
-        }
-        meshes.push((positions, faces, surfaces));
-    }
-    let parts = scene.part_count();
-    let probe = Ray::new(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.3, -0.2, 0.5));
-    let before = scene.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
-    let mut builder = scene.into_builder_without_meshes();
-    for (p, f, s) in &meshes {
-        builder = builder.mesh_per_face(p, f, s);
-    }
-    let rebuilt = builder.build().unwrap();
-    assert_eq!(rebuilt.part_count(), parts);
-    assert_eq!(rebuilt.lights().len(), 1);
-    let after = rebuilt.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
-    assert_eq!(before.part, after.part);
-    assert!((before.t - after.t).abs() < 1e-6);
-}

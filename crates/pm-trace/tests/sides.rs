@@ -69,7 +69,7 @@ fn two_sided_quad_in_a_black_box_stores_its_doubled_power() {
         )
         .build()
         .unwrap();
-    let maps = SingleMap.partition(&scene);
+    let maps = SingleMap.partition(scene.clone()).unwrap().assignment().clone();
     let n = 50_000u32;
     let traced = trace_photons(
         &scene,

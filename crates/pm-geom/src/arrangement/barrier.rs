@@ -1,7 +1,7 @@
 //! Barrier segments: the lines along which faces meet, which no photon map may cross, with a
 //! query that tells whether a mesh edge runs along one of them.
 
-use crate::Aabb;
+use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
 

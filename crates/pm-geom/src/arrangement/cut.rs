@@ -2,6 +2,7 @@
 //! the contact points inserted on the new edges so that the meeting face's edge is shared after
 //! welding.
 
+use crate::clip::split_convex_polygon_by_distance;
 use glam::Vec3;
 
 /// A cut of one face: a line in the face's plane and the contact points on it.
@@ -81,8 +82,14 @@ pub(super) fn cut_face<E>(
                 continue;
             }
             let (mut front, mut back) = (Vec::new(), Vec::new());
-            split_by_line(piece, &distances, tolerance, &mut front, &mut back);
-            if front.len() < 3 || back.len() < 3 {
+            split_convex_polygon_by_distance(
+                piece,
+                |p| side.dot(p) - offset,
+                tolerance,
+                &mut front,
+                &mut back,
+            );
+            if front.is_empty() || back.is_empty() {
                 continue;
             }
             insert_points_on_edges(&mut front, &cut.contacts, tolerance);
@@ -202,38 +209,6 @@ fn crossed_by_contacts(piece: &[Vec3], normal: Vec3, contacts: &[Vec3], toleranc
         }
         (t1 - t0) * length > tolerance
     })
-}
-
-/// Splits a convex polygon by the signed `distances` of its vertices to a plane; vertices
-/// within the tolerance of the plane go to both sides.
-fn split_by_line(
-    polygon: &[Vec3],
-    distances: &[f32],
-    tolerance: f32,
-    front: &mut Vec<Vec3>,
-    back: &mut Vec<Vec3>,
-) {
-    let n = polygon.len();
-    for i in 0..n {
-        let j = (i + 1) % n;
-        let (p, dp, dq) = (polygon[i], distances[i], distances[j]);
-        if dp.abs() <= tolerance {
-            front.push(p);
-            back.push(p);
-            continue;
-        }
-        if dp > 0.0 {
-            front.push(p)
-        } else {
-            back.push(p)
-        }
-        let crosses = (dp > tolerance && dq < -tolerance) || (dp < -tolerance && dq > tolerance);
-        if crosses {
-            let x = p.lerp(polygon[j], dp / (dp - dq));
-            front.push(x);
-            back.push(x);
-        }
-    }
 }
 
 /// Inserts each point of `points` that lies strictly inside an edge of `polygon` (within the

@@ -2,9 +2,9 @@
 //! lies on, so that welding links the pieces on both sides of a cut and the faces beside a cut
 //! face.
 
+use super::budget::{ArrangementError, Budget};
 use super::cut::insert_points_on_edges;
-use super::{ArrangementError, Budget};
-use crate::Aabb;
+use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
 

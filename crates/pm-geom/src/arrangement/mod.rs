@@ -11,88 +11,35 @@
 //! last place of the largest one), so no sign is decided by rounding noise.
 
 mod barrier;
+mod budget;
 #[cfg(test)]
 mod contact_tests;
 mod copies;
+mod counts;
 mod cut;
+mod dedup;
 mod inside;
 mod junctions;
+mod meetings;
+mod options;
 mod pair;
 #[cfg(test)]
 mod tests;
 
 pub use barrier::BarrierSet;
+pub use budget::ArrangementError;
+pub use counts::IntersectionCounts;
+pub use options::ArrangementOptions;
 
-use crate::bounds_bvh::BoundsBvh;
-use crate::{Aabb, polygon_vector_area};
+use crate::aabb::Aabb;
+use crate::polygon::polygon_vector_area;
+use budget::Budget;
 use copies::{covered_by, exact_duplicates};
-use cut::{Cut, add_cut, cut_face};
+use cut::{Cut, cut_face};
 use glam::Vec3;
 use junctions::resolve_t_junctions;
-use pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
-
-/// Tolerances and bounds of [`split_polygons_at_intersections`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ArrangementOptions {
-    /// Distance (metres) under which points coincide and a point lies on a plane or a line; a
-    /// good choice is `1e-5` × the scene's diagonal, and a mesh welded from the output should
-    /// use the same weld tolerance.
-    pub tolerance: f32,
-    /// Distance (metres, at least `tolerance`) under which two faces that do not meet count as
-    /// touching: a wall that stops this close to a floor cuts the floor as if it stood on it.
-    pub gap: f32,
-    /// Most candidate face pairs (faces whose padded bounds overlap) examined.
-    pub max_pairs: usize,
-    /// Most output pieces, and most cut segments.
-    pub max_pieces: usize,
-    /// Most vertices over all output pieces.
-    pub max_vertices: usize,
-}
-
-impl ArrangementOptions {
-    /// Default [`Self::max_pairs`]: 16 million pairs, a few seconds of work.
-    pub const DEFAULT_MAX_PAIRS: usize = 16_000_000;
-    /// Default [`Self::max_pieces`]: 2 million pieces.
-    pub const DEFAULT_MAX_PIECES: usize = 2_000_000;
-    /// Default [`Self::max_vertices`]: 16 million vertices (192 MB of positions).
-    pub const DEFAULT_MAX_VERTICES: usize = 16_000_000;
-
-    /// `tolerance` and `gap` with the default bounds.
-    pub fn new(tolerance: f32, gap: f32) -> Self {
-        ArrangementOptions {
-            tolerance,
-            gap,
-            max_pairs: Self::DEFAULT_MAX_PAIRS,
-            max_pieces: Self::DEFAULT_MAX_PIECES,
-            max_vertices: Self::DEFAULT_MAX_VERTICES,
-        }
-    }
-}
-
-/// How many meetings of each kind [`split_polygons_at_intersections`] found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct IntersectionCounts {
-    /// Face pairs passing through each other.
-    pub piercing: usize,
-    /// Face pairs where an edge of one lies in the other, across its inside.
-    pub in_plane: usize,
-    /// Face pairs lying in one plane and overlapping.
-    pub coplanar_overlap: usize,
-    /// Face pairs closer than the gap tolerance without meeting.
-    pub near_contact: usize,
-    /// Pieces dropped because another face covers them in the same plane, facing the same way
-    /// (duplicated faces: only the first is kept).
-    pub duplicate_pieces: usize,
-    /// Pieces inside a closed solid, where no light reaches.
-    pub sealed_pieces: usize,
-}
-
-impl IntersectionCounts {
-    /// Meetings of every kind (not counting dropped or sealed pieces).
-    pub fn meetings(&self) -> usize {
-        self.piercing + self.in_plane + self.coplanar_overlap + self.near_contact
-    }
-}
+use meetings::{Meetings, find_meetings};
+use pair::Face;
 
 /// The result of [`split_polygons_at_intersections`].
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -106,35 +53,11 @@ pub struct Arrangement {
     pub sealed: Vec<bool>,
     /// Every segment along which faces meet and no photon map may join: piercing and in-plane
     /// contacts, near-contacts, and overlaps of faces facing opposite ways. Overlaps of faces
-    /// facing the same way are not barriers (the hidden copy is dropped instead).
+    /// facing the same way are not barriers (the hidden copy is dropped instead). Each segment
+    /// once, though it is an edge of the pieces on both faces.
     pub barriers: Vec<[Vec3; 2]>,
     /// What was found.
     pub counts: IntersectionCounts,
-}
-
-/// Why [`split_polygons_at_intersections`] stopped: a bound was reached before it allocated
-/// more.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum ArrangementError {
-    /// More candidate face pairs than [`ArrangementOptions::max_pairs`].
-    #[error("more than {limit} pairs of faces overlap: too many intersecting faces to resolve")]
-    TooManyPairs {
-        /// The bound.
-        limit: usize,
-    },
-    /// More pieces or cut segments than [`ArrangementOptions::max_pieces`].
-    #[error("cutting the faces where they meet makes more than {limit} pieces")]
-    TooManyPieces {
-        /// The bound.
-        limit: usize,
-    },
-    /// More vertices than [`ArrangementOptions::max_vertices`].
-    #[error("cutting the faces where they meet makes more than {limit} vertices")]
-    TooManyVertices {
-        /// The bound.
-        limit: usize,
-    },
 }
 
 /// Cuts the convex planar `polygons` wherever they meet each other.
@@ -153,8 +76,9 @@ pub enum ArrangementError {
 /// edge they lie on, so that welding the output links pieces on both sides of a cut.
 ///
 /// `solids` gives, for each polygon, the closed solid it bounds (its faces oriented outwards),
-/// or `None`; it may be empty. A piece of a cut face that lies inside another closed solid is
-/// marked [`Arrangement::sealed`].
+/// or `None`; it may be empty. A piece that lies inside another closed solid is marked
+/// [`Arrangement::sealed`]: a piece of a cut face, and also a face wholly inside a solid, which
+/// meets none of its faces and so is never cut (the end of a bar pushed into a cube).
 ///
 /// Degenerate polygons (fewer than 3 vertices, zero area, non-finite) pass through unchanged.
 /// The area of every input polygon is kept by its pieces, except duplicates dropped.
@@ -163,6 +87,66 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     solids: &[Option<u32>],
     options: &ArrangementOptions,
 ) -> Result<Arrangement, ArrangementError> {
+    let (tolerance, gap) = tolerances(polygons, options);
+    let duplicate = exact_duplicates(polygons);
+    let faces: Vec<Option<Face>> = polygons
+        .iter()
+        .zip(&duplicate)
+        .map(|(p, &dup)| if dup { None } else { face_of(p.as_ref(), gap) })
+        .collect();
+    let Meetings {
+        cuts,
+        barriers,
+        hidden_by,
+        mut counts,
+    } = find_meetings(&faces, tolerance, gap, options)?;
+    let mut pieces = cut_faces(
+        polygons,
+        &faces,
+        &duplicate,
+        &cuts,
+        tolerance,
+        options,
+        &mut counts,
+    )?;
+    let keep = drop_hidden_copies(
+        &pieces,
+        &faces,
+        &hidden_by,
+        polygons.len(),
+        tolerance,
+        gap,
+        &mut counts,
+    );
+    let mut sealed = vec![false; pieces.polygons.len()];
+    if solids.iter().any(Option::is_some) {
+        let Pieces {
+            polygons,
+            source,
+            was_cut,
+        } = &pieces;
+        inside::mark_sealed(polygons, source, was_cut, solids, &faces, tolerance, &mut sealed);
+    }
+
+    let mut out = Arrangement {
+        barriers,
+        ..Arrangement::default()
+    };
+    for (p, piece) in std::mem::take(&mut pieces.polygons).into_iter().enumerate() {
+        if keep[p] {
+            out.polygons.push(piece);
+            out.source.push(pieces.source[p]);
+            out.sealed.push(sealed[p]);
+        }
+    }
+    counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
+    out.counts = counts;
+    Ok(out)
+}
+
+/// The tolerance and gap actually used: the options' values, the tolerance raised to at least
+/// 8 units in the last place of the largest coordinate and the gap to at least the tolerance.
+fn tolerances<P: AsRef<[Vec3]>>(polygons: &[P], options: &ArrangementOptions) -> (f32, f32) {
     let largest = polygons
         .iter()
         .flat_map(|p| p.as_ref().iter())
@@ -172,80 +156,30 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
         .tolerance
         .max(largest * 8.0 * f32::EPSILON)
         .max(f32::MIN_POSITIVE);
-    let gap = options.gap.max(tolerance);
-    let duplicate = exact_duplicates(polygons);
-    let faces: Vec<Option<Face>> = polygons
-        .iter()
-        .zip(&duplicate)
-        .map(|(p, &dup)| if dup { None } else { face_of(p.as_ref(), gap) })
-        .collect();
+    (tolerance, options.gap.max(tolerance))
+}
 
-    // Candidate pairs and how each meets.
-    let mut cuts: Vec<Vec<Cut>> = vec![Vec::new(); polygons.len()];
-    let mut barriers: Vec<[Vec3; 2]> = Vec::new();
-    let mut hidden_by: Vec<(usize, usize)> = Vec::new();
-    let mut counts = IntersectionCounts::default();
-    let mut cut_count = 0usize;
-    let mut scratch = PairScratch::default();
-    let mut outcome = PairOutcome::default();
-    let mut pair_count = 0usize;
-    let mut failure = None;
-    for_each_candidate_pair(&faces, gap, |i, j| {
-        if failure.is_some() {
-            return;
-        }
-        pair_count += 1;
-        if pair_count > options.max_pairs {
-            failure = Some(ArrangementError::TooManyPairs {
-                limit: options.max_pairs,
-            });
-            return;
-        }
-        let (Some(a), Some(b)) = (&faces[i], &faces[j]) else {
-            return;
-        };
-        meet(a, b, tolerance, gap, &mut scratch, &mut outcome);
-        let Some(meeting) = outcome.meeting else {
-            return;
-        };
-        match meeting {
-            Meeting::Piercing => counts.piercing += 1,
-            Meeting::InPlane => counts.in_plane += 1,
-            Meeting::CoplanarOverlap => counts.coplanar_overlap += 1,
-            Meeting::NearContact => counts.near_contact += 1,
-        }
-        if let Some(first_hidden) = outcome.first_hidden {
-            cut_count += 1;
-            hidden_by.push(if first_hidden { (i, j) } else { (j, i) });
-        }
-        for (face, list) in [(i, &outcome.on_first), (j, &outcome.on_second)] {
-            let Some(target) = &faces[face] else { continue };
-            for &c in list {
-                let c = if c.barrier {
-                    close_barrier_ends(c, target, tolerance, gap)
-                } else {
-                    c
-                };
-                cut_count += 1;
-                if cut_count > options.max_pieces {
-                    failure = Some(ArrangementError::TooManyPieces {
-                        limit: options.max_pieces,
-                    });
-                    return;
-                }
-                add_cut(&mut cuts[face], c.a, c.b, tolerance);
-                if c.barrier {
-                    barriers.push([c.a, c.b]);
-                }
-            }
-        }
-    });
-    if let Some(error) = failure {
-        return Err(error);
-    }
+/// Every face cut into convex pieces along its cuts, in input order, with the index of the
+/// input polygon each piece lies in; then T-junctions resolved.
+struct Pieces {
+    polygons: Vec<Vec<Vec3>>,
+    source: Vec<usize>,
+    /// For each input polygon, whether it was cut into more than one piece.
+    was_cut: Vec<bool>,
+}
 
-    // Cut every face met by another into convex pieces.
-    let mut budget = Budget::new(options);
+/// Cuts every face met by another into convex pieces (exact duplicates are dropped and
+/// counted), within the options' bounds on pieces and vertices.
+fn cut_faces<P: AsRef<[Vec3]>>(
+    polygons: &[P],
+    faces: &[Option<Face>],
+    duplicate: &[bool],
+    cuts: &[Vec<Cut>],
+    tolerance: f32,
+    options: &ArrangementOptions,
+    counts: &mut IntersectionCounts,
+) -> Result<Pieces, ArrangementError> {
+    let mut budget = Budget::new(options.max_pieces, options.max_vertices);
     let mut pieces: Vec<Vec<Vec3>> = Vec::with_capacity(polygons.len());
     let mut source = Vec::with_capacity(polygons.len());
     let mut was_cut = vec![false; polygons.len()];
@@ -279,87 +213,46 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
     if was_cut.iter().any(|&c| c) {
         resolve_t_junctions(&mut pieces, &source, &was_cut, tolerance, &mut budget)?;
     }
-
-    // Drop the hidden copies of overlapping same-facing faces.
-    let mut keep = vec![true; pieces.len()];
-    if !hidden_by.is_empty() {
-        let mut first_piece = vec![usize::MAX; polygons.len()];
-        for (p, &s) in source.iter().enumerate().rev() {
-            first_piece[s] = p;
-        }
-        for &(hidden, cover) in &hidden_by {
-            let Some(cover_face) = &faces[cover] else { continue };
-            let start = first_piece[hidden];
-            if start == usize::MAX {
-                continue;
-            }
-            for p in (start..pieces.len()).take_while(|&p| source[p] == hidden) {
-                if keep[p] && covered_by(&pieces[p], cover_face, tolerance, gap) {
-                    keep[p] = false;
-                    counts.duplicate_pieces += 1;
-                }
-            }
-        }
-    }
-    let mut sealed = vec![false; pieces.len()];
-    if !solids.is_empty() && was_cut.iter().any(|&c| c) {
-        inside::mark_sealed(&pieces, &source, &was_cut, solids, &faces, tolerance, &mut sealed);
-    }
-
-    let mut out = Arrangement {
-        barriers,
-        ..Arrangement::default()
-    };
-    for (p, piece) in pieces.into_iter().enumerate() {
-        if keep[p] {
-            out.polygons.push(piece);
-            out.source.push(source[p]);
-            out.sealed.push(sealed[p]);
-        }
-    }
-    counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
-    out.counts = counts;
-    Ok(out)
+    Ok(Pieces {
+        polygons: pieces,
+        source,
+        was_cut,
+    })
 }
 
-/// Counts pieces and vertices against the bounds before they are kept.
-pub(super) struct Budget {
-    pub(super) pieces: usize,
-    pub(super) vertices: usize,
-    max_pieces: usize,
-    max_vertices: usize,
-}
-
-impl Budget {
-    fn new(options: &ArrangementOptions) -> Self {
-        Budget {
-            pieces: 0,
-            vertices: 0,
-            max_pieces: options.max_pieces,
-            max_vertices: options.max_vertices,
+/// Which pieces to keep: not the hidden copies of overlapping same-facing faces (each pair in
+/// `hidden_by` is a hidden face and the face that covers it), which are counted as duplicates.
+fn drop_hidden_copies(
+    pieces: &Pieces,
+    faces: &[Option<Face>],
+    hidden_by: &[(usize, usize)],
+    polygon_count: usize,
+    tolerance: f32,
+    gap: f32,
+    counts: &mut IntersectionCounts,
+) -> Vec<bool> {
+    let mut keep = vec![true; pieces.polygons.len()];
+    if hidden_by.is_empty() {
+        return keep;
+    }
+    let mut first_piece = vec![usize::MAX; polygon_count];
+    for (p, &s) in pieces.source.iter().enumerate().rev() {
+        first_piece[s] = p;
+    }
+    for &(hidden, cover) in hidden_by {
+        let Some(cover_face) = &faces[cover] else { continue };
+        let start = first_piece[hidden];
+        if start == usize::MAX {
+            continue;
+        }
+        for p in (start..pieces.polygons.len()).take_while(|&p| pieces.source[p] == hidden) {
+            if keep[p] && covered_by(&pieces.polygons[p], cover_face, tolerance, gap) {
+                keep[p] = false;
+                counts.duplicate_pieces += 1;
+            }
         }
     }
-
-    pub(super) fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
-        if pieces > self.max_pieces {
-            return Err(ArrangementError::TooManyPieces {
-                limit: self.max_pieces,
-            });
-        }
-        if vertices > self.max_vertices {
-            return Err(ArrangementError::TooManyVertices {
-                limit: self.max_vertices,
-            });
-        }
-        Ok(())
-    }
-
-    fn add(&mut self, piece: &[Vec3]) -> Result<(), ArrangementError> {
-        self.check(self.pieces + 1, self.vertices + piece.len())?;
-        self.pieces += 1;
-        self.vertices += piece.len();
-        Ok(())
-    }
+    keep
 }
 
 /// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.
@@ -376,34 +269,4 @@ fn face_of(polygon: &[Vec3], pad: f32) -> Option<Face<'_>> {
         offset: normal.dot(polygon[0]),
         bounds: Aabb::new(bounds.min - pad, bounds.max + pad),
     })
-}
-
-/// Calls `f(i, j)`, `i < j`, for every pair of faces whose bounds come within `gap` of each
-/// other (one face's own bounds against the other's, padded by the gap), through a
-/// bounding-volume hierarchy over the padded bounds; the order is fixed by the faces and the
-/// tree, whatever the machine.
-fn for_each_candidate_pair(faces: &[Option<Face>], gap: f32, mut f: impl FnMut(usize, usize)) {
-    let live: Vec<(usize, Aabb)> = faces
-        .iter()
-        .enumerate()
-        .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
-        .collect();
-    let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
-    // Every face queries the tree once: leaves of 12 halve the levels each query walks
-    // (82 against 97 ms on split-rooms-100's 120,000 quads with leaves of 4).
-    let bvh = BoundsBvh::build_with_leaves(&boxes, 12);
-    let mut partners: Vec<u32> = Vec::new();
-    let pad = Vec3::splat(gap);
-    for (n, &(i, padded)) in live.iter().enumerate() {
-        let own = Aabb::new(padded.min + pad, padded.max - pad);
-        partners.clear();
-        bvh.for_each_candidate(&own, |m| {
-            if m as usize > n && own.overlaps(&boxes[m as usize]) {
-                partners.push(m);
-            }
-        });
-        for &m in &partners {
-            f(i, live[m as usize].0);
-        }
-    }
 }

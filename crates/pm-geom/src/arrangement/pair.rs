@@ -2,7 +2,8 @@
 //! distances of each face's vertices to the other's plane (piercing, an edge lying in the other
 //! face, an overlap in one plane, or a near-contact closer than the gap tolerance).
 
-use crate::Aabb;
+use crate::aabb::Aabb;
+use crate::clip::clip_convex_polygon_by_distance;
 use glam::Vec3;
 
 /// Faces whose normals are closer than this (in `1 − |cos|`, about 0.8°) count as parallel.
@@ -64,9 +65,9 @@ pub(super) struct PairOutcome {
     pub(super) on_first: Vec<Constraint>,
     pub(super) on_second: Vec<Constraint>,
     pub(super) meeting: Option<Meeting>,
-    /// Same-facing overlap in one plane: `Some(true)` when the first face's overlapped part is
-    /// hidden by the second, `Some(false)` the other way round.
-    pub(super) first_hidden: Option<bool>,
+    /// Same-facing overlap in one plane: the second face's overlapped part is hidden by the
+    /// first (the first of two copies is the one kept).
+    pub(super) second_hidden: bool,
 }
 
 /// Reusable buffers for [`meet`].
@@ -93,7 +94,7 @@ pub(super) fn meet(
     out.on_first.clear();
     out.on_second.clear();
     out.meeting = None;
-    out.first_hidden = None;
+    out.second_hidden = false;
     // Neighbours in one plane, facing the same way (a tessellated floor): most pairs of a
     // scene, settled without the distances.
     let cos = a.normal.dot(b.normal);
@@ -220,14 +221,20 @@ fn meet_in_plane(
         let Some(inward) = b.normal.cross(q - p).try_normalize() else {
             continue;
         };
-        clip_by_half_plane(&scratch.clip, inward, inward.dot(p), &mut scratch.clip_next);
+        let offset = inward.dot(p);
+        clip_convex_polygon_by_distance(
+            &scratch.clip,
+            |v| inward.dot(v) - offset,
+            0.0,
+            &mut scratch.clip_next,
+        );
         std::mem::swap(&mut scratch.clip, &mut scratch.clip_next);
         if scratch.clip.len() < 3 {
             return;
         }
     }
     let overlap = &scratch.clip;
-    let area = crate::polygon_area(overlap);
+    let area = crate::polygon::polygon_area(overlap);
     let size = Aabb::from_points(overlap).diagonal();
     if area <= tolerance * size {
         return; // touching along an edge or at a point
@@ -259,7 +266,7 @@ fn meet_in_plane(
     });
     if !barrier {
         // Copies in one plane facing the same way: the later one's overlapped part is hidden.
-        out.first_hidden = Some(false);
+        out.second_hidden = true;
     }
 }
 
@@ -359,22 +366,6 @@ fn clip_range(fp: f32, fq: f32, t0: &mut f32, t1: &mut f32) {
         *t0 = t0.max(fp / (fp - fq));
     } else if fq < 0.0 {
         *t1 = t1.min(fp / (fp - fq));
-    }
-}
-
-/// Sutherland–Hodgman against one half-plane `normal · p ≥ offset`, into `out`.
-fn clip_by_half_plane(polygon: &[Vec3], normal: Vec3, offset: f32, out: &mut Vec<Vec3>) {
-    out.clear();
-    let n = polygon.len();
-    for i in 0..n {
-        let (p, q) = (polygon[i], polygon[(i + 1) % n]);
-        let (dp, dq) = (normal.dot(p) - offset, normal.dot(q) - offset);
-        if dp >= 0.0 {
-            out.push(p);
-        }
-        if (dp >= 0.0) != (dq >= 0.0) {
-            out.push(p.lerp(q, dp / (dp - dq)));
-        }
     }
 }
 

@@ -55,9 +55,108 @@ fn wall_through_a_floor_cuts_both_and_keeps_their_areas() {
     assert_eq!(split.source, vec![0, 0, 1, 1]);
     assert!((area_of_source(&split, 0) - 4.0).abs() < 1e-5);
     assert!((area_of_source(&split, 1) - 2.0).abs() < 1e-5);
-    assert_eq!(split.barriers.len(), 2, "the same segment on each face");
+    assert_eq!(
+        split.barriers.len(),
+        1,
+        "the segment once, though both faces are cut along it"
+    );
     let barriers = BarrierSet::new(split.barriers.clone(), TOL);
     assert!(barriers.covers_edge(vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 2.0)));
+}
+
+/// A bar `[0.5, 1.5]² × [−1, 1]` pushed into the cube `[0, 2]³` through its face z = 0.
+fn bar_in_a_cube() -> Arrangement {
+    let mut input = box_faces(Vec3::ZERO, Vec3::splat(2.0));
+    input.extend(box_faces(vec3(0.5, 0.5, -1.0), vec3(1.5, 1.5, 1.0)));
+    let solids: Vec<Option<u32>> = (0..12).map(|i| Some(i / 6)).collect();
+    split_polygons_at_intersections(&input, &solids, &options(TOL)).unwrap()
+}
+
+#[test]
+fn piercing_boxes_report_each_meeting_line_once() {
+    let split = bar_in_a_cube();
+    assert_eq!(split.counts.piercing, 4, "{:?}", split.counts);
+    // The four sides of the square where the bar enters the cube, each once.
+    let square = [
+        [vec3(0.5, 0.5, 0.0), vec3(1.5, 0.5, 0.0)],
+        [vec3(1.5, 0.5, 0.0), vec3(1.5, 1.5, 0.0)],
+        [vec3(1.5, 1.5, 0.0), vec3(0.5, 1.5, 0.0)],
+        [vec3(0.5, 1.5, 0.0), vec3(0.5, 0.5, 0.0)],
+    ];
+    assert_eq!(split.barriers.len(), 4, "{:?}", split.barriers);
+    for [a, b] in square {
+        let found = split.barriers.iter().filter(|s| {
+            let near = |p: Vec3, q: Vec3| p.distance(q) < 1e-5;
+            (near(s[0], a) && near(s[1], b)) || (near(s[0], b) && near(s[1], a))
+        });
+        assert_eq!(found.count(), 1, "{a} – {b} in {:?}", split.barriers);
+    }
+}
+
+#[test]
+fn face_wholly_inside_a_solid_is_sealed() {
+    let split = bar_in_a_cube();
+    let sealed_area = |source: std::ops::Range<usize>, sealed: bool| -> f32 {
+        split
+            .polygons
+            .iter()
+            .zip(&split.source)
+            .zip(&split.sealed)
+            .filter(|((_, s), k)| source.contains(*s) && **k == sealed)
+            .map(|((p, _), _)| polygon_area(p))
+            .sum()
+    };
+    // Inside the cube: the bar's four sides from z = 0 to 1 (4 × 1 m²) and its end face at
+    // z = 1 (1 m², never cut: it meets no face of the cube).
+    assert!(
+        (sealed_area(6..12, true) - 5.0).abs() < 1e-4,
+        "{}",
+        sealed_area(6..12, true)
+    );
+    assert!((sealed_area(6..12, false) - 5.0).abs() < 1e-4);
+    // The cube's face z = 0 inside the bar's square (1 m²) is inside the bar.
+    assert!(
+        (sealed_area(0..6, true) - 1.0).abs() < 1e-4,
+        "{}",
+        sealed_area(0..6, true)
+    );
+    assert!((sealed_area(0..6, false) - 23.0).abs() < 1e-4);
+    let end = split
+        .polygons
+        .iter()
+        .zip(&split.source)
+        .position(|(p, _)| p.iter().all(|v| (v.z - 1.0).abs() < 1e-6) && (polygon_area(p) - 1.0).abs() < 1e-5)
+        .expect("the bar's end face");
+    assert!(split.sealed[end]);
+    assert_eq!(
+        split.counts.sealed_pieces,
+        split.sealed.iter().filter(|&&s| s).count()
+    );
+}
+
+#[test]
+fn face_inside_a_room_is_not_sealed() {
+    // A room is a closed box wound inwards: what is in it is lit, not sealed.
+    let room: Vec<Vec<Vec3>> = box_faces(Vec3::ZERO, Vec3::splat(4.0))
+        .into_iter()
+        .map(|mut q| {
+            q.reverse();
+            q
+        })
+        .collect();
+    let mut input = room;
+    input.extend(box_faces(vec3(1.0, 0.0, 1.0), vec3(2.0, 1.0, 2.0)));
+    input.push(vec![
+        vec3(3.0, 2.0, 3.0),
+        vec3(3.5, 2.0, 3.0),
+        vec3(3.5, 2.0, 3.5),
+    ]);
+    let mut solids: Vec<Option<u32>> = vec![Some(0); 6];
+    solids.extend([Some(1); 6]);
+    solids.push(None);
+    let split = split_polygons_at_intersections(&input, &solids, &options(TOL)).unwrap();
+    let last = split.source.iter().position(|&s| s == 12).unwrap();
+    assert!(!split.sealed[last]);
 }
 
 #[test]

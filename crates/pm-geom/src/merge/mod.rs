@@ -11,7 +11,8 @@
 mod greedy;
 mod outline;
 
-use crate::{Aabb, polygon_vector_area};
+use crate::aabb::Aabb;
+use crate::polygon::polygon_vector_area;
 use glam::{DVec3, Vec3};
 use greedy::SharedEdge;
 use outline::{VertexKey, accepts, simplify_outline};

@@ -3,7 +3,8 @@
 
 use super::weld::weld;
 use super::{HalfEdgeMesh, MeshOptions, NO_TWIN, NON_MANIFOLD};
-use crate::{MeshError, polygon_vector_area};
+use crate::error::MeshError;
+use crate::polygon::polygon_vector_area;
 use glam::Vec3;
 use std::cmp::Ordering::Greater;
 use std::collections::HashMap;

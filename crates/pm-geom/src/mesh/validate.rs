@@ -3,7 +3,7 @@
 
 use super::build::face_normal_and_area;
 use super::{FaceId, HalfEdgeId, HalfEdgeMesh};
-use crate::MeshError;
+use crate::error::MeshError;
 use glam::Vec3;
 use std::collections::HashMap;
 

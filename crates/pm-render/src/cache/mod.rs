@@ -2,14 +2,18 @@
 //! each map, then read by a final gather's rays as one nearest-point lookup in the hit's own map.
 
 use crate::error::RenderError;
-use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
+use crate::estimator::Estimator;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_kdtree::{KindMask, Photon, PhotonKind, PhotonTree};
 use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};
 use rayon::prelude::*;
 use std::f32::consts::FRAC_1_PI;
 
-mod points;
+pub(crate) mod points;
 
 pub use points::{IrradiancePoint, IrradiancePoints, NORMAL_AGREEMENT};
 
@@ -70,7 +74,7 @@ pub struct CachePoint<'a> {
 /// ```
 /// use pm_render::glam::Vec3;
 /// use pm_render::{Disc, EstimatorOptions, EstimatorScratch, RadianceCache};
-/// use pm_trace::{Camera, CreaseAngle, MapAssignment, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Scene, Surface, TraceOptions, trace_photons};
+/// use pm_trace::{Camera, CreaseAngle, Partitioner, PhotonMaps, PointLight, Ray, RayKind, Scene, Surface, TraceOptions, trace_photons};
 /// use std::f32::consts::PI;
 ///
 /// // A point light of intensity π inside a closed diffuse sphere of albedo 0.5: radiance 1
@@ -80,14 +84,15 @@ pub struct CachePoint<'a> {
 ///     .light(PointLight::new(Vec3::ZERO, Vec3::splat(4.0 * PI * PI)))
 ///     .camera(Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z, Vec3::Y, 1.2))
 ///     .build()?;
-/// let assignment = CreaseAngle::default().try_partition(&scene)?;
-/// let traced = trace_photons(&scene, &assignment, &TraceOptions { photons: 20_000, ..TraceOptions::default() })?;
-/// let maps = PhotonMaps::build(&scene, &assignment, traced)?;
+/// let partitioned = CreaseAngle::default().partition(scene)?;
+/// let (scene, assignment) = (partitioned.scene(), partitioned.assignment());
+/// let traced = trace_photons(scene, assignment, &TraceOptions { photons: 20_000, ..TraceOptions::default() })?;
+/// let maps = PhotonMaps::build(scene, assignment, traced)?;
 /// let options = EstimatorOptions::for_scene(&scene.bounds());
-/// let cache = RadianceCache::build(&scene, &maps, &Disc, &options, 4)?;
+/// let cache = RadianceCache::build(scene, &maps, &Disc, &options, 4)?;
 /// let mut scratch = EstimatorScratch::new();
 /// let hit = scene.intersect(&Ray { origin: Vec3::ZERO, direction: Vec3::X }, f32::INFINITY, RayKind::Other).unwrap();
-/// let l = cache.radiance(&scene, &hit, &mut scratch);
+/// let l = cache.radiance(scene, &hit, &mut scratch);
 /// assert!((l.x - 1.0).abs() < 0.1, "{l}"); // one lookup: within the estimate's noise
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```

@@ -9,14 +9,13 @@
 //!                  seen on the way)            distance)          volumes, a final gather, a path tracer
 //! ```
 
-mod delta;
-mod tiles;
+pub(crate) mod delta;
+pub(crate) mod tiles;
 
 pub use delta::specular_bounce;
-pub(crate) use tiles::PIXEL_SEED_SALT;
 pub use tiles::{Frame, SampleStreams, Tile, render_tiles};
 
-use crate::estimator::EstimatorScratch;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
 

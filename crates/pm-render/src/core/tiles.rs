@@ -3,7 +3,7 @@
 //! renders copy each tile into an image; progressive passes add it to their sums.
 
 use super::{RadianceSource, camera_radiance};
-use crate::estimator::EstimatorScratch;
+use crate::estimator::scratch::EstimatorScratch;
 use crate::progress::Progress;
 use glam::Vec3;
 use pm_trace::Rng;

@@ -1,9 +1,12 @@
 //! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere.
 
 use super::gather::counted_neighbours;
-use super::{
-    Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint, find_nearest, gather_found,
-};
+use super::{Estimator, find_nearest};
+use crate::estimator::gather::gather_found;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_kdtree::Euclidean;
 use std::f32::consts::PI;

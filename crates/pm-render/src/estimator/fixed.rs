@@ -5,10 +5,16 @@
 
 use super::gather::collect_within;
 use super::geometry::{collect_faces, spread_power};
-use super::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView,
-    SurfacePoint, VolumeMetric, find_nearest,
-};
+use super::{Estimator, find_nearest};
+use crate::estimator::disc::Disc;
+use crate::estimator::geometry::GeometryBall;
+use crate::estimator::geometry::GeometryCube;
+use crate::estimator::geometry::VolumeMetric;
+use crate::estimator::kind::EstimatorKind;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_kdtree::{Chebyshev, Euclidean, Metric};
 use std::f32::consts::PI;

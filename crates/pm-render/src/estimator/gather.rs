@@ -1,52 +1,12 @@
-//! Gathered photons: the neighbours of a k-nearest query decoded for an estimate (power in
-//! watts, direction, kind, squared distance), with the photon filters every estimator shares.
+//! Gathering photons: the neighbours of a k-nearest query, or every photon in a fixed volume,
+//! decoded for an estimate, with the photon filters every estimator shares.
 
-use super::{EstimatorOptions, EstimatorScratch, SurfacePoint};
+use super::options::EstimatorOptions;
+use super::photon::GatheredPhoton;
+use super::point::SurfacePoint;
+use super::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_kdtree::{CompactPhoton, PhotonKind, PhotonTree, PowerScale};
-
-/// A photon decoded for an estimate: its power in watts, its travel direction, its kind and
-/// its squared distance from the query point.
-///
-/// Everything a kernel needs: a distance-weighted estimator (cone, Epanechnikov, Silverman)
-/// sums `kernel(distance_squared) · power` over the photons [`gather_found`] decodes, with no
-/// scale or sign convention of its own.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GatheredPhoton {
-    /// Power per RGB channel in watts: the map's [`PowerScale`] is applied.
-    pub power: Vec3,
-    /// Direction of travel, of any positive length: the estimators use it only in signs of
-    /// dot products and in ratios of them, which do not depend on its length. Photons
-    /// decoded from a map have unit L1 norm ([`CompactPhoton::direction_l1`]).
-    pub direction: Vec3,
-    /// Direct, indirect or caustic.
-    pub kind: PhotonKind,
-    /// Squared Euclidean distance from the query point (m²), whatever the query's metric.
-    pub distance_squared: f32,
-}
-
-impl GatheredPhoton {
-    /// Decodes `photon` of a tree whose power scale is `scale`, seen from `at`.
-    #[inline]
-    pub fn decode(photon: &CompactPhoton, scale: PowerScale, at: Vec3) -> Self {
-        GatheredPhoton {
-            power: photon.power(scale),
-            direction: photon.direction_l1(),
-            kind: photon.kind(),
-            distance_squared: photon.position().distance_squared(at),
-        }
-    }
-}
-
-impl SurfacePoint {
-    /// True when a photon travelling along `direction` arrives from behind the viewed side
-    /// (`direction · normal ≥ 0`): it lit the other side of the surface. `direction` may have
-    /// any positive length.
-    #[inline]
-    pub fn arrives_from_behind(&self, direction: Vec3) -> bool {
-        direction.dot(self.normal) >= 0.0
-    }
-}
+use pm_kdtree::{PhotonKind, PhotonTree};
 
 impl EstimatorOptions {
     /// The filter every estimator applies to a photon of `kind` travelling along `direction`

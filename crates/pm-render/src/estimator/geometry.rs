@@ -1,10 +1,13 @@
 //! Geometry-based area estimation (Hey & Purgathofer): spread each gathered photon's power over
 //! the area of the same map's surfaces inside the gather volume that faces it.
 
-use super::{
-    Estimator, EstimatorOptions, EstimatorScratch, GatheredPhoton, MapView, SurfacePoint, find_nearest,
-    gather_found,
-};
+use super::{Estimator, find_nearest};
+use crate::estimator::gather::gather_found;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::photon::GatheredPhoton;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_geom::{Aabb, Ball, ClipScratch, GatherVolume, PolygonSet};
 use pm_kdtree::{Chebyshev, Euclidean, Metric};

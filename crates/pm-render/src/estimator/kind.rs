@@ -1,8 +1,13 @@
 //! Choosing an estimator at run time (command lines, comparisons) without `dyn` in the hot loop.
 
-use super::{
-    Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, SurfacePoint,
-};
+use super::Estimator;
+use crate::estimator::disc::Disc;
+use crate::estimator::geometry::GeometryBall;
+use crate::estimator::geometry::GeometryCube;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use std::fmt;
 

@@ -69,149 +69,27 @@
 //! outside the crate against the closed form on a traced, uniformly lit plane, and
 //! `tests/outside_estimator.rs` builds Jensen's cone filter the same way.
 
-mod disc;
-mod fixed;
-mod gather;
-mod geometry;
-mod kind;
-mod options;
+pub(crate) mod disc;
+pub(crate) mod fixed;
+pub(crate) mod gather;
+pub(crate) mod geometry;
+pub(crate) mod kind;
+pub(crate) mod options;
+pub(crate) mod photon;
+pub(crate) mod point;
+pub(crate) mod scratch;
 
 pub use disc::Disc;
 pub use fixed::FixedVolumeEstimator;
-pub use gather::{GatheredPhoton, gather_found, gather_within};
+pub use gather::{gather_found, gather_within};
 pub use geometry::{GeometryBall, GeometryCube, VolumeMetric, irradiance_in_volume};
 pub use kind::EstimatorKind;
 pub use options::EstimatorOptions;
+pub use photon::GatheredPhoton;
+pub use point::{MapView, SurfacePoint};
+pub use scratch::EstimatorScratch;
 
 use glam::Vec3;
-use pm_geom::{ClipScratch, PolygonSet};
-use pm_kdtree::{Neighbour, Neighbours, PhotonTree};
-use std::any::Any;
-
-/// A point on a surface seen by the camera: where to estimate, and the side it is seen from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfacePoint {
-    /// Position (metres).
-    pub position: Vec3,
-    /// Unit geometric normal on the viewed side.
-    pub normal: Vec3,
-    /// True when the viewed side is the side the surface's own (polygon) normal points to.
-    /// When false — a closed surface seen from inside its outward normals, such as a sphere —
-    /// the geometry estimators flip the map's polygon normals so that they face its photons.
-    pub front_face: bool,
-}
-
-impl SurfacePoint {
-    /// A point seen from the side its polygons' normals point to.
-    pub const fn front(position: Vec3, normal: Vec3) -> Self {
-        SurfacePoint {
-            position,
-            normal,
-            front_face: true,
-        }
-    }
-}
-
-/// One photon map as the estimators see it: its photons and the area geometry of its surfaces.
-#[derive(Clone, Copy, Debug)]
-pub struct MapView<'a> {
-    /// The map's photons.
-    pub tree: &'a PhotonTree,
-    /// The map's polygons (with their overlap index built), used by the geometry estimators.
-    pub polygons: &'a PolygonSet,
-}
-
-/// Per-thread buffers of the estimators; reuse one per worker so queries allocate nothing once
-/// warm.
-///
-/// Estimators written outside this crate use the same building blocks as the built-in ones:
-/// [`find_nearest`] fills [`EstimatorScratch::neighbours`], [`gather_found`] decodes them into
-/// [`EstimatorScratch::photons`], and [`EstimatorScratch::slot`] keeps buffers of the
-/// estimator's own type alive from one query to the next.
-#[derive(Default)]
-pub struct EstimatorScratch {
-    pub(crate) neighbours: Neighbours,
-    pub(crate) clip: ClipScratch,
-    pub(crate) photons: Vec<GatheredPhoton>,
-    /// Candidate faces that overlap the volume: (area inside, unit normal).
-    pub(crate) faces: Vec<(f32, Vec3)>,
-    pub(crate) candidates: Vec<u32>,
-    /// Gather rays cast by the final gather on this worker since the renderer last read it.
-    pub(crate) gather_rays: u64,
-    /// An outside estimator's own buffers (see [`EstimatorScratch::slot`]).
-    slot: Option<Box<dyn Any + Send>>,
-}
-
-impl Clone for EstimatorScratch {
-    /// A copy of the built-in buffers; the estimator's own slot starts empty again (it is
-    /// scratch, and its type need not be `Clone`).
-    fn clone(&self) -> Self {
-        EstimatorScratch {
-            neighbours: self.neighbours.clone(),
-            clip: self.clip.clone(),
-            photons: self.photons.clone(),
-            faces: self.faces.clone(),
-            candidates: self.candidates.clone(),
-            gather_rays: 0,
-            slot: None,
-        }
-    }
-}
-
-impl std::fmt::Debug for EstimatorScratch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("EstimatorScratch")
-            .field("neighbours", &self.neighbours.len())
-            .field("photons", &self.photons.len())
-            .field("faces", &self.faces.len())
-            .field("slot", &self.slot.is_some())
-            .finish()
-    }
-}
-
-impl EstimatorScratch {
-    /// Empty scratch; grows on first use.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// The neighbours found by the last [`find_nearest`], in no particular order (their
-    /// indices are into the map's [`PhotonTree`], their distances under the query's metric).
-    pub fn neighbours(&self) -> &[Neighbour] {
-        self.neighbours.as_slice()
-    }
-
-    /// The photons decoded by the last [`gather_found`].
-    pub fn photons(&self) -> &[GatheredPhoton] {
-        &self.photons
-    }
-
-    /// The estimator's own scratch of type `T`, made with `T::default()` on first use and
-    /// kept (with its capacity) for later queries on the same worker. Asking for another type
-    /// replaces it, so an estimator should keep all its buffers in one type.
-    pub fn slot<T: Any + Send + Default>(&mut self) -> &mut T {
-        if !self.slot.as_ref().is_some_and(|s| s.is::<T>()) {
-            self.slot = Some(Box::new(T::default()));
-        }
-        // Just made sure the slot holds a `T`.
-        self.slot
-            .as_mut()
-            .and_then(|s| s.downcast_mut::<T>())
-            .expect("slot holds a T")
-    }
-
-    /// The neighbours, the decoded photons and the estimator's own slot at once, for
-    /// estimators that read the first two while writing the third.
-    pub fn split<T: Any + Send + Default>(&mut self) -> (&[Neighbour], &[GatheredPhoton], &mut T) {
-        self.slot::<T>();
-        let slot = self
-            .slot
-            .as_mut()
-            .and_then(|s| s.downcast_mut::<T>())
-            .expect("slot holds a T");
-        (self.neighbours.as_slice(), &self.photons, slot)
-    }
-}
 
 /// Estimates irradiance (W/m²) at a surface point from one photon map.
 ///

@@ -24,7 +24,7 @@ impl Image {
             let p = self.pixels[y * w + x];
             (p.x, p.y, p.z)
         });
-        super::write_atomically(path, |writer| {
+        crate::image::atomic::write_atomically(path, |writer| {
             exr::prelude::Image::from_encoded_channels(
                 (w, self.height as usize),
                 Encoding::SMALL_LOSSLESS,

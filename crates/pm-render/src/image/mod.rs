@@ -1,12 +1,12 @@
 //! Linear RGB images (the film), with metrics, a 2×2 grid, EXR and PNG files.
 
-mod atomic;
+pub(crate) mod atomic;
 #[cfg(feature = "exr")]
-mod exr_file;
-mod metrics;
+pub(crate) mod exr_file;
+pub(crate) mod metrics;
 #[cfg(feature = "png")]
-mod png_file;
-mod srgb;
+pub(crate) mod png_file;
+pub(crate) mod srgb;
 
 pub use atomic::{check_output_path, output_target, write_atomically};
 pub use srgb::linear_to_srgb8;

@@ -18,7 +18,7 @@ impl Image {
         }
         let rgb8 = srgb8_of_image(self, exposure);
         let png_error = |e: png::EncodingError| std::io::Error::other(e.to_string());
-        super::write_atomically(path, |file| {
+        crate::image::atomic::write_atomically(path, |file| {
             let mut encoder = png::Encoder::new(file, self.width, self.height);
             encoder.set_color(png::ColorType::Rgb);
             encoder.set_depth(png::BitDepth::Eight);

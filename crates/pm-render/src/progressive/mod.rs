@@ -39,16 +39,16 @@
 //! The passes are independent given their index, so a run can be split into shards of passes
 //! rendered anywhere and merged ([`Shard::merge`]).
 
-mod accumulation;
-mod pass_maps;
-mod pass_source;
-mod pass_sum;
-mod pilot;
-mod schedule;
-mod shard;
+pub(crate) mod accumulation;
+pub(crate) mod pass_maps;
+pub(crate) mod pass_source;
+pub(crate) mod pass_sum;
+pub(crate) mod pilot;
+pub(crate) mod schedule;
+pub(crate) mod shard;
 #[cfg(feature = "exr")]
-mod shard_exr;
-mod sppm;
+pub(crate) mod shard_exr;
+pub(crate) mod sppm;
 
 pub use accumulation::{Accumulation, ProgressiveRendered, ProgressiveStats};
 pub use pass_sum::PassSums;
@@ -57,20 +57,25 @@ pub use shard::{Shard, ShardError, ShardHeader, plan_merge};
 pub use sppm::{SppmRendered, SppmRenderer, SppmSettings, SppmSnapshot};
 
 use crate::cache::RadianceCache;
-use crate::core::{SampleStreams, Tile, render_tiles};
+use crate::core::tiles::SampleStreams;
+use crate::core::tiles::Tile;
+use crate::core::tiles::render_tiles;
 use crate::error::RenderError;
-use crate::estimator::{EstimatorOptions, FixedVolumeEstimator, MapView};
+use crate::estimator::fixed::FixedVolumeEstimator;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
 use crate::mode::Mode;
 use crate::progress::Progress;
 use crate::renderer::in_pool;
 use crate::settings::RenderSettings;
-use crate::source::{DirectLight, FinalGatherSource};
+use crate::source::final_gather::FinalGatherSource;
+use crate::source::photon_map::DirectLight;
 use glam::Vec3;
 use pass_maps::trace_pass;
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
 use pm_kdtree::PhotonTree;
-use pm_trace::{MapAssignment, Partitioner, PhotonMaps, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene, TraceOptions, trace_photons};
 use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
 
@@ -188,10 +193,11 @@ impl ProgressiveSettings {
 /// ```no_run
 /// # use pm_render::{EstimatorKind, RenderSettings};
 /// # use pm_render::progressive::{ProgressiveRenderer, ProgressiveSettings};
-/// # fn f(scene: &pm_trace::Scene) -> Result<(), pm_render::RenderError> {
+/// # use pm_trace::Partitioner;
+/// # fn f(scene: pm_trace::Scene) -> Result<(), pm_render::RenderError> {
 /// let settings = ProgressiveSettings::new(RenderSettings { photons: 50_000, ..Default::default() }, 32);
-/// let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings)
-///     .render(scene, &pm_trace::CreaseAngle::default(), &())?;
+/// let partitioned = pm_trace::CreaseAngle::default().partition(scene)?;
+/// let out = ProgressiveRenderer::new(EstimatorKind::GeometryCube, settings).render(&partitioned, &())?;
 /// let image = out.accumulation.mean();
 /// # Ok(()) }
 /// ```
@@ -214,36 +220,29 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
 
     /// Traces the pilot, then renders the passes (`settings.passes` of them from
     /// `settings.first_pass`, or until the time budget is spent) into a sum.
-    pub fn render<P: Partitioner + ?Sized>(
+    pub fn render(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
     ) -> Result<ProgressiveRendered, RenderError> {
-        self.render_observed(
-            scene,
-            partitioner,
-            progress,
-            &mut |_, _| ControlFlow::Continue(()),
-        )
+        self.render_observed(partitioned, progress, &mut |_, _| ControlFlow::Continue(()))
     }
 
     /// As [`ProgressiveRenderer::render`], calling `observe` with the sum and the figures so
     /// far after every pass; the run also stops after a pass for which it returns
     /// [`ControlFlow::Break`]. (A convergence study reads the image at chosen times this way
     /// without rendering again.) The observer's own time counts in the wall time.
-    pub fn render_observed<P: Partitioner + ?Sized>(
+    pub fn render_observed(
         &self,
-        scene: &Scene,
-        partitioner: &P,
+        partitioned: &Partitioned,
         progress: &dyn Progress,
         observe: &mut (dyn FnMut(&Accumulation, &ProgressiveStats) -> ControlFlow<()> + Send),
     ) -> Result<ProgressiveRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
-        let assignment = partitioner.try_partition(scene)?;
+        let (scene, assignment) = (partitioned.scene(), partitioned.assignment());
         in_pool(self.settings.render.threads, || {
-            self.render_in_pool(scene, &assignment, progress, start, observe)
+            self.render_in_pool(scene, assignment, progress, start, observe)
         })?
     }
 

@@ -6,8 +6,15 @@
 use super::pilot::Pilot;
 use crate::cache::RadianceCache;
 use crate::core::{PathVertex, RadianceSource};
-use crate::estimator::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
-use crate::source::{DirectLight, FinalGatherOptions, GatherReads, direct_irradiance};
+use crate::estimator::fixed::FixedVolumeEstimator;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
+use crate::source::direct::direct_irradiance;
+use crate::source::final_gather::FinalGatherOptions;
+use crate::source::final_gather::GatherReads;
+use crate::source::photon_map::DirectLight;
 use glam::Vec3;
 use pm_kdtree::PhotonTree;
 use pm_trace::{Hit, Rng, Scene};

@@ -11,7 +11,7 @@
 //! Within that, `hi` is the exact sum correctly rounded, whatever the grouping, and the mean
 //! `hi / passes` rounded to f32 is the same bits.
 
-use crate::core::Tile;
+use crate::core::tiles::Tile;
 use crate::error::RenderError;
 use crate::image::Image;
 use glam::{DVec3, Vec3};

@@ -12,7 +12,11 @@
 //! k-nearest extent does.
 
 use crate::error::RenderError;
-use crate::estimator::{EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, MapView, SurfacePoint};
+use crate::estimator::fixed::FixedVolumeEstimator;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_kdtree::{Euclidean, KindMask, PhotonTree};
 use pm_trace::{MapError, PhotonMaps};
@@ -129,7 +133,8 @@ mod tests {
     #[test]
     fn extent_is_the_brute_force_k_nearest_extent_at_the_nearest_site() {
         let scene = scenes::build("colored-rooms").unwrap();
-        let assignment = CreaseAngle::default().partition(&scene);
+        let partitioned = CreaseAngle::default().partition(scene).unwrap();
+        let (scene, assignment, _) = partitioned.into_parts();
         let settings = RenderSettings {
             photons: 4_000,
             k: 20,

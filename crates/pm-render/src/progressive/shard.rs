@@ -2,9 +2,11 @@
 //! (the scene, the settings), so that shards rendered apart merge into the bits one run of all
 //! their passes gives — or are refused, naming the shard at fault.
 
-use super::{Accumulation, MAX_PASS, PassSums};
 use crate::error::RenderError;
 use crate::image::Image;
+use crate::limits::MAX_PASS;
+use crate::progressive::accumulation::Accumulation;
+use crate::progressive::pass_sum::PassSums;
 use glam::DVec3;
 use std::ops::Range;
 use thiserror::Error;

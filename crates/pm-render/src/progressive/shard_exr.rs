@@ -4,8 +4,10 @@
 //! Merging files streams them: one shard's pixels at a time are added to one running sum.
 
 use super::shard::{ShardHeader, plan_merge};
-use super::{PassSums, Shard, ShardError};
 use crate::error::RenderError;
+use crate::progressive::pass_sum::PassSums;
+use crate::progressive::shard::Shard;
+use crate::progressive::shard::ShardError;
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
     Encoding, LayerAttributes, ReadChannels, ReadLayers, ReadSpecificChannel, Vec2, WritableImage,
@@ -108,7 +110,7 @@ impl Shard {
         let layer = exr::prelude::Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
         let image = exr::prelude::Image::from_layer(layer);
         // Atomically: the exr crate's `to_file` deletes the target when a write fails.
-        crate::image::write_atomically(path, |writer| {
+        crate::image::atomic::write_atomically(path, |writer| {
             image
                 .write()
                 .to_buffered(writer)

@@ -20,18 +20,19 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass;
-use crate::core::{PIXEL_SEED_SALT, PathVertex, follow_delta_bounces};
+use crate::core::tiles::PIXEL_SEED_SALT;
+use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
-use crate::estimator::EstimatorOptions;
+use crate::estimator::options::EstimatorOptions;
 use crate::image::Image;
 use crate::mode::Mode;
 use crate::progress::Progress;
 use crate::renderer::in_pool;
 use crate::settings::RenderSettings;
-use crate::source::direct_irradiance;
+use crate::source::direct::direct_irradiance;
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
-use pm_trace::{MapAssignment, Material, Partitioner, RayKind, Rng, Scene, SingleMap};
+use pm_trace::{MapAssignment, Material, RayKind, Rng, Scene};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};
 use std::ops::ControlFlow;
@@ -131,7 +132,7 @@ impl SppmRenderer {
     ) -> Result<SppmRendered, RenderError> {
         self.settings.validate()?;
         let start = Instant::now();
-        let assignment = SingleMap.partition(scene);
+        let assignment = MapAssignment::single(scene.part_count());
         in_pool(self.settings.render.threads, || {
             let s = &self.settings;
             let r = &s.render;

@@ -4,10 +4,10 @@
 //! final gather into an irradiance cache ([`FinalGatherSource`]); a progressive pass's
 //! fixed-volume reads live with the progressive renderer.
 
-mod direct;
-mod final_gather;
-mod path_traced;
-mod photon_map;
+pub(crate) mod direct;
+pub(crate) mod final_gather;
+pub(crate) mod path_traced;
+pub(crate) mod photon_map;
 
 pub use direct::direct_irradiance;
 pub use final_gather::{CacheReads, FinalGatherOptions, FinalGatherSource, GatherReads};

@@ -4,8 +4,9 @@
 //! front of it, the path-trace mode: the reference every estimator is measured against.
 
 use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
-use crate::core::{PathVertex, RadianceSource, specular_bounce};
-use crate::estimator::EstimatorScratch;
+use crate::core::delta::specular_bounce;
+use crate::core::{PathVertex, RadianceSource};
+use crate::estimator::scratch::EstimatorScratch;
 use glam::{Vec2, Vec3};
 use pm_trace::sampling::cosine_hemisphere;
 use pm_trace::{Material, RayKind, Rng, Scene};

@@ -3,7 +3,11 @@
 
 use super::direct::direct_irradiance;
 use crate::core::{PathVertex, RadianceSource};
-use crate::estimator::{Estimator, EstimatorOptions, EstimatorScratch, MapView, SurfacePoint};
+use crate::estimator::Estimator;
+use crate::estimator::options::EstimatorOptions;
+use crate::estimator::point::MapView;
+use crate::estimator::point::SurfacePoint;
+use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_trace::{Hit, PhotonMaps, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;

@@ -21,7 +21,11 @@ pub fn furnace() -> Scene {
 
 /// The furnace's photon maps (crease maps) from `photons` photon paths of seed `seed`.
 pub fn furnace_maps(scene: &Scene, photons: u32, seed: u64) -> PhotonMaps {
-    let assignment = CreaseAngle::default().try_partition(scene).unwrap();
+    let assignment = CreaseAngle::default()
+        .partition(scene.clone())
+        .unwrap()
+        .assignment()
+        .clone();
     let options = TraceOptions {
         photons,
         seed,

@@ -7,7 +7,7 @@
 //! Small scenes test every triangle this way, with no culling: nothing is ever culled that
 //! the exact test would hit, and a ray leaving a wall costs no more than any other.
 
-use super::WatertightRay;
+use super::watertight::WatertightRay;
 use glam::{Vec3, Vec4};
 
 /// Triangles per batch.

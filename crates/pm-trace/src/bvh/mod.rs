@@ -8,7 +8,8 @@
 //! their part and its surface beside them (8 bytes); the normal is computed when a ray hits. Shapes are few
 //! and kept apart, so the triangle loop never branches on a primitive kind.
 
-use crate::{PartId, Ray};
+use crate::part::{PartId, PartSurface};
+use crate::ray::Ray;
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
@@ -17,8 +18,8 @@ mod batch;
 mod pair;
 mod sah;
 mod scan;
-mod shape;
-mod traverse;
+pub(crate) mod shape;
+pub(crate) mod traverse;
 mod watertight;
 
 use batch::TriangleBatches;
@@ -32,10 +33,6 @@ pub(crate) use watertight::WatertightRay;
 /// faster at 12 triangles (`cornell-box`) and 25 % at 24 (`lit-unlit-rooms`), and even at 48
 /// (`colored-rooms`).
 const SCAN_MAX_PRIMITIVES: usize = 64;
-
-// The traversal packs leaf primitive indices into 29 bits; the scene builder's triangle limit
-// keeps every scene inside that.
-const _: () = assert!(crate::scene::MAX_SCENE_TRIANGLES <= traverse::MAX_PRIMITIVES);
 
 /// Unit normal of a counter-clockwise triangle.
 #[inline]
@@ -68,13 +65,6 @@ struct TriangleRecord {
     v: [Vec3; 3],
     part: PartId,
     surface: u32,
-}
-
-/// A primitive's part and the index of its part's surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct PartSurface {
-    pub(crate) part: PartId,
-    pub(crate) surface: u32,
 }
 
 /// The scene's ray-query structure.

@@ -2,8 +2,9 @@
 //! cache misses of one overlap those of the other.
 
 use super::traverse::Traversal;
-use super::{HitPrimitive, SceneBvh, Search, WatertightRay};
-use crate::Ray;
+use super::watertight::WatertightRay;
+use super::{HitPrimitive, SceneBvh, Search};
+use crate::ray::Ray;
 
 impl SceneBvh {
     /// The closest hits of two rays in `(0, t_max)` among all primitives: the same hits as

@@ -1,8 +1,9 @@
 //! Analytic shape parts (spheres, ring sides) as ray-query primitives, searched apart from
 //! the triangles.
 
-use super::PartSurface;
-use crate::shape::{Ring, RingSide, Sphere};
+use crate::part::PartSurface;
+use crate::shape::ring::{Ring, RingSide};
+use crate::shape::sphere::Sphere;
 use glam::Vec3;
 
 /// An analytic shape part (a sphere, or one side of a ring) as a ray-query primitive.

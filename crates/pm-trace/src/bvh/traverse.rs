@@ -12,7 +12,7 @@
 //! box; closest-hit searches take the nearest first and drop, unread, every box that starts
 //! beyond the hit found so far.
 
-use crate::Ray;
+use crate::ray::Ray;
 use glam::{Vec3, Vec3A, Vec4};
 use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -111,7 +111,7 @@ const COUNT_SHIFT: u32 = 29;
 const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 
 /// Primitives a BVH may hold for [`Pending`]'s packing (the scene allows 2²⁷ triangles).
-pub(super) const MAX_PRIMITIVES: usize = FIRST_MASK as usize;
+pub(crate) const MAX_PRIMITIVES: usize = FIRST_MASK as usize;
 
 /// Entries held without touching the heap; deeper stacks (degenerate trees only: each level
 /// adds at most seven) spill into a vector.

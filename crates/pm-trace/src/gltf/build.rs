@@ -7,16 +7,23 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
-use super::GltfOptions;
 use super::camera::frame_bounds;
 use super::content::GltfContent;
-use super::content::GltfMesh;
 use super::error::GltfError;
 use super::light::GltfLight;
-use crate::{
-    AreaLight, Camera, DirectionalLight, Light, PointLight, Scene, Sides, SpotLight, Surface,
-    TexturedAreaLight, VertexAttributes,
-};
+use super::mesh::GltfMesh;
+use super::options::GltfOptions;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::light::area::AreaLight;
+use crate::light::directional::DirectionalLight;
+use crate::light::point::PointLight;
+use crate::light::spot::SpotLight;
+use crate::light::textured_area::TexturedAreaLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::shading::VertexAttributes;
+use crate::sides::Sides;
 
 /// Builds a scene from content read by [`read_content`](super::read_content). `file` only
 /// names the source in errors.

@@ -81,7 +81,7 @@ pub(super) fn place_camera(
 pub fn frame_bounds(min: Vec3, max: Vec3) -> GltfCamera {
     let center = (min + max) * 0.5;
     let size = (max - min).max(Vec3::splat(1e-3));
-    let position = center + Vec3::Z * crate::Camera::framing_distance(size, DEFAULT_VFOV);
+    let position = center + Vec3::Z * crate::camera::Camera::framing_distance(size, DEFAULT_VFOV);
     GltfCamera {
         position,
         look_at: center,

@@ -11,12 +11,12 @@ use json::accessor::Type;
 use json::mesh::Semantic;
 use json::validation::Checked;
 
-use super::GltfOptions;
 use super::compact::{gather, keep_referenced};
-use super::content::GltfMesh;
 use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
 use super::material::{GltfMaterial, map_material};
+use super::mesh::GltfMesh;
+use super::options::GltfOptions;
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};

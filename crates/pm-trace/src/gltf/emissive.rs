@@ -8,12 +8,12 @@ use std::sync::Arc;
 
 use gltf::json;
 
-use super::GltfOptions;
 use super::accessor::AccessorReader;
 use super::buffers::Buffer;
 use super::error::GltfError;
 use super::image::{load_image, texture_source};
 use super::material::GltfMaterial;
+use super::options::GltfOptions;
 use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
 

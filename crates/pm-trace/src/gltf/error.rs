@@ -115,7 +115,7 @@ pub enum GltfError {
         /// The scene file.
         file: PathBuf,
         /// The builder's reason.
-        source: crate::SceneError,
+        source: crate::error::SceneError,
     },
     /// An image a material uses could not be read or decoded: outside the folder, missing,
     /// truncated, not PNG or JPEG, or larger than [`GltfOptions::max_texture_pixels`](super::GltfOptions).

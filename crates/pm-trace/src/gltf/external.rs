@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::GltfOptions;
 use super::buffers::{confined_target, has_prefix_ignore_case};
 use super::error::GltfError;
+use super::options::GltfOptions;
 use super::source::{parse, read_bounded};
 
 /// The canonical paths of the files scene `path` names as buffers or images (not `data:`

@@ -7,9 +7,9 @@ use std::path::Path;
 
 use gltf::json;
 
-use super::GltfOptions;
 use super::buffers::{Buffer, confined_target, decode_data_uri, has_prefix_ignore_case, read_regular};
 use super::error::GltfError;
+use super::options::GltfOptions;
 use crate::texture::{Sampler, Texture, Wrap};
 
 /// Texture `texture` of `root`: the index of its image (checked to exist) and its sampler.

@@ -10,11 +10,8 @@ use gltf::json;
 use json::extensions::scene::khr_lights_punctual::{Light, Type};
 use json::validation::Checked;
 
-use super::GltfOptions;
 use super::error::GltfError;
-
-/// Lumens per watt of 555 nm light: the factor from photometric to radiometric units.
-pub const LUMENS_PER_WATT: f32 = 683.0;
+use super::options::GltfOptions;
 
 /// A punctual light placed in the world, in radiometric units.
 #[derive(Clone, Copy, Debug, PartialEq)]

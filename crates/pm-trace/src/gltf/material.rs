@@ -4,9 +4,9 @@
 use glam::Vec3;
 use gltf::json;
 
-use super::GltfOptions;
+use super::options::GltfOptions;
 use super::texture_ref::TextureRef;
-use crate::Material;
+use crate::material::Material;
 
 /// A glTF material as this loader reads it.
 ///

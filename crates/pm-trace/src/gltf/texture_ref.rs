@@ -9,7 +9,7 @@ use json::validation::Checked;
 
 use super::accessor::AccessorReader;
 use super::error::GltfError;
-use crate::TextureTransform;
+use crate::texture_transform::TextureTransform;
 
 /// Which texture a material reads, at which coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,7 +1,8 @@
 //! Light units: how glTF's emissive strength and punctual intensities become the renderer's
 //! radiance (W/(m²·sr)), radiant intensity (W/sr) and irradiance (W/m²).
 
-use super::light::LUMENS_PER_WATT;
+/// Lumens per watt of 555 nm light: the factor from photometric to radiometric units.
+pub const LUMENS_PER_WATT: f32 = 683.0;
 
 /// How the numbers of a glTF file's lights are read ([`super::GltfOptions::light_units`]).
 ///

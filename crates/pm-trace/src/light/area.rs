@@ -2,8 +2,10 @@
 //! (counter-clockwise winding) or from both sides, cosine-distributed.
 
 use super::{EmittedRay, IncidentPdf, Light, LightSample};
+use crate::ray::Ray;
+use crate::rng::Rng;
 use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame, pick_cumulative, uniform_triangle};
-use crate::{Ray, Rng, Sides};
+use crate::sides::Sides;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 

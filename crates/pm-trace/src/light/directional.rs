@@ -1,8 +1,9 @@
 //! The directional light: parallel rays from a disc that covers the scene.
 
 use super::{EmittedRay, Light, LightSample};
+use crate::ray::Ray;
+use crate::rng::Rng;
 use crate::sampling::{orthonormal_frame, uniform_disc};
-use crate::{Ray, Rng};
 use glam::{Vec2, Vec3};
 use pm_geom::Aabb;
 use std::f32::consts::PI;

@@ -1,11 +1,11 @@
 //! Lights: a trait with photon emission and shadow-ray sampling, and the point, spot,
 //! directional, area and textured area lights.
 
-mod area;
-mod directional;
-mod point;
-mod spot;
-mod textured_area;
+pub(crate) mod area;
+pub(crate) mod directional;
+pub(crate) mod point;
+pub(crate) mod spot;
+pub(crate) mod textured_area;
 
 pub use area::AreaLight;
 pub use directional::DirectionalLight;
@@ -13,7 +13,8 @@ pub use point::PointLight;
 pub use spot::SpotLight;
 pub use textured_area::TexturedAreaLight;
 
-use crate::{Ray, Rng};
+use crate::ray::Ray;
+use crate::rng::Rng;
 use glam::Vec3;
 use pm_geom::Aabb;
 

@@ -1,7 +1,7 @@
 //! The isotropic point light.
 
 use super::{EmittedRay, Light, LightSample, ray_from_point, sample_point_light};
-use crate::Rng;
+use crate::rng::Rng;
 use crate::sampling::uniform_sphere;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

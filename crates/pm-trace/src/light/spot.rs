@@ -1,7 +1,7 @@
 //! The spot light: a point light restricted to a cone, with uniform intensity inside.
 
 use super::{EmittedRay, Light, LightSample, ray_from_point, sample_point_light};
-use crate::Rng;
+use crate::rng::Rng;
 use crate::sampling::uniform_cone;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

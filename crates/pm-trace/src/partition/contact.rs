@@ -4,30 +4,35 @@
 //! photon map spans both sides of such a meeting. Ball & Stejko's future work ("light bleeding
 //! would still occur if the floor were one rectangle across both boxes"), taken to solids.
 
-use super::{MapAssignment, PartitionError, Partitioner};
-use crate::{PartId, PartSource, Scene, SceneError, Surface};
+use super::Partitioner;
+use super::assignment::MapAssignment;
+use super::flood::flood_fill;
+use super::partitioned::{PartitionError, Partitioned};
+use super::record::ContactRecord;
+use crate::error::SceneError;
+use crate::material::Surface;
+use crate::part::{PartId, PartSource, SourceFace};
+use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{
-    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, IntersectionCounts, MeshOptions,
-    split_polygons_at_intersections,
+    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_intersections,
 };
 
 /// Crease-angle maps over all meshes of a scene welded together, after cutting faces where
 /// other faces meet them. The render example's default, and the partition to use unless you
 /// reproduce the report's crease-angle maps.
 ///
-/// Use it in two steps: [`Contact::split_scene`] (also [`Partitioner::prepare_scene`]) finds
-/// every pair of mesh faces that pierce each other, where an edge of one lies in the other (a
-/// wall standing on a floor), that overlap in one plane (duplicated or stacked floors), or that
-/// come closer than the gap tolerance without meeting, and cuts each such face into convex
-/// pieces along those segments; then [`Partitioner::partition`] flood-fills across edges with a
+/// [`Partitioner::partition`] first finds every pair of mesh faces that pierce each other,
+/// where an edge of one lies in the other (a wall standing on a floor), that overlap in one
+/// plane (duplicated or stacked floors), or that come closer than the gap tolerance without
+/// meeting, and cuts each such face into convex pieces along those segments; the
+/// [`Partitioned`] it returns holds that split scene. Then it flood-fills across edges with a
 /// crease angle below `max_angle` over one half-edge mesh of *all* mesh faces, never across a
 /// segment where faces meet (or an edge of three or more faces), and never into a piece that
 /// lies inside a closed solid (the floor slab's top under a wall box: no light reaches it).
 /// Where a cut line runs beyond the meeting (a doorway, the floor around a box) the pieces stay
 /// in one map, because light really passes there. Of faces overlapping in one plane and facing
-/// the same way only the first is kept. The renderers refuse a scene that has not been split
-/// ([`Partitioner::check_scene`]).
+/// the same way only the first is kept. What the split found is [`Partitioned::record`].
 ///
 /// On a scene where no faces meet, the scene is left as it is and the maps are the
 /// crease-angle maps, except that faces of different meshes join when they share a flat edge.
@@ -64,38 +69,6 @@ impl Default for Contact {
     }
 }
 
-/// What [`Contact::split_scene`] found and cut: the meeting segments no map crosses, the pieces
-/// inside closed solids, and counts of each kind of meeting.
-#[derive(Clone, Debug, Default)]
-pub struct ContactRecord {
-    barriers: BarrierSet,
-    sealed_parts: Vec<bool>,
-    counts: IntersectionCounts,
-    seconds: f64,
-}
-
-impl ContactRecord {
-    /// How many meetings of each kind were found, and pieces dropped or sealed.
-    pub fn counts(&self) -> IntersectionCounts {
-        self.counts
-    }
-
-    /// The segments along which faces meet: no photon map joins across them.
-    pub fn barriers(&self) -> &BarrierSet {
-        &self.barriers
-    }
-
-    /// True when `part` lies inside a closed solid, where no light reaches.
-    pub fn is_sealed(&self, part: PartId) -> bool {
-        self.sealed_parts.get(part.0 as usize).copied().unwrap_or(false)
-    }
-
-    /// Wall-clock seconds the split took.
-    pub fn seconds(&self) -> f64 {
-        self.seconds
-    }
-}
-
 impl Contact {
     /// The absolute tolerance (metres) for `scene`.
     pub fn tolerance(&self, scene: &Scene) -> f32 {
@@ -107,30 +80,32 @@ impl Contact {
         (self.relative_gap * scene.bounds().diagonal()).max(self.tolerance(scene))
     }
 
-    /// Rebuilds `scene` with every mesh face cut where other faces meet it. Each piece keeps its
+    /// `scene` rebuilt with every mesh face cut where other faces meet it, and what was found. Each piece keeps its
     /// face's surface and its vertex attributes (texture coordinates, colours and normals,
     /// interpolated over the original triangle, so [`Scene::albedo_at`] and
     /// [`Scene::shading_normal_at`] give what they gave before the split); lights, analytic
     /// shapes and the camera are unchanged, and so is the total area of every face except the
-    /// hidden copies of duplicated faces. A scene where no faces meet comes back unchanged.
+    /// hidden copies of duplicated faces. A scene where no faces meet (and none lies inside a solid) comes back unchanged.
     ///
     /// Fails with [`SceneError::Arrangement`] when the faces meet in more places than the
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
     /// mesh), before allocating past them.
-    pub fn split_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
+    fn split(&self, scene: Scene) -> Result<(Scene, ContactRecord), SceneError> {
         let start = std::time::Instant::now();
         let tolerance = self.tolerance(&scene);
         let options = ArrangementOptions::new(tolerance, self.gap(&scene));
         let faces = mesh_faces(&scene);
         let split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
         let counts = split.counts;
-        if counts.meetings() == 0 && counts.duplicate_pieces == 0 {
-            let mut scene = scene;
-            scene.set_contact_record(ContactRecord {
+        if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
+            let record = ContactRecord {
+                source_faces: (0..scene.part_count() as u32)
+                    .map(|p| scene.source_face(PartId(p)))
+                    .collect(),
                 seconds: start.elapsed().as_secs_f64(),
                 ..ContactRecord::default()
-            });
-            return Ok(scene);
+            };
+            return Ok((scene, record));
         }
 
         // One rebuilt mesh per original mesh, holding that mesh's pieces.
@@ -140,6 +115,7 @@ impl Contact {
         let mut face_surfaces: Vec<Vec<Surface>> = vec![Vec::new(); mesh_count];
         let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
         let mut piece_index: Vec<Vec<usize>> = vec![Vec::new(); mesh_count];
+        let mut piece_sources: Vec<Vec<SourceFace>> = vec![Vec::new(); mesh_count];
         for (index, (piece, &source)) in split.polygons.iter().zip(&split.source).enumerate() {
             let m = faces.mesh_of[source];
             let start = positions[m].len() as u32;
@@ -148,6 +124,10 @@ impl Contact {
             face_surfaces[m].push(faces.surfaces[source]);
             piece_faces[m].push(faces.face_of[source]);
             piece_index[m].push(index);
+            piece_sources[m].push(SourceFace {
+                mesh: m as u32,
+                face: faces.user_face[source],
+            });
         }
         // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
         // shaded by interpolating over the whole original triangle it lies in.
@@ -169,21 +149,25 @@ impl Contact {
                 built_meshes.push(m);
             }
         }
-        let mut rebuilt = builder.build()?;
+        let rebuilt = builder.build()?;
         let mut sealed_parts = vec![false; rebuilt.part_count()];
+        let mut source_faces = vec![None; rebuilt.part_count()];
         for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {
             for face in mesh.half_edge_mesh().faces() {
-                let piece = piece_index[m][mesh.half_edge_mesh().source_face(face)];
-                sealed_parts[mesh.part_of_face(face).0 as usize] = split.sealed[piece];
+                let k = mesh.half_edge_mesh().source_face(face);
+                let part = mesh.part_of_face(face).0 as usize;
+                sealed_parts[part] = split.sealed[piece_index[m][k]];
+                source_faces[part] = Some(piece_sources[m][k]);
             }
         }
-        rebuilt.set_contact_record(ContactRecord {
+        let record = ContactRecord {
             barriers: BarrierSet::new(split.barriers, tolerance),
             sealed_parts,
+            source_faces,
             counts,
             seconds: start.elapsed().as_secs_f64(),
-        });
-        Ok(rebuilt)
+        };
+        Ok((rebuilt, record))
     }
 }
 
@@ -201,71 +185,42 @@ impl Contact {
 }
 
 impl Partitioner for Contact {
-    /// Splits the scene where its faces meet ([`Contact::split_scene`]); a scene split already
-    /// is returned as it is.
-    fn prepare_scene(&self, scene: Scene) -> Result<Scene, SceneError> {
-        if scene.is_split_at_contacts() {
-            Ok(scene)
-        } else {
-            self.split_scene(scene)
-        }
+    /// Splits the scene where its faces meet, then assigns the maps of the split scene.
+    fn partition(&self, scene: Scene) -> Result<Partitioned, PartitionError> {
+        let (scene, record) = self.split(scene)?;
+        let assignment = self.assign(&scene, &record);
+        Ok(Partitioned::with_record(scene, assignment, record))
     }
+}
 
-    /// Refuses a scene not split where its faces meet: its maps would silently be the
-    /// crease-angle ones.
-    fn check_scene(&self, scene: &Scene) -> Result<(), PartitionError> {
-        if scene.is_split_at_contacts() {
-            Ok(())
-        } else {
-            Err(PartitionError::NotSplitAtContacts)
-        }
-    }
-
-    fn partition(&self, scene: &Scene) -> MapAssignment {
-        let record = scene.contact_record();
-        let no_barriers = BarrierSet::default();
-        let barriers = record.map_or(&no_barriers, |r| r.barriers());
-        let sealed = |part: PartId| record.is_some_and(|r| r.is_sealed(part));
-        // Within each mesh: a flood fill over its own twins (as the crease-angle maps), but
-        // never across a segment where faces meet nor into a sealed piece. `groups` then joins
-        // the fills of different meshes.
-        const UNSET: u32 = u32::MAX;
-        let mut fill = vec![UNSET; scene.part_count()];
-        let mut stack: Vec<FaceId> = Vec::new();
-        for m in scene.meshes() {
-            let mesh = m.half_edge_mesh();
-            for seed in mesh.faces() {
-                let seed_part = m.part_of_face(seed);
-                if fill[seed_part.0 as usize] != UNSET {
-                    continue;
-                }
-                fill[seed_part.0 as usize] = seed_part.0;
-                if sealed(seed_part) {
-                    continue;
-                }
-                stack.push(seed);
-                while let Some(face) = stack.pop() {
-                    for (he, other) in mesh.neighbours(face) {
-                        let other_part = m.part_of_face(other);
-                        if fill[other_part.0 as usize] == UNSET
-                            && !sealed(other_part)
-                            && self.joins(mesh, he, barriers)
-                        {
-                            fill[other_part.0 as usize] = seed_part.0;
-                            stack.push(other);
-                        }
-                    }
-                }
-            }
-        }
-        for (p, slot) in fill.iter_mut().enumerate() {
-            if *slot == UNSET {
-                *slot = p as u32; // analytic parts
-            }
-        }
+impl Contact {
+    /// The maps of a split scene: within each mesh, the shared flood fill (as the crease-angle
+    /// maps) that never crosses a segment where faces meet nor enters a sealed piece; then the
+    /// fills of different meshes joined across flat edges they share. Maps are numbered in
+    /// order of each group's first part, as the crease-angle maps are; every analytic part is
+    /// a map of its own.
+    fn assign(&self, scene: &Scene, record: &ContactRecord) -> MapAssignment {
+        let barriers = record.barriers();
+        let sealed = |part: PartId| record.is_sealed(part);
+        let fill = flood_fill(scene, |mesh, he, part, other| {
+            !sealed(part) && !sealed(other) && self.joins(mesh, he, barriers)
+        });
         let mut groups = UnionFind::new(scene.part_count());
-        // Across meshes: the faces with an open edge, welded together, join across flat edges
-        // they share.
+        self.join_across_meshes(scene, &fill, &sealed, barriers, &mut groups);
+        let roots: Vec<u32> = fill.iter().map(|&f| groups.find(f)).collect();
+        MapAssignment::from_roots(&roots)
+    }
+
+    /// Joins the fills of different meshes: the faces with an open edge, welded together, join
+    /// across flat edges they share (unless sealed or across a barrier).
+    fn join_across_meshes(
+        &self,
+        scene: &Scene,
+        fill: &[u32],
+        sealed: &impl Fn(PartId) -> bool,
+        barriers: &BarrierSet,
+        groups: &mut UnionFind,
+    ) {
         let mut positions = Vec::new();
         let mut polygons = Vec::new();
         let mut parts = Vec::new();
@@ -281,50 +236,25 @@ impl Partitioner for Contact {
                 parts.push(m.part_of_face(face));
             }
         }
+        if polygons.is_empty() {
+            return;
+        }
         let options = MeshOptions {
             weld_tolerance: self.tolerance(scene),
         };
         // The faces were welded once already, so welding them again cannot fail; if it ever did,
         // meshes would only not join each other.
-        if let (false, Ok(welded)) = (
-            polygons.is_empty(),
-            HalfEdgeMesh::build(&positions, &polygons, &options),
-        ) {
-            for face in welded.faces() {
-                let part = parts[welded.source_face(face)];
-                for (he, other) in welded.neighbours(face) {
-                    let other_part = parts[welded.source_face(other)];
-                    if !sealed(part) && !sealed(other_part) && self.joins(&welded, he, barriers) {
-                        groups.union(fill[part.0 as usize], fill[other_part.0 as usize]);
-                    }
+        let Ok(welded) = HalfEdgeMesh::build(&positions, &polygons, &options) else {
+            return;
+        };
+        for face in welded.faces() {
+            let part = parts[welded.source_face(face)];
+            for (he, other) in welded.neighbours(face) {
+                let other_part = parts[welded.source_face(other)];
+                if !sealed(part) && !sealed(other_part) && self.joins(&welded, he, barriers) {
+                    groups.union(fill[part.0 as usize], fill[other_part.0 as usize]);
                 }
             }
-        }
-        // Maps numbered in order of each group's first part, as the crease-angle maps are; every
-        // analytic part is a map of its own.
-        let mesh_parts = scene
-            .meshes()
-            .iter()
-            .map(|m| m.half_edge_mesh().face_count())
-            .sum::<usize>();
-        let mut map_of_root = vec![u32::MAX; scene.part_count()];
-        let mut map_of_part = vec![0; scene.part_count()];
-        let mut next = 0u32;
-        for (p, slot) in map_of_part.iter_mut().enumerate() {
-            let root = if p < mesh_parts {
-                groups.find(fill[p]) as usize
-            } else {
-                p
-            };
-            if map_of_root[root] == u32::MAX {
-                map_of_root[root] = next;
-                next += 1;
-            }
-            *slot = map_of_root[root];
-        }
-        MapAssignment {
-            map_of_part,
-            map_count: next.max(1),
         }
     }
 }
@@ -363,6 +293,8 @@ struct MeshFaces {
     surfaces: Vec<Surface>,
     mesh_of: Vec<usize>,
     face_of: Vec<FaceId>,
+    /// The face's index in its mesh's face list as the user gave it.
+    user_face: Vec<u32>,
     /// The mesh's index when the mesh is a closed solid (every edge shared by two faces).
     solids: Vec<Option<u32>>,
 }
@@ -373,6 +305,7 @@ fn mesh_faces(scene: &Scene) -> MeshFaces {
         surfaces: Vec::new(),
         mesh_of: Vec::new(),
         face_of: Vec::new(),
+        user_face: Vec::new(),
         solids: Vec::new(),
     };
     for (m, mesh) in scene.meshes().iter().enumerate() {
@@ -383,6 +316,7 @@ fn mesh_faces(scene: &Scene) -> MeshFaces {
             out.surfaces.push(*scene.part_surface(mesh.part_of_face(face)));
             out.mesh_of.push(m);
             out.face_of.push(face);
+            out.user_face.push(half_edges.source_face(face) as u32);
             out.solids.push(closed.then_some(m as u32));
         }
     }

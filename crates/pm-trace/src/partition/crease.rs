@@ -1,9 +1,11 @@
 //! Crease-angle partition (Larsen & Christensen 2003): mesh faces join a map across twinned
 //! edges whose crease angle is below a threshold; every analytic part is its own map.
 
-use super::{MapAssignment, Partitioner};
-use crate::{PartId, PartSource, Scene};
-use pm_geom::FaceId;
+use super::Partitioner;
+use super::assignment::MapAssignment;
+use super::flood::flood_fill;
+use super::partitioned::{PartitionError, Partitioned};
+use crate::scene::Scene;
 
 /// Flood fill over half-edge twins with crease angle `< max_angle` (radians). Boundary and
 /// non-manifold edges (no twin) never join; faces of different meshes never share a map; a
@@ -24,44 +26,19 @@ impl Default for CreaseAngle {
 }
 
 impl Partitioner for CreaseAngle {
-    fn partition(&self, scene: &Scene) -> MapAssignment {
-        const UNSET: u32 = u32::MAX;
-        let mut map_of_part = vec![UNSET; scene.part_count()];
-        let mut next = 0u32;
-        let mut stack: Vec<FaceId> = Vec::new();
-        for m in scene.meshes() {
-            let mesh = m.half_edge_mesh();
-            for seed in mesh.faces() {
-                if map_of_part[m.part_of_face(seed).0 as usize] != UNSET {
-                    continue;
-                }
-                map_of_part[m.part_of_face(seed).0 as usize] = next;
-                stack.push(seed);
-                while let Some(face) = stack.pop() {
-                    for (he, other) in mesh.neighbours(face) {
-                        let slot = &mut map_of_part[m.part_of_face(other).0 as usize];
-                        if *slot == UNSET && mesh.crease_angle(he).is_some_and(|a| a < self.max_angle) {
-                            *slot = next;
-                            stack.push(other);
-                        }
-                    }
-                }
-                next += 1;
-            }
-        }
-        for (p, slot) in map_of_part.iter_mut().enumerate() {
-            if *slot == UNSET {
-                debug_assert!(!matches!(
-                    scene.part_source(PartId(p as u32)),
-                    PartSource::MeshFace { .. }
-                ));
-                *slot = next;
-                next += 1;
-            }
-        }
-        MapAssignment {
-            map_of_part,
-            map_count: next,
-        }
+    fn partition(&self, scene: Scene) -> Result<Partitioned, PartitionError> {
+        let assignment = self.assign(&scene);
+        Partitioned::new(scene, assignment)
+    }
+}
+
+impl CreaseAngle {
+    /// The shared flood fill across edges with a crease angle below `max_angle`; maps numbered
+    /// in order of each group's first part (mesh faces first, then the analytic parts).
+    fn assign(&self, scene: &Scene) -> MapAssignment {
+        let fill = flood_fill(scene, |mesh, he, _, _| {
+            mesh.crease_angle(he).is_some_and(|a| a < self.max_angle)
+        });
+        MapAssignment::from_roots(&fill)
     }
 }

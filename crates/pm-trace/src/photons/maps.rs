@@ -1,8 +1,11 @@
 //! Photon maps: per map, the photons in a kd-tree and the map's polygons (with an overlap
 //! index) for the geometry-based estimators.
 
-use super::TracedPhotons;
-use crate::{MapAssignment, MapError, PartId, Scene, TraceError};
+use super::traced::TracedPhotons;
+use crate::error::{MapError, TraceError};
+use crate::part::PartId;
+use crate::partition::assignment::MapAssignment;
+use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{Aabb, CoplanarMerger, MergeOptions, PolygonSet};
 use pm_kdtree::PhotonTree;

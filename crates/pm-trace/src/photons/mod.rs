@@ -1,14 +1,16 @@
 //! Photon tracing from the lights into per-map photon lists, and building the photon maps
 //! (kd-tree plus area geometry) from them.
 
+mod light_picker;
 mod maps;
+mod options;
 mod path;
 mod scatter;
 mod trace;
+mod traced;
 
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
+pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};
 pub use scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
-pub use trace::{
-    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions, TraceStats, TracedPhotons,
-    trace_photons,
-};
+pub use trace::trace_photons;
+pub use traced::{TraceStats, TracedPhotons};

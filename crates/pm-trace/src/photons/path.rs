@@ -1,10 +1,15 @@
 //! Photon paths: one path from its light to its end (`PhotonPath`), and a chunk of paths
 //! traced one at a time or, in large scenes, two at a time with their rays cast together.
 
+use super::light_picker::LightPicker;
+use super::options::{NEAR_LIGHT_DISTANCE, TraceOptions};
 use super::scatter::{glass_direction, mirror_direction};
-use super::trace::{LightPicker, NEAR_LIGHT_DISTANCE, TraceOptions};
+use crate::material::Material;
+use crate::partition::assignment::MapAssignment;
+use crate::ray::Ray;
+use crate::rng::Rng;
 use crate::sampling::cosine_hemisphere;
-use crate::{Hit, MapAssignment, Material, Ray, RayKind, Rng, Scene};
+use crate::scene::{Hit, RayKind, Scene};
 use glam::{Vec2, Vec3};
 use pm_kdtree::{Photon, PhotonKind};
 
@@ -232,7 +237,9 @@ impl PhotonPath {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::photons::trace::LightPicker;
+    use crate::partition::Partitioner;
+    use crate::partition::crease::CreaseAngle;
+    use crate::photons::light_picker::LightPicker;
     use crate::scenes::scale::split_rooms;
 
     /// Paths traced two at a time store exactly the photons, in exactly the order, of paths
@@ -243,7 +250,11 @@ mod tests {
     fn paths_traced_in_pairs_store_what_paths_traced_one_at_a_time_store() {
         let scene = split_rooms(60).unwrap();
         assert!(scene.prefers_ray_pairs());
-        let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
+        let assignment = CreaseAngle::default()
+            .partition(scene.clone())
+            .unwrap()
+            .assignment()
+            .clone();
         let options = TraceOptions {
             photons: 2_001,
             seed: 7,
@@ -292,31 +303,34 @@ mod tests {
             assert_eq!(a.kind, b.kind, "photon {k}");
         }
     }
-}
 
-/// The whole run on a scene large enough for paired paths gives the same photons on one thread
-/// and on seven (chunks are paired within themselves, so the thread count never shows).
-#[cfg(test)]
-#[test]
-fn paired_tracing_is_the_same_on_one_and_seven_threads() {
-    let scene = crate::scenes::scale::split_rooms(60).unwrap();
-    assert!(scene.prefers_ray_pairs());
-    let assignment = crate::Partitioner::partition(&crate::CreaseAngle::default(), &scene);
-    let options = TraceOptions {
-        photons: 3_001,
-        seed: 11,
-        ..TraceOptions::default()
-    };
-    let run = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
+    /// The whole run on a scene large enough for paired paths gives the same photons on one thread
+    /// and on seven (chunks are paired within themselves, so the thread count never shows).
+    #[test]
+    fn paired_tracing_is_the_same_on_one_and_seven_threads() {
+        let scene = split_rooms(60).unwrap();
+        assert!(scene.prefers_ray_pairs());
+        let assignment = CreaseAngle::default()
+            .partition(scene.clone())
             .unwrap()
-            .install(|| super::trace_photons(&scene, &assignment, &options).unwrap())
-            .into_parts()
-            .0
-    };
-    let (one, seven) = (run(1), run(7));
-    assert!(one.iter().map(Vec::len).sum::<usize>() > 5_000);
-    assert_eq!(one, seven);
+            .assignment()
+            .clone();
+        let options = TraceOptions {
+            photons: 3_001,
+            seed: 11,
+            ..TraceOptions::default()
+        };
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| crate::photons::trace::trace_photons(&scene, &assignment, &options).unwrap())
+                .into_parts()
+                .0
+        };
+        let (one, seven) = (run(1), run(7));
+        assert!(one.iter().map(Vec::len).sum::<usize>() > 5_000);
+        assert_eq!(one, seven);
+    }
 }

@@ -2,7 +2,7 @@
 //! and the mirror and glass bounces about a shading normal that the photon tracer and the
 //! render modes share.
 
-use crate::Rng;
+use crate::rng::Rng;
 use glam::Vec3;
 
 /// The direction a mirror reflects `d` to at a hit with unit geometric normal `geometric`

@@ -1,15 +1,56 @@
 //! Building a [`Scene`]: meshes, analytic shapes, lights and a camera checked and turned into
 //! parts with surfaces and the ray-query structure.
 
-use super::checks::{SurfaceTable, check_lights, check_shape, check_surface, default_camera};
+use super::Scene;
+use super::assemble::{PartTable, add_shapes, build_meshes, scene_bounds};
+use super::checks::{check_lights, default_camera};
 use super::mesh_input::{FaceSurfaces, MAX_SCENE_TRIANGLES, MeshInput};
-use super::{MeshShading, PartId, PartSource, Scene, SceneMesh, VertexAttributes};
-use crate::bvh::{PartSurface, SceneBvh, ShapePrimitive};
-use crate::shape::{Ring, RingSide, Shape, Sphere};
-use crate::{AreaLight, Camera, Light, Material, SceneError, Surface};
+use super::shading::{MeshShading, VertexAttributes};
+use crate::bvh::SceneBvh;
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::light::area::AreaLight;
+use crate::material::{Material, Surface};
+use crate::part::{PartId, PartSource};
+use crate::shape::Shape;
+use crate::shape::ring::{Ring, RingSide};
+use crate::shape::sphere::Sphere;
 use glam::Vec3;
-use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
+use pm_geom::MeshOptions;
 use std::sync::Arc;
+
+impl Scene {
+    /// A new, empty builder.
+    pub fn builder() -> SceneBuilder {
+        SceneBuilder::default()
+    }
+
+    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
+    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
+    /// along contact lines). Add every mesh again, including those of area-light quads.
+    pub(crate) fn into_builder_without_meshes(self) -> SceneBuilder {
+        let mut shapes = Vec::with_capacity(self.shapes.len());
+        for (i, source) in self.shape_parts.iter().enumerate() {
+            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
+            match *source {
+                PartSource::Sphere { shape }
+                | PartSource::Ring {
+                    shape,
+                    side: RingSide::Top,
+                } => shapes.push((self.shapes[shape as usize], surface)),
+                _ => {}
+            }
+        }
+        SceneBuilder {
+            shapes,
+            lights: self.lights,
+            camera: Some(self.camera),
+            mesh_options: self.mesh_options,
+            ..SceneBuilder::default()
+        }
+    }
+}
 
 /// Builds a [`Scene`]; errors are reported by [`SceneBuilder::build`].
 ///
@@ -175,10 +216,9 @@ impl SceneBuilder {
     /// let (x, z) = (vec3(0.5, 0.0, 0.0), vec3(0.0, 0.0, 0.5));
     /// assert_eq!(x.cross(z).normalize(), Vec3::NEG_Y);
     /// for (edges, near) in [((x, z), 0.0..0.01), ((z, x), 0.99..1.01)] {
-    ///     let scene = room(edges.0, edges.1)?;
-    ///     let assignment = CreaseAngle::default().partition(&scene);
+    ///     let partitioned = CreaseAngle::default().partition(room(edges.0, edges.1)?)?;
     ///     let options = TraceOptions { photons: 2_000, ..TraceOptions::default() };
-    ///     let traced = trace_photons(&scene, &assignment, &options)?;
+    ///     let traced = trace_photons(partitioned.scene(), partitioned.assignment(), &options)?;
     ///     // Facing down: nothing lands within 1 mm of the light. Facing up: everything does.
     ///     assert!(near.contains(&traced.stats().near_light_fraction));
     /// }
@@ -190,7 +230,7 @@ impl SceneBuilder {
             material: Material::Lambertian { albedo: Vec3::ZERO },
             emission: radiance,
             camera_visible: true,
-            sides: crate::Sides::Front,
+            sides: crate::sides::Sides::Front,
         };
         self.mesh(&quad, &[[0u32, 1, 2, 3]], surface)
             .light(AreaLight::quad(corner, edge_u, edge_v, radiance))
@@ -218,7 +258,7 @@ impl SceneBuilder {
     }
 
     /// Builds the meshes, the parts and the BVH. Zero-area mesh faces are dropped (see
-    /// [`HalfEdgeMesh::dropped_face_count`]); everything else invalid is an error.
+    /// [`HalfEdgeMesh::dropped_face_count`](pm_geom::HalfEdgeMesh::dropped_face_count)); everything else invalid is an error.
     pub fn build(self) -> Result<Scene, SceneError> {
         let triangle_count = self
             .meshes
@@ -237,118 +277,22 @@ impl SceneBuilder {
         }
         // Kept faces have at least one triangle each, so this is within the limit too.
         let face_count: usize = self.meshes.iter().map(|m| m.starts.len() - 1).sum();
-        let mut part_count = 0u32;
-        let mut surfaces = SurfaceTable::default();
-        let mut part_surface_ids = Vec::with_capacity(face_count + RingSide::ALL.len() * self.shapes.len());
-        let mut triangles = Vec::with_capacity(triangle_count);
-        let mut triangle_parts = Vec::with_capacity(triangle_count);
-        let mut shape_prims = Vec::new();
-        let mut meshes = Vec::with_capacity(self.meshes.len());
-        let mut has_shading = false;
-        let mut has_emission_textures = false;
-        // Each input mesh is dropped once built, so the input and the scene are not held twice.
-        for (mi, input) in self.meshes.into_iter().enumerate() {
-            if let FaceSurfaces::PerFace(s) = &input.surfaces
-                && s.len() != input.face_count()
-            {
-                return Err(SceneError::SurfaceCount {
-                    mesh: mi,
-                    surfaces: s.len(),
-                    faces: input.face_count(),
-                });
-            }
-            if let Some(shading) = &input.shading {
-                shading
-                    .validate()
-                    .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
-                has_shading = true;
-                has_emission_textures |= shading.has_emission_texture();
-            }
-            let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), &self.mesh_options)
-                .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
-            let first_part = part_count;
-            let mut polygon = Vec::new();
-            for face in mesh.faces() {
-                let surface = match &input.surfaces {
-                    FaceSurfaces::One(s) => *s,
-                    FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
-                };
-                check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
-                let surface = surfaces.id_of(surface);
-                let part = PartSurface {
-                    part: PartId(part_count),
-                    surface,
-                };
-                part_count += 1;
-                part_surface_ids.push(surface);
-                polygon.clear();
-                polygon.extend(mesh.face_polygon(face));
-                for i in 1..polygon.len().saturating_sub(1) {
-                    triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
-                    triangle_parts.push(part);
-                }
-            }
-            meshes.push(SceneMesh {
-                mesh,
-                first_part,
-                shading: input.shading,
-            });
-        }
-        let mesh_part_count = part_count;
-        let mut shape_parts = Vec::new();
-        let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (si, (shape, surface)) in self.shapes.iter().enumerate() {
-            check_shape(shape).map_err(|reason| SceneError::InvalidShape { shape: si, reason })?;
-            check_surface(surface, || format!("shape {si}"))?;
-            match *shape {
-                Shape::Sphere(sphere) => {
-                    let part = PartSurface {
-                        part: PartId(part_count),
-                        surface: surfaces.id_of(*surface),
-                    };
-                    part_count += 1;
-                    shape_parts.push(PartSource::Sphere { shape: si as u32 });
-                    part_surface_ids.push(part.surface);
-                    shape_prims.push(ShapePrimitive::Sphere { sphere, part });
-                }
-                Shape::Ring(ring) => {
-                    for side in RingSide::ALL {
-                        let part = PartSurface {
-                            part: PartId(part_count),
-                            surface: surfaces.id_of(*surface),
-                        };
-                        part_count += 1;
-                        shape_parts.push(PartSource::Ring {
-                            shape: si as u32,
-                            side,
-                        });
-                        part_surface_ids.push(part.surface);
-                        shape_prims.push(ShapePrimitive::RingSide { ring, side, part });
-                    }
-                }
-            }
-            shapes.push(*shape);
-        }
-        // Dropped (degenerate) faces leave spare room.
-        triangles.shrink_to_fit();
-        triangle_parts.shrink_to_fit();
-        part_surface_ids.shrink_to_fit();
-        if triangles.is_empty() && shape_prims.is_empty() {
-            return Err(SceneError::NoGeometry);
-        }
-        let bounds = meshes
-            .iter()
-            .flat_map(|m| m.mesh.positions().iter())
-            .fold(Aabb::EMPTY, |b, &p| b.grow(p));
-        let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
-        let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
-        // NaN bounds cannot occur (positions are checked finite), but are refused all the same.
-        if reach.is_nan() || reach >= pm_kdtree::MAX_COORDINATE {
-            return Err(SceneError::GeometryOutOfRange {
-                min: bounds.min.to_array(),
-                max: bounds.max.to_array(),
-            });
-        }
+        let mut parts = PartTable::with_capacity(
+            face_count + RingSide::ALL.len() * self.shapes.len(),
+            triangle_count,
+        );
+        let meshes = build_meshes(self.meshes, &self.mesh_options, &mut parts)?;
+        let mesh_part_count = parts.count();
+        let (shapes, shape_parts) = add_shapes(&self.shapes, &mut parts)?;
+        let PartTable {
+            surfaces,
+            surface_ids: part_surface_ids,
+            triangles,
+            triangle_parts,
+            shape_prims,
+            ..
+        } = parts.finish()?;
+        let bounds = scene_bounds(&meshes.meshes, &shapes)?;
         let mut lights = self.lights;
         for light in &mut lights {
             light.attach(&bounds);
@@ -358,11 +302,12 @@ impl SceneBuilder {
         camera
             .validate()
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
-        let far = Vec3::splat(reach);
+        // The scene-wide rounding bound: a ray from the farthest corner across the diagonal.
+        let far = bounds.min.abs().max(bounds.max.abs());
         let epsilon = super::offset::point_error(far, far, bounds.diagonal());
         let has_culling = surfaces.surfaces.iter().any(|s| s.sides.culls_back());
         Ok(Scene {
-            meshes,
+            meshes: meshes.meshes,
             shapes,
             mesh_part_count,
             shape_parts,
@@ -374,10 +319,51 @@ impl SceneBuilder {
             epsilon,
             mesh_options: self.mesh_options,
             bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
-            contacts: None,
-            has_shading,
-            has_emission_textures,
+            has_shading: meshes.has_shading,
+            has_emission_textures: meshes.has_emission_textures,
             has_culling,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ray::Ray;
+    use crate::scene::RayKind;
+    use crate::scenes;
+    use glam::Vec3;
+
+    /// The builder the contact split rebuilds a scene with keeps its shapes, lights and camera.
+    #[test]
+    fn a_scene_rebuilds_from_its_own_meshes_with_the_same_parts_and_hits() {
+        let scene = scenes::build("cornell-box").unwrap();
+        // Collect every mesh as polygons with their surfaces, then rebuild.
+        let mut meshes = Vec::new();
+        for m in scene.meshes() {
+            let mesh = m.half_edge_mesh();
+            let mut positions = Vec::new();
+            let mut faces = Vec::new();
+            let mut surfaces = Vec::new();
+            for f in mesh.faces() {
+                let start = positions.len() as u32;
+                positions.extend(mesh.face_polygon(f));
+                faces.push((start..positions.len() as u32).collect::<Vec<u32>>());
+                surfaces.push(*scene.part_surface(m.part_of_face(f)));
+            }
+            meshes.push((positions, faces, surfaces));
+        }
+        let parts = scene.part_count();
+        let probe = Ray::new(Vec3::new(0.1, 0.2, 0.3), Vec3::new(0.3, -0.2, 0.5));
+        let before = scene.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
+        let mut builder = scene.into_builder_without_meshes();
+        for (p, f, s) in &meshes {
+            builder = builder.mesh_per_face(p, f, s);
+        }
+        let rebuilt = builder.build().unwrap();
+        assert_eq!(rebuilt.part_count(), parts);
+        assert_eq!(rebuilt.lights().len(), 1);
+        let after = rebuilt.intersect(&probe, f32::INFINITY, RayKind::Other).unwrap();
+        assert_eq!(before.part, after.part);
+        assert!((before.t - after.t).abs() < 1e-6);
     }
 }

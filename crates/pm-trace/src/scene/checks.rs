@@ -1,8 +1,11 @@
 //! The checks a scene's inputs pass before it is built (lights, shapes, surfaces) and the
 //! table that stores each distinct surface once.
 
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::material::{Material, Surface};
 use crate::shape::Shape;
-use crate::{Camera, Light, Material, SceneError, Surface};
 use glam::Vec3;
 use pm_geom::Aabb;
 

@@ -1,9 +1,13 @@
 //! A mesh as handed to the [`SceneBuilder`](super::SceneBuilder): its faces stored flat and
 //! bounded before anything is copied, and the scene-wide triangle limit.
 
-use super::MeshShading;
-use crate::Surface;
+use super::shading::MeshShading;
+use crate::material::Surface;
 use glam::Vec3;
+
+// The traversal packs leaf primitive indices into 29 bits; the scene builder's triangle limit
+// keeps every scene inside that.
+const _: () = assert!(MAX_SCENE_TRIANGLES <= crate::bvh::traverse::MAX_PRIMITIVES);
 
 /// The surfaces of a mesh's faces: one for all, or one per face given.
 #[derive(Clone)]

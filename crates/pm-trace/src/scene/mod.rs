@@ -1,12 +1,13 @@
 //! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
-mod builder;
+mod assemble;
+pub(crate) mod builder;
 mod checks;
 mod mesh_input;
 pub mod offset;
 mod queries;
-mod shading;
+pub(crate) mod shading;
 
 pub use builder::SceneBuilder;
 pub use mesh_input::MAX_SCENE_TRIANGLES;
@@ -15,40 +16,15 @@ use shading::MeshShading;
 pub use shading::VertexAttributes;
 
 use crate::bvh::SceneBvh;
-use crate::shape::{RingSide, Shape};
-use crate::{Camera, ContactRecord, Light, Material, SceneError, Surface};
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::Light;
+use crate::material::{Material, Surface};
+use crate::part::{PartId, PartSource, SourceFace};
+use crate::shape::Shape;
 use glam::Vec3;
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
-
-/// Identifies one part of the scene: a mesh face, a sphere, or one side of a ring. Photon
-/// maps are assigned per part.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct PartId(pub u32);
-
-/// What a part is made of.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PartSource {
-    /// Face `face` of mesh `mesh` (indices into [`Scene::meshes`]).
-    MeshFace {
-        /// Mesh index.
-        mesh: u32,
-        /// Face of that mesh.
-        face: FaceId,
-    },
-    /// A sphere (index into [`Scene::shapes`]).
-    Sphere {
-        /// Shape index.
-        shape: u32,
-    },
-    /// One side of a ring (index into [`Scene::shapes`]).
-    Ring {
-        /// Shape index.
-        shape: u32,
-        /// Which side.
-        side: RingSide,
-    },
-}
 
 /// Which rays a query is for: camera rays skip surfaces hidden from the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -141,8 +117,6 @@ pub struct Scene {
     epsilon: f32,
     mesh_options: MeshOptions,
     bvh: Arc<SceneBvh>,
-    /// What [`crate::Contact`] found when it split the faces where they meet; `None` until then.
-    contacts: Option<Arc<ContactRecord>>,
     /// True when some mesh has vertex attributes (else [`Scene::albedo_at`] skips the lookup).
     has_shading: bool,
     /// True when some mesh has an emission texture (else [`Scene::emission`] skips the lookup).
@@ -157,11 +131,6 @@ const SPHERE_PROXY_STACKS: u32 = 16;
 const RING_PROXY_SEGMENTS: u32 = 64;
 
 impl Scene {
-    /// A new, empty builder.
-    pub fn builder() -> SceneBuilder {
-        SceneBuilder::default()
-    }
-
     /// The ray-query structure (for tests that compare its two kinds of search).
     #[cfg(test)]
     pub(crate) fn search(&self) -> &SceneBvh {
@@ -195,23 +164,6 @@ impl Scene {
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
         self.camera = camera;
         Ok(self)
-    }
-
-    /// True when [`crate::Contact`] has split this scene's faces along their contacts (its
-    /// [`crate::Partitioner::prepare_scene`]).
-    pub fn is_split_at_contacts(&self) -> bool {
-        self.contacts.is_some()
-    }
-
-    /// What [`crate::Contact`] found and cut when it split this scene (`None` for a scene it
-    /// has not split).
-    pub fn contact_record(&self) -> Option<&ContactRecord> {
-        self.contacts.as_deref()
-    }
-
-    /// Records that [`crate::Contact`] split this scene, and what it found.
-    pub(crate) fn set_contact_record(&mut self, record: ContactRecord) {
-        self.contacts = Some(Arc::new(record));
     }
 
     /// Bounds of all geometry.
@@ -367,6 +319,19 @@ impl Scene {
         }
     }
 
+    /// The face the user gave for mesh part `part` (`None` for an analytic part). For a scene
+    /// the contact partition has split, ask the [`Partitioned`](crate::partition::Partitioned)
+    /// instead: its scene was rebuilt from pieces, and this would name the pieces.
+    pub fn source_face(&self, part: PartId) -> Option<SourceFace> {
+        match self.part_source(part) {
+            PartSource::MeshFace { mesh, face } => Some(SourceFace {
+                mesh,
+                face: self.meshes[mesh as usize].mesh.source_face(face) as u32,
+            }),
+            PartSource::Sphere { .. } | PartSource::Ring { .. } => None,
+        }
+    }
+
     /// The meshes, in the order they were added.
     pub fn meshes(&self) -> &[SceneMesh] {
         &self.meshes
@@ -375,31 +340,6 @@ impl Scene {
     /// The analytic shapes, in the order they were added.
     pub fn shapes(&self) -> &[Shape] {
         &self.shapes
-    }
-
-    /// A builder holding this scene's analytic shapes, lights, camera and mesh options but none
-    /// of its meshes, for rebuilding the scene with re-meshed geometry (for example faces split
-    /// along contact lines). Add every mesh again, including those of area-light quads.
-    pub fn into_builder_without_meshes(self) -> SceneBuilder {
-        let mut shapes = Vec::with_capacity(self.shapes.len());
-        for (i, source) in self.shape_parts.iter().enumerate() {
-            let surface = *self.part_surface(PartId(self.mesh_part_count + i as u32));
-            match *source {
-                PartSource::Sphere { shape }
-                | PartSource::Ring {
-                    shape,
-                    side: RingSide::Top,
-                } => shapes.push((self.shapes[shape as usize], surface)),
-                _ => {}
-            }
-        }
-        SceneBuilder {
-            shapes,
-            lights: self.lights,
-            camera: Some(self.camera),
-            mesh_options: self.mesh_options,
-            ..SceneBuilder::default()
-        }
     }
 
     /// Calls `f` with each polygon of `part`: a mesh face as it is, analytic parts as a fine

@@ -3,8 +3,9 @@
 
 use super::offset::{offset_point, point_error};
 use super::{Hit, RayKind, Scene};
-use crate::Ray;
-use crate::bvh::{HitPrimitive, PartSurface};
+use crate::bvh::HitPrimitive;
+use crate::part::PartSurface;
+use crate::ray::Ray;
 use glam::Vec3;
 
 /// Triangles from which [`Scene::prefers_ray_pairs`] (and [`Scene::intersect_pair`] interleaves

@@ -1,7 +1,11 @@
 //! The accordion: a zig-zag strip of 8 facets (0.25 m × 1 m, ±45°, right-angle folds) under a
 //! directional light 30° from vertical across the folds.
 
-use crate::{Camera, DirectionalLight, Scene, SceneError, Surface};
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::directional::DirectionalLight;
+use crate::material::Surface;
+use crate::scene::Scene;
 use glam::Vec3;
 
 /// Travel direction of the accordion's light: 30° from straight down, towards +x (across the

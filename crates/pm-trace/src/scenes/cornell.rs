@@ -1,8 +1,11 @@
 //! The Cornell box in its measured dimensions (metres), with a mirror sphere and a diffuse
 //! ring on the floor instead of the two blocks.
 
-use super::box_mesh;
-use crate::{Camera, Scene, SceneError, Surface};
+use super::box_mesh::{Facing, box_mesh};
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::material::Surface;
+use crate::scene::Scene;
 use glam::Vec3;
 
 pub(super) fn cornell_box() -> Result<Scene, SceneError> {
@@ -10,7 +13,7 @@ pub(super) fn cornell_box() -> Result<Scene, SceneError> {
     let white = Surface::diffuse(Vec3::new(0.725, 0.71, 0.68));
     let red = Surface::diffuse(Vec3::new(0.63, 0.065, 0.05));
     let green = Surface::diffuse(Vec3::new(0.14, 0.45, 0.091));
-    let (corners, faces) = box_mesh(Vec3::ZERO, size, true);
+    let (corners, faces) = box_mesh(Vec3::ZERO, size, Facing::Inward);
     // Open at z = 0: floor, ceiling, green x = 0 wall, red x = 0.556 wall, back; no front.
     let walls = &faces[..5];
     let surfaces = [white, white, green, red, white];

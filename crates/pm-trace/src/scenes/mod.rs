@@ -1,6 +1,7 @@
 //! The report's built-in scenes by name, each with its camera, and the scale scenes.
 
 mod accordion;
+mod box_mesh;
 mod cornell;
 mod rooms;
 pub mod scale;
@@ -9,8 +10,8 @@ mod solids;
 pub use accordion::ACCORDION_LIGHT_DIRECTION;
 pub use solids::{SOLID_NAMES, solid_rooms_gap};
 
-use crate::{Scene, SceneError};
-use glam::Vec3;
+use crate::error::SceneError;
+use crate::scene::Scene;
 
 /// Names of the built-in scenes, in the order of Ball & Stejko's report.
 pub const NAMES: [&str; 5] = [
@@ -63,33 +64,4 @@ fn build_scale(name: &str) -> Option<Result<Scene, SceneError>> {
         return Some(scale::split_rooms(n));
     }
     number("cube-field-").map(scale::cube_field)
-}
-
-/// Faces of the box `[min, max]` as quads over the 8 corners `i → (x: bit 0, y: bit 1,
-/// z: bit 2)`, in the order floor (y min), ceiling, x min, x max, z max (back), z min (front).
-/// `inward` winds them so their normals point into the box, otherwise out of it.
-pub(crate) fn box_mesh(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<[u32; 4]>) {
-    let corners = (0..8)
-        .map(|i| {
-            Vec3::new(
-                if i & 1 != 0 { max.x } else { min.x },
-                if i & 2 != 0 { max.y } else { min.y },
-                if i & 4 != 0 { max.z } else { min.z },
-            )
-        })
-        .collect();
-    let mut faces = vec![
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [4, 6, 7, 5],
-        [0, 1, 3, 2],
-    ];
-    if !inward {
-        for f in &mut faces {
-            f.reverse();
-        }
-    }
-    (corners, faces)
 }

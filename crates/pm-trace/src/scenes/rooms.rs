@@ -1,8 +1,13 @@
 //! The two-room scenes: lit and unlit rooms, coloured rooms with floating cubes, and touching
 //! rooms whose floor and ceiling run under and over the dividing wall.
 
-use super::box_mesh;
-use crate::{Camera, PointLight, Scene, SceneBuilder, SceneError, Surface};
+use super::box_mesh::{Facing, box_mesh};
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::light::point::PointLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use glam::Vec3;
 
 /// Inside size of each room, thickness of the dividing wall.
@@ -29,7 +34,11 @@ pub(super) fn rooms_camera() -> Camera {
 /// A closed room with inward normals at `x0`; its front wall (z = 0, facing the camera) is
 /// hidden from camera rays.
 fn add_room(builder: SceneBuilder, x0: f32) -> SceneBuilder {
-    let (corners, faces) = box_mesh(Vec3::new(x0, 0.0, 0.0), Vec3::new(x0 + ROOM, ROOM, ROOM), true);
+    let (corners, faces) = box_mesh(
+        Vec3::new(x0, 0.0, 0.0),
+        Vec3::new(x0 + ROOM, ROOM, ROOM),
+        Facing::Inward,
+    );
     let w = white();
     builder.mesh_per_face(&corners, &faces, &[w, w, w, w, w, w.hidden_from_camera()])
 }
@@ -48,7 +57,7 @@ pub(super) fn colored_rooms() -> Result<Scene, SceneError> {
     let mut builder = two_rooms();
     for x0 in [0.0, ROOM + WALL] {
         let c = Vec3::new(x0 + 0.5 * ROOM, 0.5, 0.5);
-        let (corners, faces) = box_mesh(c - Vec3::splat(0.15), c + Vec3::splat(0.15), false);
+        let (corners, faces) = box_mesh(c - Vec3::splat(0.15), c + Vec3::splat(0.15), Facing::Outward);
         builder = builder.mesh(&corners, &faces, white());
     }
     builder

@@ -2,8 +2,13 @@
 //! into an `n × n` grid of quads, and a field of many separate cubes. Their light transport is
 //! the same at every `n` (the split faces are coplanar), so their images can be compared.
 
-use super::{box_mesh, rooms};
-use crate::{PointLight, Scene, SceneBuilder, SceneError, Surface};
+use super::box_mesh::{Facing, box_mesh};
+use super::rooms;
+use crate::error::SceneError;
+use crate::light::point::PointLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use glam::Vec3;
 
 /// The largest `n` accepted by [`split_rooms`] (2·6·2·n² = 96M triangles at this bound).
@@ -61,7 +66,7 @@ fn add_split_room(builder: SceneBuilder, x0: f32, n: u32) -> SceneBuilder {
     let (corners, quads) = box_mesh(
         Vec3::new(x0, 0.0, 0.0),
         Vec3::new(x0 + rooms::ROOM, rooms::ROOM, rooms::ROOM),
-        true,
+        Facing::Inward,
     );
     let (positions, faces) = split_quads(&corners, &quads, n);
     let w = Surface::diffuse(Vec3::splat(0.75));
@@ -104,7 +109,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
     ];
     let mut positions = Vec::with_capacity(count as usize * 8);
     let mut faces: Vec<[u32; 4]> = Vec::with_capacity(count as usize * 6);
-    let mut rng = crate::Rng::new(0x5ca1e, count as u64);
+    let mut rng = crate::rng::Rng::new(0x5ca1e, count as u64);
     for i in 0..count {
         let (gx, gz) = ((i % per_side) as f32, (i / per_side) as f32);
         let jitter = Vec3::new(rng.next_f32() - 0.5, rng.next_f32(), rng.next_f32() - 0.5) * 0.2 * cell;
@@ -113,7 +118,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
             half * (1.0 + 2.0 * rng.next_f32()),
             (gz + 0.5) * cell,
         ) + jitter;
-        let (corners, quads) = box_mesh(c - Vec3::splat(half), c + Vec3::splat(half), false);
+        let (corners, quads) = box_mesh(c - Vec3::splat(half), c + Vec3::splat(half), Facing::Outward);
         let first = positions.len() as u32;
         positions.extend(corners);
         faces.extend(quads.iter().map(|q| q.map(|v| v + first)));
@@ -126,7 +131,7 @@ pub fn cube_field(count: u32) -> Result<Scene, SceneError> {
             Vec3::new(0.5 * size, 0.6 * size, 0.5 * size),
             Vec3::splat(1000.0),
         ))
-        .camera(crate::Camera::new(
+        .camera(crate::camera::Camera::new(
             Vec3::new(0.5 * size, 0.7 * size, -0.4 * size),
             Vec3::new(0.5 * size, 0.0, 0.5 * size),
             Vec3::Y,
@@ -141,12 +146,20 @@ mod tests {
 
     #[test]
     fn split_rooms_have_24_n_squared_triangles_and_keep_each_wall_one_map() {
-        use crate::{CreaseAngle, Partitioner};
+        use crate::partition::Partitioner;
+        use crate::partition::crease::CreaseAngle;
         for n in [1, 3] {
             let scene = split_rooms(n).unwrap();
             assert_eq!(scene.part_count() as u32, 12 * n * n);
             // Coplanar split faces are edge-connected: one map per wall, as at n = 1.
-            assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 12);
+            assert_eq!(
+                CreaseAngle::default()
+                    .partition(scene.clone())
+                    .unwrap()
+                    .assignment()
+                    .map_count(),
+                12
+            );
         }
         assert!(split_rooms(0).is_err());
         assert!(split_rooms(MAX_SPLIT + 1).is_err());
@@ -154,10 +167,18 @@ mod tests {
 
     #[test]
     fn cube_field_has_one_map_per_cube_and_the_floor() {
-        use crate::{CreaseAngle, Partitioner};
+        use crate::partition::Partitioner;
+        use crate::partition::crease::CreaseAngle;
         let scene = cube_field(50).unwrap();
         assert_eq!(scene.part_count(), 1 + 50 * 6);
-        assert_eq!(CreaseAngle::default().partition(&scene).map_count(), 1 + 50 * 6);
+        assert_eq!(
+            CreaseAngle::default()
+                .partition(scene.clone())
+                .unwrap()
+                .assignment()
+                .map_count(),
+            1 + 50 * 6
+        );
         assert!(cube_field(0).is_err());
     }
 }

@@ -4,9 +4,13 @@
 //! floor, a duplicated floor, and a T-junction of walls. The left room holds a point light, the
 //! right one nothing, so its true radiance is zero (up to what passes a gap).
 
-use super::box_mesh;
+use super::box_mesh::{Facing, box_mesh};
 use super::rooms::{LIT_ROOM_LIGHT, ROOM, WALL, rooms_camera};
-use crate::{PointLight, Scene, SceneBuilder, SceneError, Surface};
+use crate::error::SceneError;
+use crate::light::point::PointLight;
+use crate::material::Surface;
+use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use glam::Vec3;
 
 /// Thickness of the slabs and outer walls.
@@ -41,7 +45,7 @@ fn white() -> Surface {
 }
 
 fn solid(builder: SceneBuilder, min: Vec3, max: Vec3, surface: Surface) -> SceneBuilder {
-    let (corners, faces) = box_mesh(min, max, false);
+    let (corners, faces) = box_mesh(min, max, Facing::Outward);
     builder.mesh(&corners, &faces, surface)
 }
 

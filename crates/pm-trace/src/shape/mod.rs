@@ -1,8 +1,8 @@
 //! Analytic shapes (sphere, ring) that rays intersect exactly, split into parts that each get
 //! a photon map, with a fine polygonal proxy per part for the geometry-based estimators.
 
-mod ring;
-mod sphere;
+pub(crate) mod ring;
+pub(crate) mod sphere;
 
 pub use ring::{Ring, RingSide};
 pub use sphere::Sphere;

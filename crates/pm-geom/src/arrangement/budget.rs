@@ -1,0 +1,69 @@
+//! The bounds on an arrangement's work: pieces and vertices are counted before they are kept,
+//! and the error that says which bound was reached.
+
+use glam::Vec3;
+
+/// Why [`split_polygons_at_intersections`](super::split_polygons_at_intersections) stopped: a bound was reached before it allocated
+/// more.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ArrangementError {
+    /// More candidate face pairs than [`ArrangementOptions::max_pairs`](super::ArrangementOptions::max_pairs).
+    #[error("more than {limit} pairs of faces overlap: too many intersecting faces to resolve")]
+    TooManyPairs {
+        /// The bound.
+        limit: usize,
+    },
+    /// More pieces or cut segments than [`ArrangementOptions::max_pieces`](super::ArrangementOptions::max_pieces).
+    #[error("cutting the faces where they meet makes more than {limit} pieces")]
+    TooManyPieces {
+        /// The bound.
+        limit: usize,
+    },
+    /// More vertices than [`ArrangementOptions::max_vertices`](super::ArrangementOptions::max_vertices).
+    #[error("cutting the faces where they meet makes more than {limit} vertices")]
+    TooManyVertices {
+        /// The bound.
+        limit: usize,
+    },
+}
+
+/// Counts pieces and vertices against the bounds before they are kept.
+pub(super) struct Budget {
+    pub(super) pieces: usize,
+    pub(super) vertices: usize,
+    max_pieces: usize,
+    max_vertices: usize,
+}
+
+impl Budget {
+    pub(super) fn new(max_pieces: usize, max_vertices: usize) -> Self {
+        Budget {
+            pieces: 0,
+            vertices: 0,
+            max_pieces,
+            max_vertices,
+        }
+    }
+
+    pub(super) fn check(&self, pieces: usize, vertices: usize) -> Result<(), ArrangementError> {
+        if pieces > self.max_pieces {
+            return Err(ArrangementError::TooManyPieces {
+                limit: self.max_pieces,
+            });
+        }
+        if vertices > self.max_vertices {
+            return Err(ArrangementError::TooManyVertices {
+                limit: self.max_vertices,
+            });
+        }
+        Ok(())
+    }
+
+    pub(super) fn add(&mut self, piece: &[Vec3]) -> Result<(), ArrangementError> {
+        self.check(self.pieces + 1, self.vertices + piece.len())?;
+        self.pieces += 1;
+        self.vertices += piece.len();
+        Ok(())
+    }
+}

@@ -1,0 +1,37 @@
+//! A photon decoded for an estimate: power in watts, direction, kind and squared distance.
+
+use glam::Vec3;
+use pm_kdtree::{CompactPhoton, PhotonKind, PowerScale};
+
+/// A photon decoded for an estimate: its power in watts, its travel direction, its kind and
+/// its squared distance from the query point.
+///
+/// Everything a kernel needs: a distance-weighted estimator (cone, Epanechnikov, Silverman)
+/// sums `kernel(distance_squared) · power` over the photons [`gather_found`] decodes, with no
+/// scale or sign convention of its own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GatheredPhoton {
+    /// Power per RGB channel in watts: the map's [`PowerScale`] is applied.
+    pub power: Vec3,
+    /// Direction of travel, of any positive length: the estimators use it only in signs of
+    /// dot products and in ratios of them, which do not depend on its length. Photons
+    /// decoded from a map have unit L1 norm ([`CompactPhoton::direction_l1`]).
+    pub direction: Vec3,
+    /// Direct, indirect or caustic.
+    pub kind: PhotonKind,
+    /// Squared Euclidean distance from the query point (m²), whatever the query's metric.
+    pub distance_squared: f32,
+}
+
+impl GatheredPhoton {
+    /// Decodes `photon` of a tree whose power scale is `scale`, seen from `at`.
+    #[inline]
+    pub fn decode(photon: &CompactPhoton, scale: PowerScale, at: Vec3) -> Self {
+        GatheredPhoton {
+            power: photon.power(scale),
+            direction: photon.direction_l1(),
+            kind: photon.kind(),
+            distance_squared: photon.position().distance_squared(at),
+        }
+    }
+}

@@ -1,0 +1,183 @@
+//! Turning a builder's inputs into a scene's parts: mesh faces and analytic shape sides are
+//! numbered as parts, each with its surface (stored once) and its triangles for the BVH.
+
+use super::SceneMesh;
+use super::checks::{SurfaceTable, check_shape, check_surface};
+use super::mesh_input::{FaceSurfaces, MeshInput};
+use crate::bvh::shape::ShapePrimitive;
+use crate::error::SceneError;
+use crate::material::Surface;
+use crate::part::{PartId, PartSource, PartSurface};
+use crate::shape::Shape;
+use crate::shape::ring::RingSide;
+use glam::Vec3;
+use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
+
+/// The parts as they are numbered: each part's surface id (surfaces stored once), the
+/// triangles with their part for the BVH, and the analytic shapes' primitives.
+pub(super) struct PartTable {
+    count: u32,
+    pub(super) surfaces: SurfaceTable,
+    pub(super) surface_ids: Vec<u32>,
+    pub(super) triangles: Vec<[Vec3; 3]>,
+    pub(super) triangle_parts: Vec<PartSurface>,
+    pub(super) shape_prims: Vec<ShapePrimitive>,
+}
+
+impl PartTable {
+    pub(super) fn with_capacity(parts: usize, triangles: usize) -> Self {
+        PartTable {
+            count: 0,
+            surfaces: SurfaceTable::default(),
+            surface_ids: Vec::with_capacity(parts),
+            triangles: Vec::with_capacity(triangles),
+            triangle_parts: Vec::with_capacity(triangles),
+            shape_prims: Vec::new(),
+        }
+    }
+
+    /// Parts numbered so far.
+    pub(super) fn count(&self) -> u32 {
+        self.count
+    }
+
+    /// The next part, with `surface`.
+    fn add(&mut self, surface: Surface) -> PartSurface {
+        let part = PartSurface {
+            part: PartId(self.count),
+            surface: self.surfaces.id_of(surface),
+        };
+        self.count += 1;
+        self.surface_ids.push(part.surface);
+        part
+    }
+
+    /// The table with its spare room (left by dropped, degenerate faces) given back; a scene
+    /// without a triangle or a shape is refused.
+    pub(super) fn finish(mut self) -> Result<Self, SceneError> {
+        self.triangles.shrink_to_fit();
+        self.triangle_parts.shrink_to_fit();
+        self.surface_ids.shrink_to_fit();
+        if self.triangles.is_empty() && self.shape_prims.is_empty() {
+            return Err(SceneError::NoGeometry);
+        }
+        Ok(self)
+    }
+}
+
+/// The scene's meshes, and whether any has vertex attributes or an emission texture.
+pub(super) struct BuiltMeshes {
+    pub(super) meshes: Vec<SceneMesh>,
+    pub(super) has_shading: bool,
+    pub(super) has_emission_textures: bool,
+}
+
+/// Builds each input mesh's half-edge mesh and numbers its faces as parts. Each input mesh is
+/// dropped once built, so the input and the scene are not held twice.
+pub(super) fn build_meshes(
+    inputs: Vec<MeshInput>,
+    mesh_options: &MeshOptions,
+    parts: &mut PartTable,
+) -> Result<BuiltMeshes, SceneError> {
+    let mut out = BuiltMeshes {
+        meshes: Vec::with_capacity(inputs.len()),
+        has_shading: false,
+        has_emission_textures: false,
+    };
+    for (mi, input) in inputs.into_iter().enumerate() {
+        if let FaceSurfaces::PerFace(s) = &input.surfaces
+            && s.len() != input.face_count()
+        {
+            return Err(SceneError::SurfaceCount {
+                mesh: mi,
+                surfaces: s.len(),
+                faces: input.face_count(),
+            });
+        }
+        if let Some(shading) = &input.shading {
+            shading
+                .validate()
+                .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
+            out.has_shading = true;
+            out.has_emission_textures |= shading.has_emission_texture();
+        }
+        let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), mesh_options)
+            .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
+        let first_part = parts.count();
+        let mut polygon = Vec::new();
+        for face in mesh.faces() {
+            let surface = match &input.surfaces {
+                FaceSurfaces::One(s) => *s,
+                FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
+            };
+            check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
+            let part = parts.add(surface);
+            polygon.clear();
+            polygon.extend(mesh.face_polygon(face));
+            for i in 1..polygon.len().saturating_sub(1) {
+                parts.triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
+                parts.triangle_parts.push(part);
+            }
+        }
+        out.meshes.push(SceneMesh {
+            mesh,
+            first_part,
+            shading: input.shading,
+        });
+    }
+    Ok(out)
+}
+
+/// Checks the analytic shapes and numbers their parts (a sphere is one, a ring four): the
+/// shapes, and what each of their parts is.
+pub(super) fn add_shapes(
+    inputs: &[(Shape, Surface)],
+    parts: &mut PartTable,
+) -> Result<(Vec<Shape>, Vec<PartSource>), SceneError> {
+    let mut shape_parts = Vec::new();
+    let mut shapes = Vec::with_capacity(inputs.len());
+    for (si, (shape, surface)) in inputs.iter().enumerate() {
+        check_shape(shape).map_err(|reason| SceneError::InvalidShape { shape: si, reason })?;
+        check_surface(surface, || format!("shape {si}"))?;
+        match *shape {
+            Shape::Sphere(sphere) => {
+                let part = parts.add(*surface);
+                shape_parts.push(PartSource::Sphere { shape: si as u32 });
+                parts.shape_prims.push(ShapePrimitive::Sphere { sphere, part });
+            }
+            Shape::Ring(ring) => {
+                for side in RingSide::ALL {
+                    let part = parts.add(*surface);
+                    shape_parts.push(PartSource::Ring {
+                        shape: si as u32,
+                        side,
+                    });
+                    parts
+                        .shape_prims
+                        .push(ShapePrimitive::RingSide { ring, side, part });
+                }
+            }
+        }
+        shapes.push(*shape);
+    }
+    Ok((shapes, shape_parts))
+}
+
+/// The bounds of the meshes and shapes, refused when beyond the photon kd-tree's coordinate
+/// range.
+pub(super) fn scene_bounds(meshes: &[SceneMesh], shapes: &[Shape]) -> Result<Aabb, SceneError> {
+    let bounds = meshes
+        .iter()
+        .flat_map(|m| m.mesh.positions().iter())
+        .fold(Aabb::EMPTY, |b, &p| b.grow(p));
+    let bounds = shapes.iter().fold(bounds, |b, s| b.union(s.bounds()));
+    let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
+    // NaN bounds cannot occur (positions are checked finite), but are refused all the same.
+    if reach.is_nan() || reach >= pm_kdtree::MAX_COORDINATE {
+        return Err(SceneError::GeometryOutOfRange {
+            min: bounds.min.to_array(),
+            max: bounds.max.to_array(),
+        });
+    }
+    Ok(bounds)
+}
