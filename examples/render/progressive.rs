@@ -63,6 +63,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     }
     .map_err(|e| e.to_string())?;
     let (scene_name, scene_id) = scene_identity(&args.scene)?;
+    let scene_id = scene_id + &light_units_applied(args);
     let base = args
         .out
         .clone()
@@ -84,13 +85,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
         out.image.write_exr(&exr_path).map_err(|e| e.to_string())?;
-        let identity = format!(
-            "sppm k={} photons={} seed={}{}",
-            args.k,
-            args.photons,
-            args.seed,
-            light_units_applied(args)
-        );
+        let identity = format!("sppm k={} photons={} seed={}", args.k, args.photons, args.seed);
         let contacts = (String::new(), "null".to_owned());
         (
             out.image,
@@ -109,15 +104,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             .render(&partitioned, &bar)
             .map_err(|e| e.to_string())?;
         bar.0.finish_and_clear();
-        let identity = format!(
-            "{} maps={} estimator={}{}",
-            s.identity(),
-            args.maps(),
-            estimator,
-            light_units_applied(args)
-        );
+        // The library's identity names the settings, the estimator and the partition; the
+        // scene's (file and light units) is the command line's.
+        let identity = out.identity.clone();
         let a = &out.accumulation;
-        let shard = Shard::from_accumulation(a, &scene_id, &identity).map_err(|e| e.to_string())?;
+        let shard = out.shard(&scene_id).map_err(|e| e.to_string())?;
         shard.write_exr(&exr_path).map_err(|e| e.to_string())?;
         let contacts = (
             contacts_summary(partitioned.record()),

@@ -105,4 +105,7 @@ pub struct ProgressiveRendered {
     pub accumulation: Accumulation,
     /// Counts and timings.
     pub stats: ProgressiveStats,
+    /// Everything that changes the image ([`super::ProgressiveRenderer::identity`]): shards
+    /// of runs whose identities differ never merge.
+    pub identity: String,
 }

@@ -81,8 +81,9 @@ use std::time::{Duration, Instant};
 
 /// The version of the progressive algorithm, part of [`ProgressiveSettings::identity`]: bumped
 /// whenever the same settings would render a different image (v2: pilot extents at sparse
-/// sites, computed once), so that shards of different versions are never merged.
-pub const PROGRESSIVE_VERSION: &str = "v2";
+/// sites, computed once; v3: ray offsets by each hit's rounding error, the final gather's cache
+/// in full precision), so that shards of different versions are never merged.
+pub const PROGRESSIVE_VERSION: &str = "v3";
 
 /// Settings of a progressive render.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -241,9 +242,23 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         self.settings.validate()?;
         let start = Instant::now();
         let (scene, assignment) = (partitioned.scene(), partitioned.assignment());
-        in_pool(self.settings.render.threads, || {
+        let mut rendered = in_pool(self.settings.render.threads, || {
             self.render_in_pool(scene, assignment, progress, start, observe)
-        })?
+        })??;
+        rendered.identity = self.identity(partitioned);
+        Ok(rendered)
+    }
+
+    /// A text naming everything that changes this renderer's image of `partitioned`: the
+    /// settings ([`ProgressiveSettings::identity`]), the estimator ([`Estimator::identity`])
+    /// and the partition ([`Partitioned::identity`]). Shards merge only when theirs are equal.
+    pub fn identity(&self, partitioned: &Partitioned) -> String {
+        format!(
+            "{} estimator={} {}",
+            self.settings.identity(),
+            self.estimator.identity(),
+            partitioned.identity()
+        )
     }
 
     fn render_in_pool(
@@ -308,7 +323,11 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         }
         stats.passes = accumulation.passes;
         stats.wall = start.elapsed();
-        Ok(ProgressiveRendered { accumulation, stats })
+        Ok(ProgressiveRendered {
+            accumulation,
+            stats,
+            identity: String::new(),
+        })
     }
 }
 

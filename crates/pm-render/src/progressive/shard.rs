@@ -5,7 +5,7 @@
 use crate::error::RenderError;
 use crate::image::Image;
 use crate::limits::MAX_PASS;
-use crate::progressive::accumulation::Accumulation;
+use crate::progressive::accumulation::{Accumulation, ProgressiveRendered};
 use crate::progressive::pass_sum::PassSums;
 use glam::DVec3;
 use std::ops::Range;
@@ -391,5 +391,13 @@ impl Shard {
             &merged.scene,
             &merged.settings,
         )
+    }
+}
+
+impl ProgressiveRendered {
+    /// The exact shard of this run's passes, for `scene` (a name or fingerprint of the scene
+    /// file; the settings, estimator and partition come from [`ProgressiveRendered::identity`]).
+    pub fn shard(&self, scene: &str) -> Result<Shard, ShardError> {
+        Shard::from_accumulation(&self.accumulation, scene, &self.identity)
     }
 }

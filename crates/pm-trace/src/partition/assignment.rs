@@ -75,6 +75,22 @@ impl MapAssignment {
         self.map_of_part.len()
     }
 
+    /// A 64-bit fingerprint of the assignment (FNV-1a over the part count and every part's
+    /// map): equal assignments have equal fingerprints, and two partitions that put one part
+    /// in different maps, or of scenes with different parts, almost surely differ. Renders
+    /// that must not be mixed (progressive shards) carry it in their identity.
+    pub fn fingerprint(&self) -> u64 {
+        let mut h = 0xcbf2_9ce4_8422_2325u64;
+        let words = std::iter::once(self.map_of_part.len() as u32).chain(self.map_of_part.iter().copied());
+        for word in words {
+            for byte in word.to_le_bytes() {
+                h ^= u64::from(byte);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+        h
+    }
+
     /// The parts of each map, in part order.
     pub fn parts_per_map(&self) -> Vec<Vec<PartId>> {
         let mut out = vec![Vec::new(); self.map_count as usize];

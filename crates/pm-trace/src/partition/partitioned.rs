@@ -61,6 +61,18 @@ impl Partitioned {
         &self.assignment
     }
 
+    /// A text naming this partition for a render's identity: the part and map counts and the
+    /// assignment's [`MapAssignment::fingerprint`]. Two partitions with the same identity put
+    /// every part of the same parts in the same map, whichever partitioner made them.
+    pub fn identity(&self) -> String {
+        format!(
+            "parts={} maps={} assignment={:016x}",
+            self.assignment.part_count(),
+            self.assignment.map_count(),
+            self.assignment.fingerprint()
+        )
+    }
+
     /// What the contact partition found and cut; `None` for every other partitioner.
     pub fn record(&self) -> Option<&ContactRecord> {
         self.record.as_ref()
