@@ -143,7 +143,9 @@ pub enum RenderError {
     /// Photon tracing refused the scene or the options (no lights, zero power, …).
     #[error("photon tracing: {0}")]
     Trace(#[from] pm_trace::TraceError),
-    /// The partitioner refused the scene (a [`pm_trace::Contact`] scene not split first).
+    /// A partition failed (the contact split past its bounds, an assignment for another
+    /// scene); the renderers take a partition already made, so this comes from `?` on
+    /// [`pm_trace::Partitioner::partition`] in code that renders.
     #[error(transparent)]
     Partition(#[from] pm_trace::PartitionError),
     /// The photon maps could not be built from the traced photons.
