@@ -71,7 +71,7 @@ use crate::settings::RenderSettings;
 use crate::source::final_gather::FinalGatherSource;
 use crate::source::photon_map::DirectLight;
 use glam::Vec3;
-use pass_maps::trace_pass;
+use pass_maps::trace_pass_counted;
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
 use pm_kdtree::PhotonTree;
@@ -348,14 +348,16 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         progress: &dyn Progress,
     ) -> Result<(), RenderError> {
         let r = &self.settings.render;
-        progress.phase("trace");
-        let t = Instant::now();
-        let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
-        stats.trace += t.elapsed();
-        stats.photons_emitted += u64::from(r.photons);
-        stats.photons_stored += maps.stored;
-        stats.add_near_light(accumulation.passes, maps.near_light_fraction);
-        stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+        let maps = trace_pass_counted(
+            scene,
+            assignment,
+            r,
+            pass,
+            options.kinds,
+            accumulation.passes,
+            stats,
+            progress,
+        )?;
         let scale = radius_scale(pass, f64::from(self.settings.alpha)) as f32;
         let cache = if r.mode == Mode::FinalGather {
             progress.phase("precompute");

@@ -4,10 +4,13 @@
 //! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
 
 use crate::error::RenderError;
+use crate::progress::Progress;
+use crate::progressive::accumulation::ProgressiveStats;
 use crate::settings::RenderSettings;
 use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// The photon trees of one pass, indexed by map id, the photons stored in them, and the share
 /// of the pass's power whose first hit lay within 1 mm of its light.
@@ -61,4 +64,28 @@ pub(crate) fn trace_pass(
         stored,
         near_light_fraction,
     })
+}
+
+/// [`trace_pass`] as a renderer runs it: announced as the "trace" phase, timed, and counted
+/// into `stats` as the pass after `done` passes.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn trace_pass_counted(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    settings: &RenderSettings,
+    pass: u64,
+    kinds: KindMask,
+    done: u64,
+    stats: &mut ProgressiveStats,
+    progress: &dyn Progress,
+) -> Result<PassMaps, RenderError> {
+    progress.phase("trace");
+    let t = Instant::now();
+    let maps = trace_pass(scene, assignment, settings, pass, kinds)?;
+    stats.trace += t.elapsed();
+    stats.photons_emitted += u64::from(settings.photons);
+    stats.photons_stored += maps.stored;
+    stats.add_near_light(done, maps.near_light_fraction);
+    stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+    Ok(maps)
 }

@@ -19,7 +19,7 @@
 //! hand-tuned constant.
 
 use super::accumulation::ProgressiveStats;
-use super::pass_maps::trace_pass;
+use super::pass_maps::trace_pass_counted;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
@@ -211,14 +211,7 @@ impl SppmRenderer {
         progress: &dyn Progress,
     ) -> Result<(), RenderError> {
         let r = &self.settings.render;
-        progress.phase("trace");
-        let t = Instant::now();
-        let maps = trace_pass(scene, assignment, r, pass, options.kinds)?;
-        stats.trace += t.elapsed();
-        stats.photons_emitted += u64::from(r.photons);
-        stats.photons_stored += maps.stored;
-        stats.add_near_light(pass, maps.near_light_fraction);
-        stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());
+        let maps = trace_pass_counted(scene, assignment, r, pass, options.kinds, pass, stats, progress)?;
         progress.phase("render");
         let t = Instant::now();
         let update = Pass {

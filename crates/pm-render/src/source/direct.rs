@@ -2,7 +2,7 @@
 //! multiple-importance weights against cosine-weighted rays that hit the lights.
 
 use glam::Vec3;
-use pm_trace::{Hit, Rng, Scene};
+use pm_trace::{Hit, Light, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Irradiance (W/m²) at `hit` straight from the scene's lights, one shadow ray per light.
@@ -17,6 +17,20 @@ pub fn direct_irradiance(scene: &Scene, hit: &Hit, rng: &mut Rng) -> Vec3 {
 /// [`direct_irradiance`] with the shading normal already known (callers that need it for
 /// more than this do not interpolate it twice).
 pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, rng: &mut Rng) -> Vec3 {
+    unoccluded_sum(scene, hit, shading, rng, |_, _, _| 1.0)
+}
+
+/// The sum over the scene's lights of one shadow-ray sample each, `radiance_over_pdf · cos ·
+/// weight(light, direction, cos)`, counting only samples above both the shading and the
+/// geometric surface, finite, and unoccluded.
+#[inline]
+fn unoccluded_sum(
+    scene: &Scene,
+    hit: &Hit,
+    shading: Vec3,
+    rng: &mut Rng,
+    weight: impl Fn(&dyn Light, Vec3, f32) -> f32,
+) -> Vec3 {
     let mut e = Vec3::ZERO;
     for light in scene.lights() {
         let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
@@ -26,9 +40,10 @@ pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, 
         if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
             continue;
         }
-        if !scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
-            e += sample.radiance_over_pdf * cos;
+        if scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
+            continue;
         }
+        e += sample.radiance_over_pdf * cos * weight(light.as_ref(), sample.direction, cos);
     }
     e
 }
@@ -57,25 +72,12 @@ pub(crate) fn direct_irradiance_mis(
     bsdf_samples: f32,
     rng: &mut Rng,
 ) -> Vec3 {
-    let mut e = Vec3::ZERO;
-    for light in scene.lights() {
-        let Some(sample) = light.sample_incident(hit.position, hit.normal, rng) else {
-            continue;
-        };
-        let cos = shading.dot(sample.direction);
-        if cos <= 0.0 || hit.normal.dot(sample.direction) <= 0.0 || !sample.radiance_over_pdf.is_finite() {
-            continue;
-        }
-        if scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
-            continue;
-        }
-        let weight = match light.incident_pdf(hit.position, sample.direction) {
+    unoccluded_sum(scene, hit, shading, rng, |light, direction, cos| {
+        match light.incident_pdf(hit.position, direction) {
             Some(p) => power_heuristic(p.pdf, bsdf_samples * cos * FRAC_1_PI),
             None => 1.0,
-        };
-        e += sample.radiance_over_pdf * cos * weight;
-    }
-    e
+        }
+    })
 }
 
 /// The weight of emission found by a cosine-weighted ray from `from` along `direction` that
