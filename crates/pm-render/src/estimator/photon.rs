@@ -7,7 +7,7 @@ use pm_kdtree::{CompactPhoton, PhotonKind, PowerScale};
 /// its squared distance from the query point.
 ///
 /// Everything a kernel needs: a distance-weighted estimator (cone, Epanechnikov, Silverman)
-/// sums `kernel(distance_squared) · power` over the photons [`gather_found`] decodes, with no
+/// sums `kernel(distance_squared) · power` over the photons [`super::gather_found`] decodes, with no
 /// scale or sign convention of its own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GatheredPhoton {

@@ -10,7 +10,7 @@ use std::any::Any;
 /// warm.
 ///
 /// Estimators written outside this crate use the same building blocks as the built-in ones:
-/// [`find_nearest`] fills [`EstimatorScratch::neighbours`], [`gather_found`] decodes them into
+/// [`super::find_nearest`] fills [`EstimatorScratch::neighbours`], [`super::gather_found`] decodes them into
 /// [`EstimatorScratch::photons`], and [`EstimatorScratch::slot`] keeps buffers of the
 /// estimator's own type alive from one query to the next.
 #[derive(Default)]
@@ -60,13 +60,13 @@ impl EstimatorScratch {
         Self::default()
     }
 
-    /// The neighbours found by the last [`find_nearest`], in no particular order (their
-    /// indices are into the map's [`PhotonTree`], their distances under the query's metric).
+    /// The neighbours found by the last [`super::find_nearest`], in no particular order (their
+    /// indices are into the map's [`pm_kdtree::PhotonTree`], their distances under the query's metric).
     pub fn neighbours(&self) -> &[Neighbour] {
         self.neighbours.as_slice()
     }
 
-    /// The photons decoded by the last [`gather_found`].
+    /// The photons decoded by the last [`super::gather_found`].
     pub fn photons(&self) -> &[GatheredPhoton] {
         &self.photons
     }

@@ -25,8 +25,8 @@ pub enum Mode {
     /// combined with the gather rays that hit lights by multiple importance sampling (power
     /// heuristic, where every light supports it), caustics from the photons of kind caustic
     /// in x's map, and the rest by
-    /// [`FinalGatherOptions::gather_rays`] cosine-weighted rays whose diffuse hits read the
-    /// [`RadianceCache`] in their own map. Clean images at a fraction of a path tracer's time;
+    /// [`crate::FinalGatherOptions::gather_rays`] cosine-weighted rays whose diffuse hits read the
+    /// [`crate::RadianceCache`] in their own map. Clean images at a fraction of a path tracer's time;
     /// the cache's blur is hidden behind the gathered hemisphere.
     FinalGather,
 }

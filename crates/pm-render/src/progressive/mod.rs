@@ -250,7 +250,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
     }
 
     /// A text naming everything that changes this renderer's image of `partitioned`: the
-    /// settings ([`ProgressiveSettings::identity`]), the estimator ([`Estimator::identity`])
+    /// settings ([`ProgressiveSettings::identity`]), the estimator ([`crate::Estimator::identity`])
     /// and the partition ([`Partitioned::identity`]). Shards merge only when theirs are equal.
     pub fn identity(&self, partitioned: &Partitioned) -> String {
         format!(
