@@ -304,13 +304,21 @@ fn bad_final_gather_settings_are_typed_errors() {
     .unwrap();
     let maps = photon_maps::trace::PhotonMaps::build(&scene, assignment, traced).unwrap();
     let options = EstimatorOptions::for_scene(&scene.bounds());
-    for every in [0, 1] {
-        assert!(matches!(
-            RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, every),
-            Err(RenderError::BadFinalGather(_))
-        ));
+    let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    // …and one in more photons than were stored (no point could be expected: the image would
+    // silently lose its indirect light), naming both numbers.
+    for every in [0, 1, stored as u32 + 1, 1_000_000_000] {
+        let result = RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, every);
+        match result {
+            Err(RenderError::BadFinalGather(message)) if every > 1 => {
+                assert!(message.contains(&stored.to_string()), "{message}")
+            }
+            Err(RenderError::BadFinalGather(_)) => {}
+            other => panic!("every {every}: {other:?}"),
+        }
     }
     assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 2).is_ok());
+    assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, stored as u32).is_ok());
 }
 
 /// Jensen's extra bounce where a gather ray lands close to its origin. In the accordion's
