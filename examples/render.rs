@@ -46,7 +46,8 @@ struct Args {
     /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,
-    /// Photon-map partition [default: contact].
+    /// Photon-map partition [default: contact; the path tracer, which reads no photon map,
+    /// renders the scene as given, unsplit].
     #[arg(long, value_enum)]
     maps: Option<MapsChoice>,
     /// Radiance estimator [default: cube].
@@ -233,9 +234,15 @@ fn run(args: &Args) -> Result<(), String> {
             })
             .collect()
     } else {
+        // The path tracer reads no photon map: no partition may change the scene it sees
+        // (one map leaves the scene as given; --maps is refused in that mode).
+        let maps = match args.mode {
+            ModeChoice::PathTrace => MapsChoice::Single,
+            _ => args.maps(),
+        };
         vec![Variant {
             label: "render",
-            maps: args.maps(),
+            maps,
             estimator,
         }]
     };
