@@ -118,6 +118,14 @@ const NONE: u32 = u32::MAX;
 /// A polygon not yet given a region.
 const UNASSIGNED: u32 = u32::MAX;
 
+/// The plane a region grows in: through the first vertex of the region's first polygon,
+/// holding polygons whose normals are within the angle tolerance (`min_cos`) of its normal.
+#[derive(Clone, Copy)]
+struct RegionPlane {
+    origin: DVec3,
+    min_cos: f64,
+}
+
 impl CoplanarMerger {
     /// An empty merger with these tolerances.
     pub fn new(options: MergeOptions) -> Self {
@@ -187,14 +195,64 @@ impl CoplanarMerger {
     /// were pushed, in the order of their regions' first polygons.
     pub fn merge(&self, mut emit: impl FnMut(&[Vec3])) {
         let n = self.len() as u32;
-        // Relative to the input's size, and never below the rounding of its coordinates.
+        let tol = self.plane_tolerance();
+        let min_cos = f64::from(self.options.max_angle).cos();
+        let across = self.edge_neighbours();
+        let mut region = vec![UNASSIGNED; n as usize];
+        let mut members = Vec::new();
+        let mut simplified = Vec::new();
+        for seed in 0..n {
+            if region[seed as usize] != UNASSIGNED {
+                continue;
+            }
+            let plane = RegionPlane {
+                origin: self.polygon(seed)[0].as_dvec3(),
+                min_cos,
+            };
+            let normal = self
+                .grow_region(seed, plane, tol, &across, &mut region, &mut members)
+                .normalize();
+            // Each member was within the tolerance of the plane as it stood when it joined;
+            // all must be within twice of the final one, or the region stays as it was.
+            if members.len() == 1
+                || !members
+                    .iter()
+                    .all(|&m| self.lies_in_plane(m, plane, normal, 2.0 * f64::from(tol)))
+            {
+                for &m in &members {
+                    emit(self.polygon(m));
+                }
+                continue;
+            }
+            let normal = normal.as_vec3();
+            let area: f64 = members.iter().map(|&m| self.areas[m as usize]).sum();
+            if let Some(outline) = self.region_outline(seed, &members, &across, &region) {
+                simplify_outline(&outline, tol, &mut simplified);
+                if accepts(&simplified, normal, area) {
+                    emit(&simplified);
+                    continue;
+                }
+            }
+            let shared = self.shared_edges(&members, &across);
+            let polygons = members.iter().map(|&m| self.polygon(m).to_vec()).collect();
+            let areas: Vec<f64> = members.iter().map(|&m| self.areas[m as usize]).collect();
+            greedy::merge_region(polygons, &areas, &shared, normal, tol, &mut emit);
+        }
+    }
+
+    /// The distance tolerance of the pushed polygons: relative to the input's size, and never
+    /// below the rounding of its coordinates (zero when the input's size is not finite).
+    fn plane_tolerance(&self) -> f32 {
         let magnitude = self.bounds.min.abs().max(self.bounds.max.abs()).max_element();
         let tol = self.options.relative_distance * self.bounds.diagonal() + 4.0 * f32::EPSILON * magnitude;
-        let tol = if tol.is_finite() { tol } else { 0.0 };
-        let min_cos = f64::from(self.options.max_angle).cos();
+        if tol.is_finite() { tol } else { 0.0 }
+    }
 
-        // across[starts[i] + k]: the polygon across edge k of polygon i, when exactly one
-        // polygon walks it the other way and no other polygon walks it this way.
+    /// The polygon across each directed edge (`across[starts[i] + k]` for edge k of polygon
+    /// i), when exactly one polygon walks it the other way and no other polygon walks it this
+    /// way; [`NONE`] otherwise.
+    fn edge_neighbours(&self) -> Vec<u32> {
+        let n = self.len() as u32;
         let mut owner: HashMap<(VertexKey, VertexKey), u32, FastHash> =
             HashMap::with_capacity_and_hasher(self.vertices.len(), FastHash::default());
         for i in 0..n {
@@ -219,93 +277,100 @@ impl CoplanarMerger {
                 }
             }
         }
-        drop(owner);
-        let neighbours = |i: u32| {
-            let (start, end) = (self.starts[i as usize], self.starts[i as usize + 1]);
-            across[start..end].iter().copied().zip(self.edges(i))
-        };
+        across
+    }
 
-        let mut region = vec![UNASSIGNED; n as usize];
-        let mut members = Vec::new();
-        let mut simplified = Vec::new();
-        for seed in 0..n {
-            if region[seed as usize] != UNASSIGNED {
-                continue;
-            }
-            // The region's plane: through the seed's first vertex, normal to the sum of the
-            // members' vector areas, which sharpens as the region grows (one small polygon's
-            // normal is too rough to hold a whole wall within the tolerance).
-            let origin = self.polygon(seed)[0].as_dvec3();
-            let mut vector_area = self.vector_area(seed);
-            let in_plane = |q: u32, normal: DVec3, tol: f64| {
-                self.normals[q as usize].as_dvec3().dot(normal) >= min_cos
-                    && self
-                        .polygon(q)
-                        .iter()
-                        .all(|&v| (v.as_dvec3() - origin).dot(normal).abs() <= tol)
-            };
-            region[seed as usize] = seed;
-            members.clear();
-            members.push(seed);
-            let mut next = 0;
-            while next < members.len() {
-                let p = members[next];
-                next += 1;
-                for (q, _) in neighbours(p) {
-                    if q != NONE
-                        && region[q as usize] == UNASSIGNED
-                        && in_plane(q, vector_area.normalize(), f64::from(tol))
-                    {
-                        region[q as usize] = seed;
-                        members.push(q);
-                        vector_area += self.vector_area(q);
-                    }
+    /// The polygon across each edge of polygon `i` (or [`NONE`]), with the edge.
+    fn neighbours<'a>(&'a self, across: &'a [u32], i: u32) -> impl Iterator<Item = (u32, (Vec3, Vec3))> + 'a {
+        let (start, end) = (self.starts[i as usize], self.starts[i as usize + 1]);
+        across[start..end].iter().copied().zip(self.edges(i))
+    }
+
+    /// True when polygon `q`'s normal is within the angle tolerance of `normal` and all its
+    /// vertices within `tol` of the plane through `plane.origin` normal to `normal`.
+    fn lies_in_plane(&self, q: u32, plane: RegionPlane, normal: DVec3, tol: f64) -> bool {
+        self.normals[q as usize].as_dvec3().dot(normal) >= plane.min_cos
+            && self
+                .polygon(q)
+                .iter()
+                .all(|&v| (v.as_dvec3() - plane.origin).dot(normal).abs() <= tol)
+    }
+
+    /// Grows the region of `seed` breadth-first across shared edges into `members`, marking
+    /// each member's `region` with `seed`, and returns the sum of the members' vector areas.
+    ///
+    /// A neighbour joins when it lies in the region's plane as it stands: normal to the sum so
+    /// far, which sharpens as the region grows (one small polygon's normal is too rough to hold
+    /// a whole wall within the tolerance).
+    fn grow_region(
+        &self,
+        seed: u32,
+        plane: RegionPlane,
+        tol: f32,
+        across: &[u32],
+        region: &mut [u32],
+        members: &mut Vec<u32>,
+    ) -> DVec3 {
+        let mut vector_area = self.vector_area(seed);
+        region[seed as usize] = seed;
+        members.clear();
+        members.push(seed);
+        let mut next = 0;
+        while next < members.len() {
+            let p = members[next];
+            next += 1;
+            for (q, _) in self.neighbours(across, p) {
+                if q != NONE
+                    && region[q as usize] == UNASSIGNED
+                    && self.lies_in_plane(q, plane, vector_area.normalize(), f64::from(tol))
+                {
+                    region[q as usize] = seed;
+                    members.push(q);
+                    vector_area += self.vector_area(q);
                 }
             }
-            let normal = vector_area.normalize();
-            // Each member was within the tolerance of the plane as it stood when it joined;
-            // all must be within twice of the final one, or the region stays as it was.
-            if members.len() == 1 || !members.iter().all(|&m| in_plane(m, normal, 2.0 * f64::from(tol))) {
-                for &m in &members {
-                    emit(self.polygon(m));
-                }
-                continue;
-            }
-            let normal = normal.as_vec3();
-            let area: f64 = members.iter().map(|&m| self.areas[m as usize]).sum();
-            let in_region = |q: u32| q != NONE && region[q as usize] == seed;
-            if let Some(outline) = Self::single_outline(&members, |p| {
-                neighbours(p)
-                    .filter(move |&(q, _)| !in_region(q))
-                    .map(|(_, edge)| edge)
-            }) {
-                simplify_outline(&outline, tol, &mut simplified);
-                if accepts(&simplified, normal, area) {
-                    emit(&simplified);
-                    continue;
-                }
-            }
-            let local: HashMap<u32, u32> = members.iter().enumerate().map(|(l, &m)| (m, l as u32)).collect();
-            let mut shared = Vec::new();
-            for &p in &members {
-                for (q, (a, b)) in neighbours(p) {
-                    if q != NONE
-                        && p < q
-                        && let Some(&lq) = local.get(&q)
-                    {
-                        shared.push(SharedEdge {
-                            p: local[&p],
-                            q: lq,
-                            a,
-                            b,
-                        });
-                    }
-                }
-            }
-            let polygons = members.iter().map(|&m| self.polygon(m).to_vec()).collect();
-            let areas: Vec<f64> = members.iter().map(|&m| self.areas[m as usize]).collect();
-            greedy::merge_region(polygons, &areas, &shared, normal, tol, &mut emit);
         }
+        vector_area
+    }
+
+    /// The outline of the region of `seed` (its `members`' edges with no neighbour in the
+    /// region) as one loop, when it forms exactly one ([`Self::single_outline`]).
+    fn region_outline(
+        &self,
+        seed: u32,
+        members: &[u32],
+        across: &[u32],
+        region: &[u32],
+    ) -> Option<Vec<Vec3>> {
+        let in_region = |q: u32| q != NONE && region[q as usize] == seed;
+        Self::single_outline(members, |p| {
+            self.neighbours(across, p)
+                .filter(move |&(q, _)| !in_region(q))
+                .map(|(_, edge)| edge)
+        })
+    }
+
+    /// The edges the region's `members` share with one another, once each, numbered by the
+    /// members' positions in `members`.
+    fn shared_edges(&self, members: &[u32], across: &[u32]) -> Vec<SharedEdge> {
+        let local: HashMap<u32, u32> = members.iter().enumerate().map(|(l, &m)| (m, l as u32)).collect();
+        let mut shared = Vec::new();
+        for &p in members {
+            for (q, (a, b)) in self.neighbours(across, p) {
+                if q != NONE
+                    && p < q
+                    && let Some(&lq) = local.get(&q)
+                {
+                    shared.push(SharedEdge {
+                        p: local[&p],
+                        q: lq,
+                        a,
+                        b,
+                    });
+                }
+            }
+        }
+        shared
     }
 
     /// The region's boundary (edges without a neighbour in it) chained into a loop, when it

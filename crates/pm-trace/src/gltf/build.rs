@@ -22,6 +22,7 @@ use crate::light::spot::SpotLight;
 use crate::light::textured_area::TexturedAreaLight;
 use crate::material::Surface;
 use crate::scene::Scene;
+use crate::scene::builder::SceneBuilder;
 use crate::scene::shading::VertexAttributes;
 use crate::sides::Sides;
 
@@ -38,63 +39,17 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
     let mut builder = Scene::builder();
     let mut has_light = false;
     for mesh in content.meshes.iter().filter(|m| !m.triangles.is_empty()) {
-        let material = mesh.material;
-        let sides = if material.double_sided {
-            Sides::Double
-        } else {
-            Sides::Single
-        };
-        let surface = Surface {
-            material: material.kind,
-            emission: material.emission,
-            camera_visible: true,
-            sides,
-        };
-        let attributed = mesh.uvs.is_some()
-            || mesh.colors.is_some()
-            || mesh.normals.is_some()
-            || mesh.emission_texture.is_some();
-        builder = if attributed {
-            let attributes = VertexAttributes {
-                uvs: mesh.uvs.clone(),
-                colors: mesh.colors.clone(),
-                normals: mesh.normals.clone(),
-                base_color_texture: mesh.base_color_texture.clone(),
-                emission_texture: mesh.emission_texture.clone(),
-            };
-            builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)
-        } else {
-            builder.mesh(&mesh.positions, &mesh.triangles, surface)
-        };
-        if material.emission.max_element() > 0.0
-            && let Some(light) = emitter(mesh, sides)
+        let surface = surface_of(mesh);
+        builder = add_mesh(builder, mesh, surface);
+        if mesh.material.emission.max_element() > 0.0
+            && let Some(light) = emitter(mesh, surface.sides)
         {
             builder = builder.boxed_light(light);
             has_light = true;
         }
     }
     for light in &content.lights {
-        builder = match *light {
-            GltfLight::Point { position, intensity } => {
-                builder.light(PointLight::new(position, 4.0 * PI * intensity))
-            }
-            GltfLight::Spot {
-                position,
-                direction,
-                intensity,
-                outer_cone_angle,
-                ..
-            } => builder.light(SpotLight::new(
-                position,
-                direction,
-                outer_cone_angle,
-                spot_power(intensity, outer_cone_angle),
-            )),
-            GltfLight::Directional {
-                direction,
-                irradiance,
-            } => builder.light(DirectionalLight::new(direction, irradiance)),
-        };
+        builder = add_punctual_light(builder, light);
         has_light = true;
     }
     let camera = content.camera.unwrap_or_else(|| frame_bounds(min, max));
@@ -118,6 +73,70 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
             file: file.to_path_buf(),
             source,
         })
+}
+
+/// The surface of `mesh`: its material's scattering and emission, seen by the camera, from
+/// both sides when the material is double-sided.
+fn surface_of(mesh: &GltfMesh) -> Surface {
+    let material = mesh.material;
+    let sides = if material.double_sided {
+        Sides::Double
+    } else {
+        Sides::Single
+    };
+    Surface {
+        material: material.kind,
+        emission: material.emission,
+        camera_visible: true,
+        sides,
+    }
+}
+
+/// Adds `mesh` to `builder` with `surface`, with its vertex attributes (texture coordinates,
+/// colours, normals, textures) when it has any.
+fn add_mesh(builder: SceneBuilder, mesh: &GltfMesh, surface: Surface) -> SceneBuilder {
+    let attributed = mesh.uvs.is_some()
+        || mesh.colors.is_some()
+        || mesh.normals.is_some()
+        || mesh.emission_texture.is_some();
+    if attributed {
+        let attributes = VertexAttributes {
+            uvs: mesh.uvs.clone(),
+            colors: mesh.colors.clone(),
+            normals: mesh.normals.clone(),
+            base_color_texture: mesh.base_color_texture.clone(),
+            emission_texture: mesh.emission_texture.clone(),
+        };
+        builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)
+    } else {
+        builder.mesh(&mesh.positions, &mesh.triangles, surface)
+    }
+}
+
+/// Adds glTF punctual `light` to `builder` as the library's light: a point light of power
+/// 4π × intensity, a spot of the power of its outer cone ([`spot_power`]), a directional light.
+fn add_punctual_light(builder: SceneBuilder, light: &GltfLight) -> SceneBuilder {
+    match *light {
+        GltfLight::Point { position, intensity } => {
+            builder.light(PointLight::new(position, 4.0 * PI * intensity))
+        }
+        GltfLight::Spot {
+            position,
+            direction,
+            intensity,
+            outer_cone_angle,
+            ..
+        } => builder.light(SpotLight::new(
+            position,
+            direction,
+            outer_cone_angle,
+            spot_power(intensity, outer_cone_angle),
+        )),
+        GltfLight::Directional {
+            direction,
+            irradiance,
+        } => builder.light(DirectionalLight::new(direction, irradiance)),
+    }
 }
 
 /// The area light of an emissive mesh: textured when its emission is (power and selection

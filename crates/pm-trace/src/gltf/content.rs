@@ -14,7 +14,7 @@ use super::camera::{GltfCamera, place_camera};
 use super::decoded::{Decoded, decode_primitive};
 use super::emissive::{TextureCache, TextureSources};
 use super::error::GltfError;
-use super::graph::{root_nodes, walk};
+use super::graph::{PlacedNode, root_nodes, walk};
 use super::light::{GltfLight, place_light};
 use super::mesh::GltfMesh;
 use super::options::GltfOptions;
@@ -110,6 +110,8 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
         .saturating_add(triangles.saturating_mul(per_triangle))
 }
 
+/// Flattens the scene of `root` into world-space content: every node the scene reaches, in
+/// walk order, adds its mesh's primitives, its camera (the first one only) and its light.
 fn flatten(
     file: &Path,
     root: &json::Root,
@@ -118,91 +120,71 @@ fn flatten(
 ) -> Result<GltfContent, GltfError> {
     let reader = AccessorReader::new(file, root, buffers);
     // The buffers are held while the scene is built from the content.
-    let mut scene_bytes: u64 = buffers_held(buffers);
+    let scene_bytes: u64 = buffers_held(buffers);
     let buffer_bytes: u64 = buffers.iter().map(|b| b.as_slice().len() as u64).sum();
     let roots = root_nodes(file, root)?;
     let placed = walk(file, root, &roots)?;
-    let mut content = GltfContent::default();
-    let mut triangle_count = 0u64;
-    let mut textures = TextureCache::default();
-    let mut decoded_cache: HashMap<(usize, usize), Decoded> = HashMap::new();
-    let sources = TextureSources {
-        file,
-        root,
-        buffers,
-        reader: &reader,
-        options,
+    let mut flattening = Flattening {
+        sources: TextureSources {
+            file,
+            root,
+            buffers,
+            reader: &reader,
+            options,
+        },
+        buffer_bytes,
+        scene_bytes,
+        triangle_count: 0,
+        textures: TextureCache::default(),
+        decoded_cache: HashMap::new(),
+        content: GltfContent::default(),
     };
     for p in &placed {
+        flattening.place_node(p)?;
+    }
+    Ok(flattening.content)
+}
+
+/// The content built so far from one file, with the budgets it has spent and the decodes and
+/// textures later placements reuse.
+struct Flattening<'a> {
+    sources: TextureSources<'a>,
+    /// Bytes of all the file's buffers: the most any accessor can claim.
+    buffer_bytes: u64,
+    /// Bytes the scene built from the content will take (checked against
+    /// [`GltfOptions::max_scene_bytes`]).
+    scene_bytes: u64,
+    /// Triangles placed (checked against [`GltfOptions::max_triangles`]).
+    triangle_count: u64,
+    textures: TextureCache,
+    /// Each primitive (mesh and primitive indices) decoded at its first placement.
+    decoded_cache: HashMap<(usize, usize), Decoded>,
+    content: GltfContent,
+}
+
+impl Flattening<'_> {
+    /// Adds what placed node `p` holds to the content: its mesh's primitives, its camera when
+    /// none was placed yet, and its `KHR_lights_punctual` light.
+    fn place_node(&mut self, p: &PlacedNode) -> Result<(), GltfError> {
+        let (file, root, options) = (self.sources.file, self.sources.root, self.sources.options);
         let node = &root.nodes[p.index];
-        let missing = |what: &str, index: usize, len: usize| GltfError::Node {
-            file: file.to_path_buf(),
-            node: p.index,
-            reason: format!("{what} {index} does not exist (the file has {len})"),
-        };
         if let Some(mesh_index) = node.mesh.map(|m| m.value()) {
-            let mesh = root
-                .meshes
-                .get(mesh_index)
-                .ok_or_else(|| missing("mesh", mesh_index, root.meshes.len()))?;
+            let mesh = root.meshes.get(mesh_index).ok_or_else(|| GltfError::Node {
+                file: file.to_path_buf(),
+                node: p.index,
+                reason: format!(
+                    "mesh {mesh_index} does not exist (the file has {})",
+                    root.meshes.len()
+                ),
+            })?;
             for (primitive, prim) in mesh.primitives.iter().enumerate() {
-                let at = (mesh_index, primitive);
-                // The first placement decodes the accessors (counted from their declared
-                // counts, before decoding); the others reuse the decode and count what they add.
-                let bytes = match decoded_cache.get(&at) {
-                    Some(Decoded::Triangles(local)) => local.placement_bytes(),
-                    Some(_) => 0,
-                    None => placement_bytes(root, prim, buffer_bytes),
-                };
-                scene_bytes = scene_bytes.saturating_add(bytes);
-                if scene_bytes > options.max_scene_bytes {
-                    return Err(GltfError::SceneTooLarge {
-                        file: file.to_path_buf(),
-                        node: p.index,
-                        mesh: mesh_index,
-                        budget: options.max_scene_bytes,
-                        needed: scene_bytes,
-                    });
-                }
-                let decoded = match decoded_cache.get(&at) {
-                    Some(d) => d.clone(),
-                    None => {
-                        let d = decode_primitive(
-                            &sources,
-                            &mut textures,
-                            &mut scene_bytes,
-                            &mut content.warnings,
-                            at,
-                            prim,
-                        )?;
-                        decoded_cache.insert(at, d.clone());
-                        d
-                    }
-                };
-                match decoded {
-                    Decoded::Triangles(local) => {
-                        triangle_count += local.triangle_count() as u64;
-                        if triangle_count > options.max_triangles {
-                            return Err(GltfError::Node {
-                                file: file.to_path_buf(),
-                                node: p.index,
-                                reason: format!(
-                                    "the scene places more than {} triangles (GltfOptions::max_triangles)",
-                                    options.max_triangles
-                                ),
-                            });
-                        }
-                        content.meshes.push(local.place(file, p.index, at, p.world)?);
-                    }
-                    Decoded::NotTriangles => content.skipped_non_triangle += 1,
-                    Decoded::NoPositions => content.skipped_without_positions += 1,
-                }
+                self.place_primitive(p, (mesh_index, primitive), prim)?;
             }
         }
         if let Some(camera) = node.camera.map(|c| c.value())
-            && content.camera.is_none()
+            && self.content.camera.is_none()
         {
-            content.camera = place_camera(file, root, p.index, camera, p.world)?;
+            self.content.camera = place_camera(file, root, p.index, camera, p.world)?;
         }
         let light = node
             .extensions
@@ -210,10 +192,92 @@ fn flatten(
             .and_then(|e| e.khr_lights_punctual.as_ref())
             .map(|l| l.light.value());
         if let Some(light) = light {
-            content
+            self.content
                 .lights
                 .push(place_light(file, root, p.index, light, p.world, options)?);
         }
+        Ok(())
     }
-    Ok(content)
+
+    /// Places primitive `prim` (mesh and primitive indices `at`) with node `p`: its bytes
+    /// charged to the budget, decoded once, its triangles counted against
+    /// [`GltfOptions::max_triangles`] and placed in the world (or counted as skipped).
+    fn place_primitive(
+        &mut self,
+        p: &PlacedNode,
+        at: (usize, usize),
+        prim: &json::mesh::Primitive,
+    ) -> Result<(), GltfError> {
+        let (file, options) = (self.sources.file, self.sources.options);
+        self.charge_placement(p, at, prim)?;
+        match self.decode_once(at, prim)? {
+            Decoded::Triangles(local) => {
+                self.triangle_count += local.triangle_count() as u64;
+                if self.triangle_count > options.max_triangles {
+                    return Err(GltfError::Node {
+                        file: file.to_path_buf(),
+                        node: p.index,
+                        reason: format!(
+                            "the scene places more than {} triangles (GltfOptions::max_triangles)",
+                            options.max_triangles
+                        ),
+                    });
+                }
+                self.content.meshes.push(local.place(file, p.index, at, p.world)?);
+            }
+            Decoded::NotTriangles => self.content.skipped_non_triangle += 1,
+            Decoded::NoPositions => self.content.skipped_without_positions += 1,
+        }
+        Ok(())
+    }
+
+    /// Adds the bytes one more placement of primitive `prim` (indices `at`) by node `p` takes to
+    /// the scene's bytes, and fails with [`GltfError::SceneTooLarge`] past the budget. The
+    /// first placement is counted from the accessors' declared counts, before decoding; the
+    /// others from the decode they reuse.
+    fn charge_placement(
+        &mut self,
+        p: &PlacedNode,
+        at: (usize, usize),
+        prim: &json::mesh::Primitive,
+    ) -> Result<(), GltfError> {
+        let bytes = match self.decoded_cache.get(&at) {
+            Some(Decoded::Triangles(local)) => local.placement_bytes(),
+            Some(_) => 0,
+            None => placement_bytes(self.sources.root, prim, self.buffer_bytes),
+        };
+        self.scene_bytes = self.scene_bytes.saturating_add(bytes);
+        if self.scene_bytes > self.sources.options.max_scene_bytes {
+            return Err(GltfError::SceneTooLarge {
+                file: self.sources.file.to_path_buf(),
+                node: p.index,
+                mesh: at.0,
+                budget: self.sources.options.max_scene_bytes,
+                needed: self.scene_bytes,
+            });
+        }
+        Ok(())
+    }
+
+    /// Primitive `prim` (indices `at`) decoded: from the cache, else decoded now (its warnings
+    /// added to the content's, its textures' bytes to the scene's) and cached.
+    fn decode_once(
+        &mut self,
+        at: (usize, usize),
+        prim: &json::mesh::Primitive,
+    ) -> Result<Decoded, GltfError> {
+        if let Some(d) = self.decoded_cache.get(&at) {
+            return Ok(d.clone());
+        }
+        let d = decode_primitive(
+            &self.sources,
+            &mut self.textures,
+            &mut self.scene_bytes,
+            &mut self.content.warnings,
+            at,
+            prim,
+        )?;
+        self.decoded_cache.insert(at, d.clone());
+        Ok(d)
+    }
 }

@@ -11,6 +11,7 @@ use json::accessor::Type;
 use json::mesh::Semantic;
 use json::validation::Checked;
 
+use super::accessor::AccessorReader;
 use super::compact::{gather, keep_referenced};
 use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
@@ -36,6 +37,9 @@ pub(super) struct LocalPrimitive {
     emission_texture: Option<EmissionTexture>,
 }
 
+/// A texture with the sampler that reads it.
+type SampledTexture = (Arc<Texture>, Sampler);
+
 /// What a primitive decodes to.
 #[derive(Clone, Debug)]
 pub(super) enum Decoded {
@@ -60,79 +64,34 @@ pub(super) fn decode_primitive(
     prim: &json::mesh::Primitive,
 ) -> Result<Decoded, GltfError> {
     let (file, root, reader, options) = (sources.file, sources.root, sources.reader, sources.options);
-    let (mesh_index, primitive) = at;
-    let error = |reason: String| GltfError::Primitive {
-        file: file.to_path_buf(),
-        mesh: mesh_index,
-        primitive,
-        reason,
-    };
     let material_index = prim.material.map(|m| m.value());
-    let json_material = match material_index {
-        Some(i) => Some(root.materials.get(i).ok_or_else(|| {
-            error(format!(
-                "material {i} does not exist (the file has {})",
-                root.materials.len()
-            ))
-        })?),
-        None => None,
-    };
+    let json_material = json_material(file, root, at, material_index)?;
     let (positions, triangles) = match read_primitive(file, reader, at, prim, Mat4::IDENTITY)? {
         PrimitiveGeometry::Triangles { positions, triangles } => (positions, triangles),
         PrimitiveGeometry::NotTriangles => return Ok(Decoded::NotTriangles),
         PrimitiveGeometry::NoPositions => return Ok(Decoded::NoPositions),
     };
-    let material = map_material(json_material, options).map_err(|reason| {
-        error(match material_index {
-            Some(i) => format!("material {i}: {reason}"),
-            None => reason,
-        })
-    })?;
-    let attribute = |semantic: Semantic| prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value());
-    let n = positions.len();
-    let mut base_color_texture = None;
-    let mut uvs: Option<Vec<Vec2>> = None;
-    if let Some(reference) = material.base_color_texture {
-        let loaded = cached_texture(sources, textures, reference.index, scene_bytes)?;
-        uvs = reference.read_uvs(reader, prim)?;
-        if uvs.is_some() {
-            base_color_texture = Some(loaded);
-        } else {
-            warnings.push(format!(
-                "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{}, base-colour texture ignored",
-                reference.tex_coord
-            ));
-        }
-    }
+    let material = primitive_material(file, at, json_material, material_index, options)?;
+    let (base_color_texture, uvs) =
+        base_color_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
     let emission = emission_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
-    let colors = match attribute(Semantic::Colors(0)) {
-        Some(a) => Some(reader.read_colors(a)?),
-        None => None,
-    };
-    let normals = match attribute(Semantic::Normals) {
-        Some(a) => Some(
-            reader
-                .read_vec(a, &[Type::Vec3])?
-                .iter()
-                .map(|v| v.truncate())
-                .collect::<Vec<Vec3>>(),
-        ),
-        None => None,
-    };
-    let lengths = [
-        ("texture coordinates", uvs.as_ref().map(Vec::len)),
-        (
-            "emissive texture coordinates",
-            emission.as_ref().map(|e| e.uvs.len()),
-        ),
-        ("colours", colors.as_ref().map(Vec::len)),
-        ("normals", normals.as_ref().map(Vec::len)),
-    ];
-    for (what, len) in lengths {
-        if let Some(len) = len.filter(|&len| len != n) {
-            return Err(error(format!("{len} {what} for {n} positions")));
-        }
-    }
+    let colors = vertex_colors(reader, prim)?;
+    let normals = vertex_normals(reader, prim)?;
+    let n = positions.len();
+    check_attribute_lengths(
+        file,
+        at,
+        n,
+        [
+            ("texture coordinates", uvs.as_ref().map(Vec::len)),
+            (
+                "emissive texture coordinates",
+                emission.as_ref().map(|e| e.uvs.len()),
+            ),
+            ("colours", colors.as_ref().map(Vec::len)),
+            ("normals", normals.as_ref().map(Vec::len)),
+        ],
+    )?;
     // Only the vertices the triangles use are kept (and later welded).
     let mut triangles = triangles;
     let kept = keep_referenced(&mut triangles, n);
@@ -150,6 +109,141 @@ pub(super) fn decode_primitive(
             ..e
         }),
     })))
+}
+
+/// [`GltfError::Primitive`] for primitive `at` (mesh and primitive indices) of `file`.
+fn primitive_error(file: &Path, at: (usize, usize), reason: String) -> GltfError {
+    GltfError::Primitive {
+        file: file.to_path_buf(),
+        mesh: at.0,
+        primitive: at.1,
+        reason,
+    }
+}
+
+/// The material `material_index` of primitive `at` (mesh and primitive indices) names, if
+/// any; a missing one fails.
+fn json_material<'r>(
+    file: &Path,
+    root: &'r json::Root,
+    at: (usize, usize),
+    material_index: Option<usize>,
+) -> Result<Option<&'r json::Material>, GltfError> {
+    match material_index {
+        Some(i) => Ok(Some(root.materials.get(i).ok_or_else(|| {
+            primitive_error(
+                file,
+                at,
+                format!(
+                    "material {i} does not exist (the file has {})",
+                    root.materials.len()
+                ),
+            )
+        })?)),
+        None => Ok(None),
+    }
+}
+
+/// The library's material for `json_material` (material `material_index` of primitive `at`,
+/// or glTF's default without one); an unsupported one fails naming the material.
+fn primitive_material(
+    file: &Path,
+    at: (usize, usize),
+    json_material: Option<&json::Material>,
+    material_index: Option<usize>,
+    options: &GltfOptions,
+) -> Result<GltfMaterial, GltfError> {
+    map_material(json_material, options).map_err(|reason| {
+        primitive_error(
+            file,
+            at,
+            match material_index {
+                Some(i) => format!("material {i}: {reason}"),
+                None => reason,
+            },
+        )
+    })
+}
+
+/// Fails when an attribute of primitive `at` (named, with its length if present) does not
+/// have one entry for each of its `n` positions.
+fn check_attribute_lengths(
+    file: &Path,
+    at: (usize, usize),
+    n: usize,
+    lengths: [(&str, Option<usize>); 4],
+) -> Result<(), GltfError> {
+    for (what, len) in lengths {
+        if let Some(len) = len.filter(|&len| len != n) {
+            return Err(primitive_error(
+                file,
+                at,
+                format!("{len} {what} for {n} positions"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The base-colour texture of `material` on primitive `prim` (indices `at`), loaded through
+/// `textures` (its bytes added to `scene_bytes`), with the texture coordinates it reads. Without
+/// those coordinates the texture is dropped, with a warning.
+fn base_color_texture(
+    sources: &TextureSources<'_>,
+    textures: &mut TextureCache,
+    scene_bytes: &mut u64,
+    warnings: &mut Vec<String>,
+    at: (usize, usize),
+    prim: &json::mesh::Primitive,
+    material: &GltfMaterial,
+) -> Result<(Option<SampledTexture>, Option<Vec<Vec2>>), GltfError> {
+    let Some(reference) = material.base_color_texture else {
+        return Ok((None, None));
+    };
+    let loaded = cached_texture(sources, textures, reference.index, scene_bytes)?;
+    let uvs = reference.read_uvs(sources.reader, prim)?;
+    if uvs.is_some() {
+        return Ok((Some(loaded), uvs));
+    }
+    let (mesh_index, primitive) = at;
+    warnings.push(format!(
+        "mesh {mesh_index} primitive {primitive}: no TEXCOORD_{}, base-colour texture ignored",
+        reference.tex_coord
+    ));
+    Ok((None, uvs))
+}
+
+/// The accessor of attribute `semantic` of primitive `prim`, if it has one.
+fn attribute(prim: &json::mesh::Primitive, semantic: Semantic) -> Option<usize> {
+    prim.attributes.get(&Checked::Valid(semantic)).map(|a| a.value())
+}
+
+/// The vertex colours (`COLOR_0`) of primitive `prim`, if it has them.
+fn vertex_colors(
+    reader: &AccessorReader<'_>,
+    prim: &json::mesh::Primitive,
+) -> Result<Option<Vec<Vec3>>, GltfError> {
+    match attribute(prim, Semantic::Colors(0)) {
+        Some(a) => Ok(Some(reader.read_colors(a)?)),
+        None => Ok(None),
+    }
+}
+
+/// The vertex normals (`NORMAL`) of primitive `prim` as the file gives them, if it has them.
+fn vertex_normals(
+    reader: &AccessorReader<'_>,
+    prim: &json::mesh::Primitive,
+) -> Result<Option<Vec<Vec3>>, GltfError> {
+    match attribute(prim, Semantic::Normals) {
+        Some(a) => Ok(Some(
+            reader
+                .read_vec(a, &[Type::Vec3])?
+                .iter()
+                .map(|v| v.truncate())
+                .collect::<Vec<Vec3>>(),
+        )),
+        None => Ok(None),
+    }
 }
 
 impl LocalPrimitive {
