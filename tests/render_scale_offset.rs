@@ -7,42 +7,20 @@
 
 use photon_maps::render::glam::Vec3;
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::trace::scenes::box_mesh::{Facing, box_mesh};
 use photon_maps::trace::{Camera, CreaseAngle, Partitioner, PointLight, Scene, Surface};
-
-/// Faces of the box `[min, max]` as quads, wound inward or outward.
-fn box_faces(min: Vec3, max: Vec3, inward: bool) -> (Vec<Vec3>, Vec<Vec<u32>>) {
-    let corners = (0..8)
-        .map(|i: u32| {
-            Vec3::new(
-                if i & 1 != 0 { max.x } else { min.x },
-                if i & 2 != 0 { max.y } else { min.y },
-                if i & 4 != 0 { max.z } else { min.z },
-            )
-        })
-        .collect();
-    let mut faces = vec![
-        vec![0, 4, 5, 1],
-        vec![2, 3, 7, 6],
-        vec![0, 2, 6, 4],
-        vec![1, 5, 7, 3],
-        vec![4, 6, 7, 5],
-        vec![0, 1, 3, 2],
-    ];
-    if !inward {
-        for f in &mut faces {
-            f.reverse();
-        }
-    }
-    (corners, faces)
-}
 
 /// The rooms, `size` metres each, the lit room's corner at `offset`; the camera stands in the
 /// lit room (`Room::Lit`) or the dark one, looking at its far wall.
 fn rooms(size: f32, offset: Vec3, room: Room) -> Scene {
     let at = |p: Vec3| offset + p * size;
     let white = Surface::diffuse(Vec3::splat(0.7));
-    let (lit, lit_faces) = box_faces(at(Vec3::ZERO), at(Vec3::new(0.99, 1.0, 1.0)), true);
-    let (dark, dark_faces) = box_faces(at(Vec3::new(1.01, 0.0, 0.0)), at(Vec3::new(2.0, 1.0, 1.0)), true);
+    let (lit, lit_faces) = box_mesh(at(Vec3::ZERO), at(Vec3::new(0.99, 1.0, 1.0)), Facing::Inward);
+    let (dark, dark_faces) = box_mesh(
+        at(Vec3::new(1.01, 0.0, 0.0)),
+        at(Vec3::new(2.0, 1.0, 1.0)),
+        Facing::Inward,
+    );
     // Intensity ∝ size² keeps every radiance the same at every scale.
     let light = PointLight::new(at(Vec3::new(0.5, 0.7, 0.5)), Vec3::splat(2.0 * size * size));
     let (eye, look) = match room {

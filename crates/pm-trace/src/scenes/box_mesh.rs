@@ -5,7 +5,7 @@ use glam::Vec3;
 
 /// Which way a box's faces point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Facing {
+pub enum Facing {
     /// Into the box: a room, seen from inside.
     Inward,
     /// Out of the box: a solid, seen from outside.
@@ -15,7 +15,7 @@ pub(crate) enum Facing {
 /// Faces of the box `[min, max]` as quads over the 8 corners `i → (x: bit 0, y: bit 1,
 /// z: bit 2)`, in the order floor (y min), ceiling, x min, x max, z max (back), z min (front).
 /// `facing` says which way their normals point.
-pub(crate) fn box_mesh(min: Vec3, max: Vec3, facing: Facing) -> (Vec<Vec3>, Vec<[u32; 4]>) {
+pub fn box_mesh(min: Vec3, max: Vec3, facing: Facing) -> (Vec<Vec3>, Vec<[u32; 4]>) {
     let corners = (0..8)
         .map(|i| {
             Vec3::new(

@@ -1,7 +1,7 @@
 //! The report's built-in scenes by name, each with its camera, and the scale scenes.
 
 mod accordion;
-mod box_mesh;
+pub mod box_mesh;
 mod cornell;
 mod rooms;
 pub mod scale;
