@@ -304,21 +304,56 @@ fn bad_final_gather_settings_are_typed_errors() {
     .unwrap();
     let maps = photon_maps::trace::PhotonMaps::build(&scene, assignment, traced).unwrap();
     let options = EstimatorOptions::for_scene(&scene.bounds());
-    let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
-    // …and one in more photons than were stored (no point could be expected: the image would
-    // silently lose its indirect light), naming both numbers.
-    for every in [0, 1, stored as u32 + 1, 1_000_000_000] {
-        let result = RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, every);
-        match result {
-            Err(RenderError::BadFinalGather(message)) if every > 1 => {
-                assert!(message.contains(&stored.to_string()), "{message}")
+    for every in [0, 1] {
+        assert!(matches!(
+            RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, every),
+            Err(RenderError::BadFinalGather(_))
+        ));
+    }
+    assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 2).is_ok());
+    // A render asking for one cache point in more photons than it traces is refused before
+    // any work, naming both numbers: no point could be expected, and the one-shot gather,
+    // which reads nothing else, would silently lose its indirect light.
+    for every in [1_001, 1_000_000_000] {
+        let settings = RenderSettings {
+            photons: 1_000,
+            final_gather: FinalGatherOptions {
+                cache_every: every,
+                ..FinalGatherOptions::default()
+            },
+            ..settings(Mode::FinalGather, 1, 1)
+        };
+        match settings.validate() {
+            Err(RenderError::BadFinalGather(message)) => {
+                assert!(
+                    message.contains("1000 photons") && message.contains(&every.to_string()),
+                    "{message}"
+                )
             }
-            Err(RenderError::BadFinalGather(_)) => {}
             other => panic!("every {every}: {other:?}"),
         }
     }
-    assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 2).is_ok());
-    assert!(RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, stored as u32).is_ok());
+    // The cache built for the render: where none of the photons stored became a point, the
+    // one-shot renderer refuses rather than draw the image without its indirect light.
+    let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    let sparse = RenderSettings {
+        photons: 1_000,
+        final_gather: FinalGatherOptions {
+            cache_every: 1_000,
+            ..FinalGatherOptions::default()
+        },
+        ..settings(Mode::FinalGather, 1, 1)
+    };
+    let renderer = Renderer::new(EstimatorKind::Disc, sparse);
+    let built = RadianceCache::build(&scene, &maps, &EstimatorKind::Disc, &options, 1_000).unwrap();
+    let result = renderer.build_cache(&scene, &maps, &(), &mut Default::default());
+    match (built.is_empty(), result) {
+        (true, Err(RenderError::BadFinalGather(message))) => {
+            assert!(message.contains(&stored.to_string()), "{message}")
+        }
+        (false, Ok(cache)) => assert_eq!(cache.len(), built.len()),
+        (empty, other) => panic!("cache empty: {empty}, build_cache: {:?}", other.map(|c| c.len())),
+    }
 }
 
 /// Jensen's extra bounce where a gather ray lands close to its origin. In the accordion's

@@ -139,6 +139,16 @@ impl<E: Estimator> Renderer<E> {
         )?
         // The one-shot gather reads cache points only.
         .without_photons();
+        // The one-shot gather reads nothing else: with no point (every photon stored was
+        // set aside as an estimate's), its image would silently lose the indirect light.
+        let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+        if cache.is_empty() && stored > 0 {
+            return Err(RenderError::BadFinalGather(format!(
+                "no cache point among the {stored} photons stored (one in {} was asked for): \
+                 lower cache_every or trace more photons",
+                self.settings.final_gather.cache_every
+            )));
+        }
         stats.precompute = start.elapsed();
         stats.cache_points = cache.len() as u64;
         stats.cache_bytes = cache.memory_bytes() as u64;

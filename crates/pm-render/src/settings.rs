@@ -97,6 +97,15 @@ impl RenderSettings {
         }
         if self.mode == Mode::FinalGather {
             self.final_gather.validate()?;
+            // One cache point in more photons than are traced is, in expectation, less than
+            // one point: the gather would silently lose its indirect light.
+            if self.final_gather.cache_every > self.photons {
+                return Err(RenderError::BadFinalGather(format!(
+                    "cache points every {} photons, but only {} photons are traced: \
+                     no cache point can be expected (lower it, or trace more photons)",
+                    self.final_gather.cache_every, self.photons
+                )));
+            }
         }
         self.estimator_options(&Aabb::cube(glam::Vec3::ZERO, 1.0))
             .validate()

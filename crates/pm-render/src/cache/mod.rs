@@ -157,8 +157,9 @@ impl RadianceCache {
     /// aside. Lookups search
     /// within `max_distance`. Runs on the current rayon pool; the result does not depend on
     /// the number of threads. `every` below 2 is refused (there would be no photons left to
-    /// estimate from), and so is `every` above the photons stored (no cache point would be
-    /// expected).
+    /// estimate from). `every` above the photons stored is allowed here (the cache is then
+    /// most likely empty, and a lookup finds no point); the renderers refuse it as an option
+    /// ([`crate::RenderSettings::validate`], [`crate::Renderer::build_cache`]).
     pub fn build_with<F>(
         scene: &Scene,
         trees: &[&PhotonTree],
@@ -177,15 +178,6 @@ impl RadianceCache {
         }
         if !(max_distance > 0.0 && max_distance.is_finite()) {
             return Err(RenderError::BadMaxDistance(max_distance));
-        }
-        // One cache point in `every` of fewer photons than `every` is, in expectation, less
-        // than one point: the gather would silently lose its indirect light.
-        let photons: usize = trees.iter().map(|t| t.len()).sum();
-        if photons > 0 && u64::from(every) > photons as u64 {
-            return Err(RenderError::BadFinalGather(format!(
-                "cache points every {every} photons, but only {photons} photons were stored: \
-                 no cache point can be expected (lower it, or trace more photons)"
-            )));
         }
         let map_of_part: Vec<u32> = (0..assignment.part_count() as u32)
             .map(|p| assignment.map_of(pm_trace::PartId(p)))
