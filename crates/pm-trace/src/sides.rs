@@ -14,7 +14,9 @@ pub enum Sides {
     #[default]
     Front,
     /// glTF `doubleSided: false`: emits from the front only, and camera rays (primary and
-    /// specular eye rays) pass through the back, as glTF viewers cull back faces.
+    /// specular eye rays) pass through the back, as glTF viewers cull back faces. The back is
+    /// skipped inside the closest-hit search, so it never hides a front face at the same
+    /// distance (two rooms modelled on one wall plane).
     Single,
     /// glTF `doubleSided: true`: emits the same radiance from both sides (an area light of
     /// area `A` and radiance `L` emits `2πLA` watts), and camera rays see both sides.

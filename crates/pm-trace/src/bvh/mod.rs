@@ -57,6 +57,15 @@ pub(crate) enum HitPrimitive {
     Shape(u32),
 }
 
+/// A primitive a ray crosses, as a closest-hit query offers it to the caller's filter: its
+/// surface (an index in the scene's surface table), which primitive, and where along the ray.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Crossing {
+    pub surface: u32,
+    pub primitive: HitPrimitive,
+    pub t: f32,
+}
+
 /// A triangle as the ray queries read it: its corners, its part and its part's surface (an
 /// index in the scene's surface table), in one 44-byte record, so that a hit needs no lookup
 /// of its surface in a per-part table (in a scene of 10⁵ triangles, another cache miss).
@@ -207,14 +216,16 @@ impl SceneBvh {
             + search_bytes(&self.shape_search, BoundsScan::heap_bytes)
     }
 
-    /// Closest hit in `(t_min, t_max)` among primitives whose surface (by index) `accept` takes.
+    /// Closest hit in `(t_min, t_max)` among the crossings `accept` takes. The filter sees
+    /// each crossing nearer than the best so far, so a rejected one never hides another at
+    /// the same distance (a culled back face in front of a coincident front face).
     #[inline]
     pub(crate) fn closest(
         &self,
         ray: &Ray,
         t_min: f32,
         t_max: f32,
-        accept: impl Fn(u32) -> bool,
+        accept: impl Fn(&Crossing) -> bool,
     ) -> Option<(f32, HitPrimitive)> {
         let w = WatertightRay::new(ray.origin, ray.direction);
         let mut best = match &self.triangle_search {
@@ -226,7 +237,12 @@ impl SceneBvh {
                     t_min,
                     || best.get().0,
                     |i, t| {
-                        if accept(self.triangles[i].surface) {
+                        let crossing = Crossing {
+                            surface: self.triangles[i].surface,
+                            primitive: HitPrimitive::Triangle(i as u32),
+                            t,
+                        };
+                        if accept(&crossing) {
                             best.set((t, i as u32));
                         }
                         true
@@ -257,13 +273,18 @@ impl SceneBvh {
         w: &WatertightRay,
         t_min: f32,
         t_max: f32,
-        accept: &impl Fn(u32) -> bool,
+        accept: &impl Fn(&Crossing) -> bool,
     ) -> Option<(f32, HitPrimitive)> {
         let mut best = (t_max, u32::MAX);
         for_each_leaf_primitive::<true>(bvh, ray, t_min, t_max, |i, limit| {
             let record = &self.triangles[i];
             let t = w.intersect_triangle(&record.v, t_min, best.0);
-            if t < best.0 && accept(record.surface) {
+            let crossing = || Crossing {
+                surface: record.surface,
+                primitive: HitPrimitive::Triangle(i as u32),
+                t,
+            };
+            if t < best.0 && accept(&crossing()) {
                 best = (t, i as u32);
                 // Rounded up a little, so that pruning by it stays conservative.
                 *limit = t * (1.0 + 1e-6);
@@ -280,7 +301,7 @@ impl SceneBvh {
         ray: &Ray,
         t_min: f32,
         t_max: f32,
-        accept: &impl Fn(u32) -> bool,
+        accept: &impl Fn(&Crossing) -> bool,
     ) -> Option<(f32, HitPrimitive)> {
         let (t, i) = match &self.shape_search {
             Search::Empty => (t_max, u32::MAX),
@@ -292,12 +313,9 @@ impl SceneBvh {
                     t_min,
                     || best.get().0,
                     |i| {
-                        let s = &self.shapes[i];
-                        if accept(s.part().surface) {
-                            let t = s.intersect(ray.origin, ray.direction, t_min, best.get().0);
-                            if t < best.get().0 {
-                                best.set((t, i as u32));
-                            }
+                        let t = self.accepted_shape_crossing(i, ray, t_min, best.get().0, accept);
+                        if t < best.get().0 {
+                            best.set((t, i as u32));
                         }
                         true
                     },
@@ -307,13 +325,10 @@ impl SceneBvh {
             Search::Bvh(bvh) => {
                 let mut best = (t_max, u32::MAX);
                 for_each_leaf_primitive::<true>(bvh, ray, t_min, t_max, |i, limit| {
-                    let s = &self.shapes[i];
-                    if accept(s.part().surface) {
-                        let t = s.intersect(ray.origin, ray.direction, t_min, best.0);
-                        if t < best.0 {
-                            best = (t, i as u32);
-                            *limit = t * (1.0 + 1e-6);
-                        }
+                    let t = self.accepted_shape_crossing(i, ray, t_min, best.0, accept);
+                    if t < best.0 {
+                        best = (t, i as u32);
+                        *limit = t * (1.0 + 1e-6);
                     }
                     true
                 });
@@ -321,6 +336,40 @@ impl SceneBvh {
             }
         };
         (i != u32::MAX).then_some((t, HitPrimitive::Shape(i)))
+    }
+
+    /// The nearest crossing of shape `i` in `(t_min, t_max)` that `accept` takes, or `t_max`:
+    /// a shape may cross a ray twice (a sphere), so a rejected crossing moves the search on
+    /// past it.
+    #[inline]
+    fn accepted_shape_crossing(
+        &self,
+        i: usize,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        accept: &impl Fn(&Crossing) -> bool,
+    ) -> f32 {
+        let shape = &self.shapes[i];
+        let mut from = t_min;
+        // A shape crosses a ray at most twice, and each round moves strictly on past the
+        // last crossing; the bound only guards against a shape test that does not.
+        for _ in 0..4 {
+            let t = shape.intersect(ray.origin, ray.direction, from, t_max);
+            if t.is_nan() || t >= t_max {
+                return t_max;
+            }
+            let crossing = Crossing {
+                surface: shape.part().surface,
+                primitive: HitPrimitive::Shape(i as u32),
+                t,
+            };
+            if accept(&crossing) {
+                return t;
+            }
+            from = t;
+        }
+        t_max
     }
 
     /// True when any primitive lies on the ray in `(t_min, t_max)`.

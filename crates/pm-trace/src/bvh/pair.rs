@@ -41,7 +41,7 @@ impl SceneBvh {
         if !matches!(self.shape_search, Search::Empty) {
             for (hit, ray) in hits.iter_mut().zip(rays) {
                 let limit = hit.map_or(t_max, |(t, _)| t);
-                if let Some(shape_hit) = self.closest_shape(ray, 0.0, limit, &|_| true) {
+                if let Some(shape_hit) = self.closest_shape(ray, 0.0, limit, &|_: &_| true) {
                     *hit = Some(shape_hit);
                 }
             }

@@ -331,7 +331,7 @@ fn the_bvh_matches_the_flat_scan_through_a_deep_stack_of_layers() {
         let direction = Vec3::new(0.1 * u() - 0.05, 0.1 * u() - 0.05, toward).normalize();
         let ray = Ray { origin, direction };
         let surface = k as u32 % 7;
-        let accept = |s: u32| s == surface;
+        let accept = |c: &Crossing| c.surface == surface;
         let part = |b: &SceneBvh, hit: Option<(f32, HitPrimitive)>| {
             hit.map(|(t, h)| (t, b.part_and_normal(h, ray.at(t)).0))
         };

@@ -3,7 +3,7 @@
 
 use super::offset::{offset_point, point_error};
 use super::{Hit, RayKind, Scene};
-use crate::bvh::HitPrimitive;
+use crate::bvh::{Crossing, HitPrimitive};
 use crate::part::PartSurface;
 use crate::ray::Ray;
 use glam::Vec3;
@@ -25,23 +25,34 @@ impl Scene {
     /// see every side of every surface.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let hit = self.intersect_beyond(ray, 0.0, t_max, kind)?;
-        if kind == RayKind::Camera && self.has_culling && self.is_culled(&hit) {
-            return self.intersect_past_culled(ray, hit.t, t_max);
-        }
-        Some(hit)
-    }
-
-    /// The closest hit with `t_min < t < t_max`, culling nothing.
-    #[inline]
-    fn intersect_beyond(&self, ray: &Ray, t_min: f32, t_max: f32, kind: RayKind) -> Option<Hit> {
         let (t, index) = match kind {
-            RayKind::Other => self.bvh.closest(ray, t_min, t_max, |_| true)?,
-            RayKind::Camera => self
-                .bvh
-                .closest(ray, t_min, t_max, |s| self.surfaces[s as usize].camera_visible)?,
+            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
+            RayKind::Camera if self.has_culling => self.closest_camera_hit_culling(ray, t_max)?,
+            RayKind::Camera => self.bvh.closest(ray, 0.0, t_max, |c| {
+                self.surfaces[c.surface as usize].camera_visible
+            })?,
         };
         Some(self.hit_at(ray, t, index))
+    }
+
+    /// The closest camera hit in a scene with single-sided surfaces: the backs of those are
+    /// skipped inside the search, so a culled back face never hides a front face at the same
+    /// distance (two rooms modelled on one wall plane, each single-sided). Out of line, so
+    /// scenes without single-sided surfaces pay nothing for it.
+    #[inline(never)]
+    fn closest_camera_hit_culling(&self, ray: &Ray, t_max: f32) -> Option<(f32, HitPrimitive)> {
+        self.bvh.closest(ray, 0.0, t_max, |c| {
+            let surface = &self.surfaces[c.surface as usize];
+            surface.camera_visible && !(surface.sides.culls_back() && self.faces_away(ray, c))
+        })
+    }
+
+    /// True when the ray meets `crossing`'s primitive from behind (its normal along the ray),
+    /// the test [`Scene::hit_at`] makes for [`Hit::front_face`].
+    #[inline]
+    fn faces_away(&self, ray: &Ray, crossing: &Crossing) -> bool {
+        let (_, n) = self.bvh.part_and_normal(crossing.primitive, ray.at(crossing.t));
+        n.dot(ray.direction) >= 0.0
     }
 
     /// The closest hits of two rays of [`RayKind::Other`] with `0 < t < t_max`: the same hits
@@ -77,26 +88,6 @@ impl Scene {
             part,
             surface,
             error: point_error(ray.origin, position, t),
-        }
-    }
-
-    /// True when `hit` is the back of a [`crate::Sides::Single`] surface.
-    #[inline]
-    fn is_culled(&self, hit: &Hit) -> bool {
-        !hit.front_face && self.surface(hit).sides.culls_back()
-    }
-
-    /// The closest camera hit past a culled back face at `t`: out of line, so scenes without
-    /// single-sided surfaces pay one test per camera ray and nothing more.
-    #[inline(never)]
-    fn intersect_past_culled(&self, ray: &Ray, mut t: f32, t_max: f32) -> Option<Hit> {
-        // Hits are strictly past `t`, so each round moves on along the ray.
-        loop {
-            let hit = self.intersect_beyond(ray, t, t_max, RayKind::Camera)?;
-            if !self.is_culled(&hit) {
-                return Some(hit);
-            }
-            t = hit.t;
         }
     }
 
