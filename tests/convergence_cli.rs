@@ -337,6 +337,11 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         "accordion-1000000x1000000.exr",
     );
     refused_record(&record[..record.len() / 2], "study.json");
+    // A scene name that is not a built-in one (here an absolute path, which would reach outside
+    // the reference folder) is refused before any file is opened.
+    let absolute = record.replacen("\"name\":\"accordion\"", "\"name\":\"/etc/accordion\"", 1);
+    assert_ne!(absolute, record, "the record names its scenes");
+    refused_record(&absolute, "not a built-in scene");
     // A kept image gone, or a reference cut short: refused, naming the file.
     let gone = std::fs::read_dir(kept.join("accordion"))
         .unwrap()
@@ -344,12 +349,29 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
         .find(|p| p.to_string_lossy().contains("final-gather-"))
         .unwrap();
     std::fs::remove_file(&gone).unwrap();
+    // A FIFO in its place, and a folder as the record: refused as not regular files before
+    // they are opened (a FIFO would block the reader for ever).
+    #[cfg(unix)]
+    {
+        let made = Command::new("mkfifo").arg(&gone).status().unwrap();
+        assert!(made.success());
+        refused_record(&record, "not a regular file");
+        std::fs::remove_file(&gone).unwrap();
+    }
     refused_record(&record, &gone.file_name().unwrap().to_string_lossy());
     let half = references.join("accordion-16x16.half.exr");
     let bytes = std::fs::read(&half).unwrap();
     std::fs::write(&half, &bytes[..bytes.len() / 2]).unwrap();
     refused_record(&record, "accordion-16x16.half.exr");
     assert!(!dir.join("hostile/convergence.md").exists());
+    std::fs::remove_file(kept.join("study.json")).unwrap();
+    std::fs::create_dir(kept.join("study.json")).unwrap();
+    let folder = Command::new(&exe).arg("--rescore").arg(&kept).output().unwrap();
+    let stderr = String::from_utf8_lossy(&folder.stderr);
+    assert!(
+        !folder.status.success() && stderr.contains("not a regular file"),
+        "{stderr}"
+    );
     let missing = Command::new(&exe)
         .args(["--rescore"])
         .arg(dir.join("nothing"))

@@ -6,7 +6,7 @@
 //! cached, that one is box-filtered down instead.
 
 use photon_maps::render::glam::DVec3;
-use photon_maps::render::image::write_atomically;
+use photon_maps::render::image::{read_text_file, write_atomically};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{Partitioner, Scene, SingleMap};
 use std::io::Write as _;
@@ -16,6 +16,10 @@ use std::time::Instant;
 /// The reference's pixel streams start here, far from any seed the study renders with; batch
 /// `b` renders with seed `REFERENCE_SEED + b`.
 const REFERENCE_SEED: u64 = 1 << 40;
+
+/// A reference's note (its samples per pixel and how it was made: a line or two) larger
+/// than this is refused before it is read.
+const MAX_NOTE_BYTES: u64 = 64 << 10;
 
 /// A long reference render is written out this often (seconds).
 const CHECKPOINT_SECONDS: f64 = 120.0;
@@ -140,8 +144,7 @@ impl Files {
     fn read(&self) -> Result<(Reference, String), String> {
         let exr = |path: &Path| Image::read_exr(path).map_err(|e| format!("{}: {e}", path.display()));
         let (image, half) = (exr(&self.exr)?, exr(&self.half)?);
-        let text =
-            std::fs::read_to_string(&self.meta).map_err(|e| format!("{}: {e}", self.meta.display()))?;
+        let text = read_text_file(&self.meta, MAX_NOTE_BYTES).map_err(|e| e.to_string())?;
         let spp = text
             .split_whitespace()
             .next()

@@ -9,7 +9,7 @@ use super::methods::Sample;
 use super::report::Study;
 use super::{chart, reference};
 use photon_maps::render::Image;
-use photon_maps::render::image::write_atomically;
+use photon_maps::render::image::{read_text_file, write_atomically};
 use photon_maps::trace::scenes;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -98,17 +98,24 @@ pub struct Rescore<'a> {
 /// Re-measures the kept run against the current references and writes the study again.
 pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
     let path = to.record.join(RECORD);
-    let size = std::fs::metadata(&path)
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .len();
-    if size > MAX_RECORD_BYTES {
+    // The record is read as every input is: a regular file within its bound, checked before it
+    // is opened (a FIFO or /dev/zero is refused, never read).
+    let text = read_text_file(&path, MAX_RECORD_BYTES).map_err(|e| e.to_string())?;
+    let mut study: Study = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    // Every name the record gives becomes part of a path: each must be a built-in scene's
+    // before anything is opened (an absolute name would reach outside the folders).
+    if let Some(scene) = study
+        .scenes
+        .iter()
+        .find(|s| !scenes::NAMES.contains(&s.name.as_str()))
+    {
         return Err(format!(
-            "{}: {size} bytes, more than a study's record can be ({MAX_RECORD_BYTES})",
-            path.display()
+            "{}: scene {:?} is not a built-in scene ({})",
+            path.display(),
+            scene.name,
+            scenes::NAMES.join(", ")
         ));
     }
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut study: Study = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let images = to.out_dir.join("images");
     std::fs::create_dir_all(&images).map_err(|e| format!("{}: {e}", images.display()))?;
     let mut before = Vec::new();

@@ -107,6 +107,23 @@ pub enum RenderError {
         /// Image height.
         image_height: u32,
     },
+    /// An input that is not a regular file (a folder, a FIFO, a device): refused before it
+    /// is opened.
+    #[error("{}: not a regular file", path.display())]
+    NotARegularFile {
+        /// The path as given.
+        path: PathBuf,
+    },
+    /// An input file larger than what it can hold.
+    #[error("{}: {bytes} bytes, more than the {max_bytes} such a file can hold", path.display())]
+    InputTooLarge {
+        /// The path as given.
+        path: PathBuf,
+        /// Its size (or the bytes read before the bound).
+        bytes: u64,
+        /// The bound.
+        max_bytes: u64,
+    },
     /// Reading or writing an image file failed.
     #[error("{path}: {message}")]
     ImageIo {

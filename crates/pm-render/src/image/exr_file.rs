@@ -40,6 +40,8 @@ impl Image {
     /// Reads the first RGB(A) layer of an EXR file (alpha is dropped).
     pub fn read_exr(path: impl AsRef<Path>) -> Result<Image, RenderError> {
         let path = path.as_ref();
+        // A regular file only: a FIFO would block the reader for ever.
+        super::input::check_input_file(path, u64::MAX)?;
         // Check the declared size before the reader allocates for it: a tiny file can claim a
         // billion pixels on a side.
         let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| io_error(path, e))?;

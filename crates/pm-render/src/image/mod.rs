@@ -3,12 +3,14 @@
 pub(crate) mod atomic;
 #[cfg(feature = "exr")]
 pub(crate) mod exr_file;
+pub(crate) mod input;
 pub(crate) mod metrics;
 #[cfg(feature = "png")]
 pub(crate) mod png_file;
 pub(crate) mod srgb;
 
 pub use atomic::{check_output_path, output_target, write_atomically};
+pub use input::{check_input_file, read_text_file};
 pub use srgb::linear_to_srgb8;
 
 use crate::error::RenderError;

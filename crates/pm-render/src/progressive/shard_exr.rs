@@ -43,14 +43,15 @@ fn from_words(high: u32, low: u32) -> f64 {
 }
 
 /// Refuses anything but a regular file (following links) before it is opened: a FIFO would
-/// block the reader for ever.
+/// block the reader for ever. The check every input file gets
+/// ([`crate::image::check_input_file`]), named as a shard's.
 fn check_regular_file(path: &Path) -> Result<(), ShardError> {
-    match std::fs::metadata(path) {
-        Ok(meta) if meta.is_file() => Ok(()),
-        Ok(_) => Err(ShardError::NotAFile {
+    match crate::image::input::check_input_file(path, u64::MAX) {
+        Ok(_) => Ok(()),
+        Err(RenderError::NotARegularFile { .. }) => Err(ShardError::NotAFile {
             path: path.display().to_string(),
         }),
-        Err(e) => Err(io_error(path, e).into()),
+        Err(e) => Err(e.into()),
     }
 }
 
