@@ -14,8 +14,11 @@ pub enum ArrangementError {
         /// The bound.
         limit: usize,
     },
-    /// More pieces or cut segments than [`ArrangementOptions::max_pieces`](super::ArrangementOptions::max_pieces).
-    #[error("cutting the faces where they meet makes more than {limit} pieces")]
+    /// More pieces or cut segments than [`ArrangementOptions::piece_limit`](super::ArrangementOptions::piece_limit)
+    /// allows.
+    #[error(
+        "cutting the faces where they meet makes more than {limit} pieces (faces that nearly coincide over and over, such as near-copies of one mesh, cut each other into grids)"
+    )]
     TooManyPieces {
         /// The bound.
         limit: usize,

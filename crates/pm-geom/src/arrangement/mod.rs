@@ -179,7 +179,7 @@ fn cut_faces<P: AsRef<[Vec3]>>(
     options: &ArrangementOptions,
     counts: &mut IntersectionCounts,
 ) -> Result<Pieces, ArrangementError> {
-    let mut budget = Budget::new(options.max_pieces, options.max_vertices);
+    let mut budget = Budget::new(options.piece_limit(polygons.len()), options.max_vertices);
     let mut pieces: Vec<Vec<Vec3>> = Vec::with_capacity(polygons.len());
     let mut source = Vec::with_capacity(polygons.len());
     let mut was_cut = vec![false; polygons.len()];

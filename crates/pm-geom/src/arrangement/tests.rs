@@ -232,23 +232,35 @@ fn gap_below_the_tolerance_cuts_and_above_it_does_not() {
 
 #[test]
 fn fifty_overlapping_triangles_end_fast_within_bounds() {
-    // Fifty copies of one triangle, each turned a little about its centre: every pair overlaps.
-    let input: Vec<Vec<Vec3>> = (0..50)
-        .map(|i| {
-            let angle = i as f32 * 0.013;
-            (0..3)
-                .map(|k| {
-                    let a = angle + k as f32 * std::f32::consts::TAU / 3.0;
-                    vec3(a.cos(), 0.0, a.sin())
-                })
-                .collect()
-        })
-        .collect();
-    let split = split_polygons_at_intersections(&input, &[], &options(TOL)).unwrap();
-    assert_eq!(split.counts.coplanar_overlap, 50 * 49 / 2);
-    // Only the first copy and the parts of later ones outside all earlier ones survive.
+    // Copies of one triangle, each turned a little about its centre: every pair overlaps.
+    let turned = |copies: usize| -> Vec<Vec<Vec3>> {
+        (0..copies)
+            .map(|i| {
+                let angle = i as f32 * 0.013;
+                (0..3)
+                    .map(|k| {
+                        let a = angle + k as f32 * std::f32::consts::TAU / 3.0;
+                        vec3(a.cos(), 0.0, a.sin())
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    // Twelve cut each other into slivers, and only the first copy and the parts of later ones
+    // outside all earlier ones survive.
+    let split = split_polygons_at_intersections(&turned(12), &[], &options(TOL)).unwrap();
+    assert_eq!(split.counts.coplanar_overlap, 12 * 11 / 2);
     let total: f32 = split.polygons.iter().map(|p| polygon_area(p)).sum();
     assert!(total < 2.0, "{total}");
+    // Fifty cut each other into hundreds of thousands (11 s of work before the limit per
+    // input polygon): refused while they are cut.
+    let input = turned(50);
+    assert!(matches!(
+        split_polygons_at_intersections(&input, &[], &options(TOL)),
+        Err(ArrangementError::TooManyPieces {
+            limit: ArrangementOptions::MIN_PIECE_LIMIT
+        })
+    ));
     let tight = ArrangementOptions {
         max_pieces: 1000,
         ..options(TOL)
