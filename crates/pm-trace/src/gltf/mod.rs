@@ -116,6 +116,8 @@ mod light;
 mod material;
 mod mesh;
 mod options;
+mod origin;
+mod place;
 mod primitive;
 mod source;
 mod texture_ref;
