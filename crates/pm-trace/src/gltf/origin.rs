@@ -46,12 +46,14 @@ impl WorldBounds {
 
 /// `v` (an f64 direction) as an f32 unit vector: rounded to f32 and normalised there (so a
 /// direction that composes exactly, as under identity or axis-aligned transforms, gives the
-/// same bits as an f32 pipeline), else normalised in f64 first when its length leaves f32's
-/// range; `None` when it has no direction.
+/// same bits as an f32 pipeline), else divided by its largest component in f64 first when its
+/// length leaves f32's range; `None` when it has no direction.
 pub(super) fn unit_f32(v: DVec3) -> Option<Vec3> {
-    v.as_vec3()
-        .try_normalize()
-        .or_else(|| v.try_normalize().and_then(|u| u.as_vec3().try_normalize()))
+    v.as_vec3().try_normalize().or_else(|| {
+        let largest = v.abs().max_element();
+        let scalable = largest.is_finite() && largest > 0.0;
+        scalable.then(|| (v / largest).as_vec3().try_normalize()).flatten()
+    })
 }
 
 #[cfg(test)]
