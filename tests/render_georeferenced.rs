@@ -20,6 +20,7 @@ use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, Render
 use photon_maps::trace::gltf::load_scene;
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene};
 use proptest::prelude::*;
+use std::sync::OnceLock;
 use scratch::Scratch;
 
 /// Translations of the root node along x, metres: the origin, 1 km, 100 km, 6,400 km.
@@ -114,58 +115,83 @@ fn the_sealed_room_is_exactly_black_at_every_distance_and_scale_in_every_mode() 
     assert_eq!(renders, 3 * 4 * 3 * 7);
 }
 
-/// The path tracer's mean over the lit room's image with `spp` samples.
+/// Samples per pixel of the lit room's renders (16 × 16 pixels): one render's mean has a
+/// standard error near 0.4 %, so a 7 % darkening is 15 of them.
+const LIT_SPP: u32 = 512;
+
+/// The path tracer's mean over the lit room's image.
 fn lit_mean(walls: Walls, placement: Placement, seed: u64) -> f64 {
     let scene = load(walls, Room::Lit, placement);
     let partitioned = CreaseAngle::default().partition(scene).unwrap();
-    let image = Renderer::new(EstimatorKind::GeometryCube, settings(Mode::PathTrace, 48, seed))
+    let mut settings = settings(Mode::PathTrace, LIT_SPP, seed);
+    (settings.width, settings.height) = (16, 16);
+    let image = Renderer::new(EstimatorKind::GeometryCube, settings)
         .render(&partitioned, &())
         .unwrap()
         .image;
     f64::from(image.mean().element_sum())
 }
 
-/// The lit room at the origin at 1 m, over `SEEDS` seeds: the mean of the per-seed means and
-/// the standard error of one seed's mean (their sample standard deviation).
+/// Seeds of the reference renders at the origin.
+const REFERENCE_SEEDS: u64 = 6;
+
+/// The lit room at the origin at 1 m, over [`REFERENCE_SEEDS`] seeds: the mean of the
+/// per-seed means and the standard error of one seed's mean (their sample standard
+/// deviation). Computed once per wall kind for every test of the process.
 fn origin_reference(walls: Walls) -> (f64, f64) {
-    const SEEDS: u64 = 6;
-    let at_origin = Placement {
-        translation: [0.0; 3],
-        scale: 1.0,
-    };
-    let means: Vec<f64> = (1..=SEEDS).map(|s| lit_mean(walls, at_origin, s)).collect();
-    let n = means.len() as f64;
-    let mean = means.iter().sum::<f64>() / n;
-    let variance = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, variance.sqrt())
+    static REFERENCES: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    let references = REFERENCES.get_or_init(|| {
+        let at_origin = Placement {
+            translation: [0.0; 3],
+            scale: 1.0,
+        };
+        Walls::ALL
+            .iter()
+            .map(|&w| {
+                let means: Vec<f64> = (1..=REFERENCE_SEEDS).map(|s| lit_mean(w, at_origin, s)).collect();
+                let n = means.len() as f64;
+                let mean = means.iter().sum::<f64>() / n;
+                let variance = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (n - 1.0);
+                (mean, variance.sqrt())
+            })
+            .collect()
+    });
+    references[Walls::ALL.iter().position(|&w| w == walls).unwrap()]
 }
 
-/// How far a case's one-seed mean may lie from the origin's six-seed mean: five standard
-/// errors of the difference (√(1 + 1/6) of one seed's), with the standard error floored at
-/// 0.2 % of the mean (an estimate from six draws can come out small by chance).
-fn allowed(reference: f64, standard_error: f64) -> f64 {
-    5.0 * (1.0 + 1.0 / 6.0f64).sqrt() * standard_error.max(0.002 * reference)
+/// The standard error of a one-seed mean's difference from the reference: √(1 + 1/6) of one
+/// seed's, that floored at 0.2 % of the mean (an estimate from six draws can come out small
+/// by chance).
+fn difference_error(reference: f64, standard_error: f64) -> f64 {
+    (1.0 + 1.0 / REFERENCE_SEEDS as f64).sqrt() * standard_error.max(0.002 * reference)
 }
+
+/// Standard errors of the difference allowed: one case in about 1.7 million fails by chance.
+const ALLOWED_ERRORS: f64 = 5.0;
 
 #[test]
 fn the_lit_room_reads_the_origins_mean_at_every_distance_and_scale() {
+    let mut seed = 100;
     for walls in Walls::ALL {
         let (reference, standard_error) = origin_reference(walls);
         assert!(reference > 0.05, "{walls:?}: the lit room is lit: {reference}");
-        let allowed = allowed(reference, standard_error);
+        let error = difference_error(reference, standard_error);
         for offset in OFFSETS {
             for scale in SCALES {
                 let placement = Placement {
                     translation: along_diagonal(offset),
                     scale,
                 };
-                // Seeds the reference did not use: independent noise.
-                let m = lit_mean(walls, placement, 100);
-                let z = (m - reference) / (standard_error * (1.0 + 1.0 / 6.0f64).sqrt());
-                eprintln!("{walls:?} at {offset} m, scale {scale}: {m:.5} against {reference:.5} ({z:+.2} standard errors)");
+                // A seed of its own, none of the reference's: independent noise.
+                seed += 1;
+                let m = lit_mean(walls, placement, seed);
+                let z = (m - reference) / error;
+                eprintln!(
+                    "{walls:?} at {offset} m, scale {scale}: {m:.5} against {reference:.5} ± {standard_error:.5} ({z:+.2} standard errors)"
+                );
                 assert!(
-                    (m - reference).abs() < allowed,
-                    "{walls:?} at {offset} m, scale {scale}: mean {m} against {reference} (allowed {allowed})"
+                    z.abs() < ALLOWED_ERRORS,
+                    "{walls:?} at {offset} m, scale {scale}: mean {m} against {reference} ({z:+.2} standard errors)"
                 );
             }
         }
@@ -254,10 +280,11 @@ proptest! {
             prop_assert_eq!(lit_pixels(&image), 0, "{:?} {} at {:?}", walls, mode, placement);
         }
         let (reference, standard_error) = origin_reference(walls);
-        let m = lit_mean(walls, placement, 100);
+        let m = lit_mean(walls, placement, 200);
+        let z = (m - reference) / difference_error(reference, standard_error);
         prop_assert!(
-            (m - reference).abs() < allowed(reference, standard_error),
-            "{:?} at {:?}: mean {} against {}", walls, placement, m, reference
+            z.abs() < ALLOWED_ERRORS,
+            "{:?} at {:?}: mean {} against {} ({:+.2} standard errors)", walls, placement, m, reference, z
         );
     }
 }
