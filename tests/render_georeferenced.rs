@@ -6,6 +6,8 @@
 //! in every mode and the lit room's mean is the origin's within noise; the offset it removed
 //! is the scene's `origin_offset`, and maps the scene back onto the file's coordinates.
 
+#[path = "support/example.rs"]
+mod example;
 #[path = "support/georeferenced_rooms.rs"]
 mod georeferenced_rooms;
 #[path = "support/scratch.rs"]
@@ -255,6 +257,60 @@ fn a_model_around_its_origin_is_not_moved() {
     assert_eq!(scene.bounds().min, Vec3::ZERO);
     assert_eq!(scene.bounds().max, Vec3::new(2.0, 1.0, 1.0));
     assert_eq!(scene.camera().position(), Vec3::new(0.8, 0.5, 0.5));
+}
+
+#[test]
+fn the_render_example_reports_the_origin_offset() {
+    let dir = Scratch::new("cli");
+    for (offset, moved) in [(6.4e6f32, true), (0.0, false)] {
+        let placement = Placement {
+            translation: along_diagonal(offset),
+            scale: 1.0,
+        };
+        let file = write_rooms(&dir.0, Walls::SolidSlabs, Room::Lit, placement);
+        let (out, json) = (dir.path("rooms.exr"), dir.path("rooms.json"));
+        let args = [
+            "--scene",
+            file.to_str().unwrap(),
+            "--mode",
+            "path-trace",
+            "--size",
+            "8x8",
+            "--samples-per-pixel",
+            "1",
+            "--out",
+            &out,
+            "--stats-json",
+            &json,
+        ];
+        let Some(output) = example::run(&args) else {
+            return;
+        };
+        example::assert_ok(&args, &output);
+        let stats: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let reported: Vec<f64> = stats["origin_offset"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        // The slabs' bounds run from −0.02 to (2.04, 1.02, 1.02): their centre is
+        // (1.01, 0.5, 0.5) past the root node's translation.
+        let t = along_diagonal(offset).map(f64::from);
+        let expected = if moved {
+            [t[0] + 1.01, t[1] + 0.5, t[2] + 0.5]
+        } else {
+            [0.0; 3]
+        };
+        for k in 0..3 {
+            assert!(
+                (reported[k] - expected[k]).abs() < 1e-6,
+                "{offset} m: reported {reported:?}, expected {expected:?}"
+            );
+        }
+        let summary = String::from_utf8_lossy(&output.stdout);
+        assert_eq!(summary.contains("re-centred"), moved, "{summary}");
+    }
 }
 
 proptest! {
