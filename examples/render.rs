@@ -34,7 +34,8 @@ mod tracking_allocator;
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice, parse_image_size};
 use files::{check_run_outputs, load_scene, say, scene_dependencies, scene_inputs, scene_name};
 use report::{
-    Record, contacts_json, contacts_summary, json_number, json_object, json_string, origin_json, origin_summary, summary,
+    Record, contacts_json, contacts_summary, json_number, json_object, json_string, origin_json,
+    origin_summary, summary,
 };
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).

@@ -262,7 +262,10 @@ fn an_emitter_far_out_is_re_centred_and_one_spanning_past_the_limit_is_refused()
         let spanning = room([x, 0.0, 0.0], None, emitter)
             .replace(
                 r#""nodes":[{"mesh":0},"#,
-                &format!(r#""nodes":[{{"mesh":0}},{{"mesh":0,"translation":[{},0,0]}},"#, -x),
+                &format!(
+                    r#""nodes":[{{"mesh":0}},{{"mesh":0,"translation":[{},0,0]}},"#,
+                    -x
+                ),
             )
             .replace(r#""nodes":[0,1]"#, r#""nodes":[0,1,2]"#);
         let err = scratch.load("far.gltf", &spanning).map(|_| ()).unwrap_err();

@@ -22,8 +22,8 @@ use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, Render
 use photon_maps::trace::gltf::load_scene;
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene};
 use proptest::prelude::*;
-use std::sync::OnceLock;
 use scratch::Scratch;
+use std::sync::OnceLock;
 
 /// Translations of the root node along x, metres: the origin, 1 km, 100 km, 6,400 km.
 const OFFSETS: [f32; 4] = [0.0, 1e3, 1e5, 6.4e6];
@@ -236,8 +236,14 @@ fn the_origin_offset_maps_the_scene_back_onto_the_files_coordinates() {
     // The bounds, mapped back, are the slabs' own.
     let b = scene.bounds();
     let (lo, hi) = (offset + b.min.as_dvec3(), offset + b.max.as_dvec3());
-    assert!((lo - world([-0.02, -0.02, -0.02])).abs().max_element() < tolerance, "{lo}");
-    assert!((hi - world([2.04, 1.02, 1.02])).abs().max_element() < tolerance, "{hi}");
+    assert!(
+        (lo - world([-0.02, -0.02, -0.02])).abs().max_element() < tolerance,
+        "{lo}"
+    );
+    assert!(
+        (hi - world([2.04, 1.02, 1.02])).abs().max_element() < tolerance,
+        "{hi}"
+    );
     // Re-centred: the scene's coordinates are the model's size, not the offset's.
     assert!(b.min.abs().max(b.max.abs()).max_element() < 2.0 * scale);
 }
@@ -287,7 +293,8 @@ fn the_render_example_reports_the_origin_offset() {
             return;
         };
         example::assert_ok(&args, &output);
-        let stats: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let stats: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         let reported: Vec<f64> = stats["origin_offset"]
             .as_array()
             .unwrap()

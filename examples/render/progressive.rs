@@ -4,8 +4,8 @@
 
 use super::files::{NamedFile, check_run_outputs, scene_dependencies, scene_input, scene_inputs};
 use super::{
-    Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, origin_json, origin_summary,
-    say,
+    Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, origin_json,
+    origin_summary, say,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;

@@ -56,14 +56,34 @@ impl Walls {
             Walls::SolidSlabs => {
                 let (s, x1) = (SLAB, 2.0 + 2.0 * SLAB);
                 // Floor and ceiling slabs across both rooms and the outer walls.
-                add(Vec3::new(-s, -s, -s), Vec3::new(x1, 0.0, 1.0 + s), Facing::Outward);
-                add(Vec3::new(-s, 1.0, -s), Vec3::new(x1, 1.0 + s, 1.0 + s), Facing::Outward);
+                add(
+                    Vec3::new(-s, -s, -s),
+                    Vec3::new(x1, 0.0, 1.0 + s),
+                    Facing::Outward,
+                );
+                add(
+                    Vec3::new(-s, 1.0, -s),
+                    Vec3::new(x1, 1.0 + s, 1.0 + s),
+                    Facing::Outward,
+                );
                 add(Vec3::new(-s, 0.0, 0.0), Vec3::new(0.0, 1.0, 1.0), Facing::Outward);
-                add(Vec3::new(x1 - s, 0.0, 0.0), Vec3::new(x1, 1.0, 1.0), Facing::Outward);
-                add(Vec3::new(-s, 0.0, 1.0), Vec3::new(x1, 1.0, 1.0 + s), Facing::Outward);
+                add(
+                    Vec3::new(x1 - s, 0.0, 0.0),
+                    Vec3::new(x1, 1.0, 1.0),
+                    Facing::Outward,
+                );
+                add(
+                    Vec3::new(-s, 0.0, 1.0),
+                    Vec3::new(x1, 1.0, 1.0 + s),
+                    Facing::Outward,
+                );
                 add(Vec3::new(-s, 0.0, -s), Vec3::new(x1, 1.0, 0.0), Facing::Outward);
                 // The dividing wall, standing on the floor slab.
-                add(Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0 + s, 1.0, 1.0), Facing::Outward);
+                add(
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(1.0 + s, 1.0, 1.0),
+                    Facing::Outward,
+                );
             }
             Walls::SharedWallDoubleSided | Walls::SharedWallSingleSided => {
                 add(Vec3::ZERO, Vec3::ONE, Facing::Inward);
@@ -118,7 +138,9 @@ pub fn write_rooms(dir: &Path, walls: Walls, room: Room, placement: Placement) -
     bin.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
     let (lo, hi) = positions
         .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
     let hex: String = bin.iter().map(|b| format!("%{b:02X}")).collect();
     // glTF cameras look down their node's −Z: a quarter turn about +Y looks along −X (lit
     // room, towards x = 0), a quarter turn the other way along +X (dark room, its far wall).

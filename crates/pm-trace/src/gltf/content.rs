@@ -254,7 +254,9 @@ impl Flattening<'_> {
         content.origin_offset = origin;
         content.meshes.reserve_exact(self.placements.len());
         for p in self.placements.drain(..) {
-            content.meshes.push(p.local.place(file, p.node, p.at, p.world, origin)?);
+            content
+                .meshes
+                .push(p.local.place(file, p.node, p.at, p.world, origin)?);
         }
         for c in &self.cameras {
             content.camera = place_camera(file, root, c.node, c.index, c.world, origin)?;

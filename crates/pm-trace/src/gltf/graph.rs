@@ -57,7 +57,8 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
     let mut visited = vec![false; root.nodes.len()];
     let mut placed = Vec::new();
     // (node, parent's world transform, depth); reversed so that pops follow document order.
-    let mut stack: Vec<(usize, DMat4, usize)> = roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, 1)).collect();
+    let mut stack: Vec<(usize, DMat4, usize)> =
+        roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, 1)).collect();
     while let Some((index, parent, depth)) = stack.pop() {
         let node = root.nodes.get(index).ok_or_else(|| {
             node_error(

@@ -93,7 +93,11 @@ pub(super) fn place_light(
     };
     let need_position = || {
         let reason = format!("light {light}: its position is not finite in f32 once re-centred on {origin}");
-        if position.is_finite() { Ok(position) } else { Err(error(reason)) }
+        if position.is_finite() {
+            Ok(position)
+        } else {
+            Err(error(reason))
+        }
     };
     Ok(match ty {
         Type::Point => GltfLight::Point {

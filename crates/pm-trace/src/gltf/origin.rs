@@ -52,7 +52,9 @@ pub(super) fn unit_f32(v: DVec3) -> Option<Vec3> {
     v.as_vec3().try_normalize().or_else(|| {
         let largest = v.abs().max_element();
         let scalable = largest.is_finite() && largest > 0.0;
-        scalable.then(|| (v / largest).as_vec3().try_normalize()).flatten()
+        scalable
+            .then(|| (v / largest).as_vec3().try_normalize())
+            .flatten()
     })
 }
 
@@ -83,7 +85,10 @@ mod tests {
         let b = bounds(&[[6.4e6, 0.0, -3.0], [6.4e6 + 2.0, 1.0, -1.0]]);
         assert_eq!(b.origin_offset(), DVec3::new(6.4e6 + 1.0, 0.5, -2.0));
         // One point: no extent, any distance from the origin is far.
-        assert_eq!(bounds(&[[0.0, 5.0, 0.0]]).origin_offset(), DVec3::new(0.0, 5.0, 0.0));
+        assert_eq!(
+            bounds(&[[0.0, 5.0, 0.0]]).origin_offset(),
+            DVec3::new(0.0, 5.0, 0.0)
+        );
     }
 
     #[test]
