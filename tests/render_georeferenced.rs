@@ -24,14 +24,17 @@ use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene};
 use proptest::prelude::*;
 use scratch::Scratch;
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Translations of the root node along x, metres: the origin, 1 km, 100 km, 6,400 km.
 const OFFSETS: [f32; 4] = [0.0, 1e3, 1e5, 6.4e6];
 /// Scales of the root node: 1 m, 1 mm and 1 µm rooms.
 const SCALES: [f32; 3] = [1.0, 1e-3, 1e-6];
 
+/// Loads the rooms, written to a folder of their own (tests run in parallel threads).
 fn load(walls: Walls, room: Room, placement: Placement) -> Scene {
-    let dir = Scratch::new("rooms");
+    static FILES: AtomicUsize = AtomicUsize::new(0);
+    let dir = Scratch::new(&format!("rooms-{}", FILES.fetch_add(1, Ordering::Relaxed)));
     load_scene(&write_rooms(&dir.0, walls, room, placement)).unwrap()
 }
 
