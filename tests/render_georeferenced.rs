@@ -269,6 +269,38 @@ fn a_model_around_its_origin_is_not_moved() {
 }
 
 #[test]
+fn placements_past_what_f32_or_f64_can_hold_give_typed_results() {
+    let dir = Scratch::new("huge");
+    let try_load = |translation: f32, scale: f32| {
+        let placement = Placement {
+            translation: [translation, 0.0, 0.0],
+            scale,
+        };
+        load_scene(&write_rooms(&dir.0, Walls::SolidSlabs, Room::Lit, placement))
+    };
+    // 10³⁰ m out, f64 cannot tell a metre apart (its step there is 1.4·10¹⁴ m): the rooms
+    // collapse before re-centring. Whatever comes of that is a scene of finite coordinates or
+    // an error, never a panic.
+    match try_load(1e30, 1.0) {
+        Ok(scene) => {
+            assert!(scene.origin_offset().is_finite());
+            assert!(scene.bounds().min.is_finite() && scene.bounds().max.is_finite());
+        }
+        Err(e) => assert!(!e.to_string().is_empty()),
+    }
+    // Rooms 10¹⁸ m large 10³⁰ m out: f64 holds them (its 1.4·10¹⁴ m step is far below the
+    // 2·10¹⁶ m slabs) and re-centring brings them into f32, but the scene cannot take faces
+    // that large (their areas overflow f32, so they are dropped, and then it has no geometry,
+    // or they reach ±10¹⁸ m): an error, not a panic or a scene of infinities.
+    let err = try_load(1e30, 1e18).map(|_| ()).unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.contains("no geometry") || message.contains("1e18"),
+        "{message}"
+    );
+}
+
+#[test]
 fn the_render_example_reports_the_origin_offset() {
     let dir = Scratch::new("cli");
     for (offset, moved) in [(6.4e6f32, true), (0.0, false)] {

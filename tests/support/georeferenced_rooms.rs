@@ -151,7 +151,7 @@ pub fn write_rooms(dir: &Path, walls: Walls, room: Room, placement: Placement) -
     };
     let s = placement.scale;
     // Radiant intensity 2 s² / (4π) W/sr, as candela under the loader's 683 lm/W.
-    let candela = 683.0 * 2.0 * s * s / (4.0 * std::f32::consts::PI);
+    let candela = 683.0 * 2.0 * f64::from(s).powi(2) / (4.0 * std::f64::consts::PI);
     let json = format!(
         r#"{{"asset":{{"version":"2.0"}},
         "extensionsUsed":["KHR_lights_punctual"],
