@@ -33,7 +33,10 @@ mod tracking_allocator;
 
 use choices::{DirectChoice, EstimatorChoice, LightUnitsChoice, MapsChoice, ModeChoice, parse_image_size};
 use files::{check_run_outputs, load_scene, say, scene_dependencies, scene_inputs, scene_name};
-use report::{Record, contacts_json, contacts_summary, json_number, json_object, json_string, summary};
+use report::{
+    Record, contacts_json, contacts_summary, json_number, json_object, json_string, origin_json,
+    origin_summary, summary,
+};
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
 #[derive(Parser, Debug)]
@@ -223,6 +226,7 @@ fn run(args: &Args) -> Result<(), String> {
     let inputs = scene_inputs(&args.scene, &dependencies);
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
+    let origin_offset = scene.origin_offset().to_array();
 
     let variants: Vec<Variant> = if args.compare {
         compare::VARIANTS
@@ -277,6 +281,7 @@ fn run(args: &Args) -> Result<(), String> {
             stats: out.stats,
             mean,
             contacts,
+            origin_offset,
         };
         say(&summary(&record));
         records.push(record);

@@ -1,6 +1,7 @@
 //! glTF values that gave wrong images rather than errors: vertex colours that are infinite,
-//! huge or plain integers, emitters with infinite or negative emission, and emitters far out
-//! at ±10¹⁸ m. Each file is written here, one cube room with a lamp, differing in one value.
+//! huge or plain integers, emitters with infinite or negative emission, and emitters spanning
+//! 10¹⁸ m (one alone that far out is re-centred). Each file is written here, one cube room with
+//! a lamp, differing in one value.
 
 #[path = "support/scratch.rs"]
 mod scratch;
@@ -245,14 +246,29 @@ fn emitters_with_infinite_or_negative_emission_are_refused_naming_the_material()
 }
 
 #[test]
-fn an_emitter_far_out_is_refused() {
+fn an_emitter_far_out_is_re_centred_and_one_spanning_past_the_limit_is_refused() {
     let scratch = Scratch::new("far");
     let emitter = r#"{"emissiveFactor":[1,1,1]}"#;
     for x in [1e18f32, -1e18] {
-        let err = scratch
+        // Alone, the room is moved to the origin (f32 had already flattened it to a square
+        // in the file's accessors); the offset removed is kept.
+        let scene = scratch
             .load("far.gltf", &room([x, 0.0, 0.0], None, emitter))
-            .map(|_| ())
-            .unwrap_err();
+            .unwrap();
+        assert_eq!(scene.origin_offset().x, f64::from(x));
+        assert!(scene.bounds().max.abs().max_element() <= 1.0);
+        // A second placement of it moved back to the origin: the scene now spans 10¹⁸ m,
+        // which photons cannot be stored across.
+        let spanning = room([x, 0.0, 0.0], None, emitter)
+            .replace(
+                r#""nodes":[{"mesh":0},"#,
+                &format!(
+                    r#""nodes":[{{"mesh":0}},{{"mesh":0,"translation":[{},0,0]}},"#,
+                    -x
+                ),
+            )
+            .replace(r#""nodes":[0,1]"#, r#""nodes":[0,1,2]"#);
+        let err = scratch.load("far.gltf", &spanning).map(|_| ()).unwrap_err();
         assert!(err.to_string().contains("1e18"), "{x}: {err}");
     }
     assert!(

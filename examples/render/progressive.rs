@@ -3,7 +3,10 @@
 //! the single-pass command line.
 
 use super::files::{NamedFile, check_run_outputs, scene_dependencies, scene_input, scene_inputs};
-use super::{Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, say};
+use super::{
+    Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, origin_json,
+    origin_summary, say,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::write_atomically;
 use photon_maps::render::progressive::{
@@ -73,8 +76,9 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
+    let scene = load_scene(&args.scene, args.light_units.into())?.0;
+    let origin_offset = scene.origin_offset().to_array();
     let (image, stats, range, identity, contacts) = if sppm {
-        let scene = load_scene(&args.scene, args.light_units.into())?.0;
         let s = SppmSettings {
             passes,
             time_budget: budget,
@@ -96,9 +100,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         )
     } else {
         let partition = args.maps().partitioner();
-        let partitioned = partition
-            .partition(load_scene(&args.scene, args.light_units.into())?.0)
-            .map_err(|e| e.to_string())?;
+        let partitioned = partition.partition(scene).map_err(|e| e.to_string())?;
         let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
             .render(&partitioned, &bar)
@@ -131,13 +133,14 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         String::new()
     };
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
         count(stats.passes, "pass", "passes"),
         stats.photons_emitted,
         contacts.0,
+        origin_summary(origin_offset),
         stats.pilot.as_secs_f64(),
         stats.trace.as_secs_f64(),
         stats.precompute.as_secs_f64(),
@@ -160,7 +163,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             &scene_id,
             &identity,
             range,
-            Some((&stats, heap_peak, &contacts.1)),
+            Some((&stats, heap_peak, &contacts.1, origin_offset)),
             m.to_array(),
         );
         write_atomically(path, |w| w.write_all(json.as_bytes()))
@@ -326,7 +329,7 @@ fn stats_json(
     scene: &str,
     settings: &str,
     range: std::ops::Range<u64>,
-    stats: Option<(&ProgressiveStats, usize, &str)>,
+    stats: Option<(&ProgressiveStats, usize, &str, [f64; 3])>,
     mean: [f32; 3],
 ) -> String {
     let mut o = String::from("{");
@@ -340,8 +343,9 @@ fn stats_json(
         range.end,
         range.end - range.start,
     );
-    if let Some((s, heap_peak, contacts)) = stats {
+    if let Some((s, heap_peak, contacts, origin_offset)) = stats {
         let _ = write!(o, "\"contacts\": {contacts}, ");
+        let _ = write!(o, "\"origin_offset\": {}, ", origin_json(origin_offset));
         let _ = write!(
             o,
             "\"memory_bytes\": {{\"peak_heap\": {heap_peak}, \"pass_trees\": {}, \"pilot\": {}, \"accumulation\": {}}}, ",

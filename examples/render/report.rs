@@ -15,6 +15,29 @@ pub struct Record<'a> {
     pub mean: [f32; 3],
     /// [`contacts_summary`] and [`contacts_json`] of the partition rendered.
     pub contacts: (String, String),
+    /// The world point the scene was re-centred on (`Scene::origin_offset`), metres.
+    pub origin_offset: [f64; 3],
+}
+
+/// The re-centring offset for the summary: empty for a scene that was not moved.
+pub fn origin_summary(offset: [f64; 3]) -> String {
+    if offset == [0.0; 3] {
+        return String::new();
+    }
+    format!(
+        ", re-centred: scene coordinates are relative to ({}, {}, {}) m in the file",
+        offset[0], offset[1], offset[2]
+    )
+}
+
+/// The same as a JSON array `[x, y, z]` (zeros for a scene that was not moved).
+pub fn origin_json(offset: [f64; 3]) -> String {
+    format!(
+        "[{}, {}, {}]",
+        json_number(offset[0]),
+        json_number(offset[1]),
+        json_number(offset[2])
+    )
 }
 
 /// What the contact partition found where faces meet, for the summary: empty when the scene
@@ -93,10 +116,11 @@ pub fn summary(r: &Record<'_>) -> String {
         _ => String::new(),
     };
     format!(
-        "{} [{}]: {lighting}{}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}{}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.contacts.0,
+        origin_summary(r.origin_offset),
         r.settings.mode,
         r.settings.width,
         r.settings.height,
@@ -168,8 +192,9 @@ pub fn json_object(r: &Record<'_>) -> String {
     }
     let _ = write!(
         o,
-        "\"contacts\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
+        "\"contacts\": {}, \"origin_offset\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
         r.contacts.1,
+        origin_json(r.origin_offset),
         json_number(s.trace.as_secs_f64()),
         json_number(s.build.as_secs_f64()),
         json_number(s.precompute.as_secs_f64()),

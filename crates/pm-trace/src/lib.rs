@@ -19,7 +19,11 @@
 //!
 //! - Units: metres; light *power* is the total emitted flux in watts per RGB channel;
 //!   radiance in W/(m²·sr), irradiance in W/m². Colours are linear RGB.
-//! - Right-handed coordinates, +y up (as glTF); angles in radians; `f32` throughout.
+//! - Right-handed coordinates, +y up (as glTF); angles in radians; `f32` throughout the
+//!   scene and the renderer. The glTF loader composes node transforms in f64 and re-centres a
+//!   model placed far from its file's origin before rounding it to f32; the offset it removed
+//!   is [`Scene::origin_offset`] (f64; zero for scenes built directly or left in place), and a
+//!   scene point `p` is `origin_offset + p` in the file (the `gltf` module's *Placement*).
 //! - Polygons are counter-clockwise seen from the side their normal points to.
 //! - Emitters: an emitting surface of radiance `L` and area `A` emits `π L A` watts from its
 //!   front, `2π L A` when its [`Surface::sides`] is [`Sides::Double`]; a point light of

@@ -36,7 +36,7 @@ pub fn build_scene(file: &Path, content: &GltfContent, options: &GltfOptions) ->
     let (min, max) = content
         .bounds()
         .ok_or_else(|| scene_error("the scene holds no triangles".into()))?;
-    let mut builder = Scene::builder();
+    let mut builder = Scene::builder().origin_offset(content.origin_offset);
     let mut has_light = false;
     for mesh in content.meshes.iter().filter(|m| !m.triangles.is_empty()) {
         let surface = surface_of(mesh);

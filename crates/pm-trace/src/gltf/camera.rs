@@ -3,15 +3,16 @@
 
 use std::path::Path;
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 use gltf::json;
 
 use super::error::GltfError;
+use super::origin::unit_f32;
 
 /// A pinhole camera read from the file or made to frame the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GltfCamera {
-    /// Eye position in metres.
+    /// Eye position in metres, relative to [`GltfContent::origin_offset`](super::GltfContent::origin_offset).
     pub position: Vec3,
     /// A point the camera looks at (on its −Z axis).
     pub look_at: Vec3,
@@ -26,14 +27,16 @@ pub struct GltfCamera {
 /// Vertical field of view of the default camera: 40°.
 pub const DEFAULT_VFOV: f32 = 40.0 * std::f32::consts::PI / 180.0;
 
-/// Reads camera `camera` at a node with world transform `world`; `None` for an orthographic
-/// camera (not supported: the renderer's camera is a pinhole).
+/// Reads camera `camera` at a node with world transform `world` (f64), its eye re-centred on
+/// `origin`; `None` for an orthographic camera (not supported: the renderer's camera is a
+/// pinhole).
 pub(super) fn place_camera(
     file: &Path,
     root: &json::Root,
     node: usize,
     camera: usize,
-    world: Mat4,
+    world: DMat4,
+    origin: DVec3,
 ) -> Result<Option<GltfCamera>, GltfError> {
     let error = |reason: String| GltfError::Node {
         file: file.to_path_buf(),
@@ -55,9 +58,14 @@ pub(super) fn place_camera(
             p.yfov
         )));
     }
-    let position = world.transform_point3(Vec3::ZERO);
-    let forward = world.transform_vector3(Vec3::NEG_Z).try_normalize();
-    let up = world.transform_vector3(Vec3::Y).try_normalize();
+    let position = (world.transform_point3(DVec3::ZERO) - origin).as_vec3();
+    if !position.is_finite() {
+        return Err(error(format!(
+            "camera {camera}: the eye is not finite in f32 once re-centred on {origin}"
+        )));
+    }
+    let forward = unit_f32(world.transform_vector3(DVec3::NEG_Z));
+    let up = unit_f32(world.transform_vector3(DVec3::Y));
     let (Some(forward), Some(up)) = (forward, up) else {
         return Err(error(format!("camera {camera}: the node's axes are degenerate")));
     };

@@ -1,34 +1,46 @@
 //! A glTF file flattened into world space — triangles with materials, punctual lights and a
-//! camera — independent of the scene type it is built into.
+//! camera — independent of the scene type it is built into. Flattening takes two steps: the
+//! walk decodes and places every primitive in f64 and grows the world bounds; then the origin
+//! offset is chosen from those bounds ([`GltfContent::origin_offset`]) and every vertex,
+//! camera and light is re-centred on it and rounded to f32.
 
 use std::path::Path;
 
 use std::collections::HashMap;
 
-use glam::Vec3;
+use glam::{DMat4, DVec3, Vec3};
 use gltf::json;
 
 use super::accessor::AccessorReader;
 use super::buffers::{Buffer, resolve_buffers};
 use super::camera::{GltfCamera, place_camera};
-use super::decoded::{Decoded, decode_primitive};
+use super::decoded::{Decoded, LocalPrimitive, decode_primitive};
 use super::emissive::{TextureCache, TextureSources};
 use super::error::GltfError;
 use super::graph::{PlacedNode, root_nodes, walk};
 use super::light::{GltfLight, place_light};
 use super::mesh::GltfMesh;
 use super::options::GltfOptions;
+use super::origin::WorldBounds;
 use super::source::{guard, parse, read_bounded};
 
 /// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct GltfContent {
-    /// Every triangle primitive reached from the scene, placed in the world.
+    /// Every triangle primitive reached from the scene, placed in the world (re-centred on
+    /// [`Self::origin_offset`]).
     pub meshes: Vec<GltfMesh>,
     /// Every `KHR_lights_punctual` light reached from the scene.
     pub lights: Vec<GltfLight>,
     /// The first perspective camera reached from the scene, if any.
     pub camera: Option<GltfCamera>,
+    /// The world point, in the file's metres and in f64, that the content's coordinates are
+    /// relative to: a position `p` of a mesh, light or camera here is `origin_offset + p` in
+    /// the file. The centre of the world bounds of every placed vertex when that centre lies
+    /// farther from the file's origin than the bounds' largest side (a georeferenced model),
+    /// else zero (nothing moved). The scene built from the content keeps it
+    /// ([`Scene::origin_offset`](crate::Scene::origin_offset)).
+    pub origin_offset: DVec3,
     /// Primitives skipped because they are points or lines.
     pub skipped_non_triangle: usize,
     /// Primitives skipped because they have no `POSITION` attribute.
@@ -137,12 +149,32 @@ fn flatten(
         triangle_count: 0,
         textures: TextureCache::default(),
         decoded_cache: HashMap::new(),
+        placements: Vec::new(),
+        bounds: WorldBounds::default(),
+        cameras: Vec::new(),
+        lights: Vec::new(),
         content: GltfContent::default(),
     };
     for p in &placed {
         flattening.place_node(p)?;
     }
-    Ok(flattening.content)
+    flattening.finish()
+}
+
+/// A primitive placed by a node, kept until the origin offset is known.
+struct Placement {
+    node: usize,
+    at: (usize, usize),
+    world: DMat4,
+    local: std::sync::Arc<LocalPrimitive>,
+}
+
+/// A node that holds a camera or a light (its index in the file's cameras or lights), kept
+/// until the origin offset is known.
+struct Placed {
+    node: usize,
+    index: usize,
+    world: DMat4,
 }
 
 /// The content built so far from one file, with the budgets it has spent and the decodes and
@@ -159,14 +191,23 @@ struct Flattening<'a> {
     textures: TextureCache,
     /// Each primitive (mesh and primitive indices) decoded at its first placement.
     decoded_cache: HashMap<(usize, usize), Decoded>,
+    /// Primitives placed, in walk order.
+    placements: Vec<Placement>,
+    /// Every placed vertex's world position, f64.
+    bounds: WorldBounds,
+    /// Nodes holding a camera, in walk order (the first perspective one is the camera).
+    cameras: Vec<Placed>,
+    /// Nodes holding a `KHR_lights_punctual` light, in walk order.
+    lights: Vec<Placed>,
     content: GltfContent,
 }
 
 impl Flattening<'_> {
-    /// Adds what placed node `p` holds to the content: its mesh's primitives, its camera when
-    /// none was placed yet, and its `KHR_lights_punctual` light.
+    /// Takes in what placed node `p` holds: its mesh's primitives (decoded and placed, their
+    /// world bounds grown), its camera and its `KHR_lights_punctual` light (placed by
+    /// [`Self::finish`]).
     fn place_node(&mut self, p: &PlacedNode) -> Result<(), GltfError> {
-        let (file, root, options) = (self.sources.file, self.sources.root, self.sources.options);
+        let (file, root) = (self.sources.file, self.sources.root);
         let node = &root.nodes[p.index];
         if let Some(mesh_index) = node.mesh.map(|m| m.value()) {
             let mesh = root.meshes.get(mesh_index).ok_or_else(|| GltfError::Node {
@@ -181,10 +222,12 @@ impl Flattening<'_> {
                 self.place_primitive(p, (mesh_index, primitive), prim)?;
             }
         }
-        if let Some(camera) = node.camera.map(|c| c.value())
-            && self.content.camera.is_none()
-        {
-            self.content.camera = place_camera(file, root, p.index, camera, p.world)?;
+        if let Some(camera) = node.camera.map(|c| c.value()) {
+            self.cameras.push(Placed {
+                node: p.index,
+                index: camera,
+                world: p.world,
+            });
         }
         let light = node
             .extensions
@@ -192,11 +235,40 @@ impl Flattening<'_> {
             .and_then(|e| e.khr_lights_punctual.as_ref())
             .map(|l| l.light.value());
         if let Some(light) = light {
-            self.content
-                .lights
-                .push(place_light(file, root, p.index, light, p.world, options)?);
+            self.lights.push(Placed {
+                node: p.index,
+                index: light,
+                world: p.world,
+            });
         }
         Ok(())
+    }
+
+    /// The content: the origin offset chosen from the world bounds, then every placed
+    /// primitive, the first perspective camera and every light re-centred on it in f64 and
+    /// rounded to f32.
+    fn finish(mut self) -> Result<GltfContent, GltfError> {
+        let (file, root, options) = (self.sources.file, self.sources.root, self.sources.options);
+        let origin = self.bounds.origin_offset();
+        let mut content = std::mem::take(&mut self.content);
+        content.origin_offset = origin;
+        content.meshes.reserve_exact(self.placements.len());
+        for p in self.placements.drain(..) {
+            content
+                .meshes
+                .push(p.local.place(file, p.node, p.at, p.world, origin)?);
+        }
+        for c in &self.cameras {
+            content.camera = place_camera(file, root, c.node, c.index, c.world, origin)?;
+            if content.camera.is_some() {
+                break;
+            }
+        }
+        for l in &self.lights {
+            let light = place_light(file, root, l.node, l.index, l.world, origin, options)?;
+            content.lights.push(light);
+        }
+        Ok(content)
     }
 
     /// Places primitive `prim` (mesh and primitive indices `at`) with node `p`: its bytes
@@ -223,7 +295,13 @@ impl Flattening<'_> {
                         ),
                     });
                 }
-                self.content.meshes.push(local.place(file, p.index, at, p.world)?);
+                local.add_world_bounds(p.world, &mut self.bounds);
+                self.placements.push(Placement {
+                    node: p.index,
+                    at,
+                    world: p.world,
+                    local,
+                });
             }
             Decoded::NotTriangles => self.content.skipped_non_triangle += 1,
             Decoded::NoPositions => self.content.skipped_without_positions += 1,

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 use gltf::json;
 use json::accessor::Type;
 use json::mesh::Semantic;
@@ -16,7 +16,6 @@ use super::compact::{gather, keep_referenced};
 use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
 use super::material::{GltfMaterial, map_material};
-use super::mesh::GltfMesh;
 use super::options::GltfOptions;
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use crate::emission::EmissionTexture;
@@ -25,16 +24,16 @@ use crate::texture::{Sampler, Texture};
 /// A triangle primitive in its mesh's space, only the vertices its triangles use.
 #[derive(Debug)]
 pub(super) struct LocalPrimitive {
-    material_index: Option<usize>,
-    positions: Vec<Vec3>,
-    triangles: Vec<[u32; 3]>,
-    material: GltfMaterial,
-    uvs: Option<Vec<Vec2>>,
-    colors: Option<Vec<Vec3>>,
+    pub(super) material_index: Option<usize>,
+    pub(super) positions: Vec<Vec3>,
+    pub(super) triangles: Vec<[u32; 3]>,
+    pub(super) material: GltfMaterial,
+    pub(super) uvs: Option<Vec<Vec2>>,
+    pub(super) colors: Option<Vec<Vec3>>,
     /// Normals as the file gives them (transformed per placement).
-    normals: Option<Vec<Vec3>>,
-    base_color_texture: Option<(Arc<Texture>, Sampler)>,
-    emission_texture: Option<EmissionTexture>,
+    pub(super) normals: Option<Vec<Vec3>>,
+    pub(super) base_color_texture: Option<(Arc<Texture>, Sampler)>,
+    pub(super) emission_texture: Option<EmissionTexture>,
 }
 
 /// A texture with the sampler that reads it.
@@ -264,57 +263,5 @@ impl LocalPrimitive {
         (self.positions.len() as u64)
             .saturating_mul(GltfOptions::BYTES_PER_VERTEX)
             .saturating_add((self.triangles.len() as u64).saturating_mul(per_triangle))
-    }
-
-    /// The primitive placed by node `node` with world transform `world`: positions (checked
-    /// finite) and normals transformed, the winding flipped back under a mirroring transform.
-    pub(super) fn place(
-        &self,
-        file: &Path,
-        node: usize,
-        at: (usize, usize),
-        world: Mat4,
-    ) -> Result<GltfMesh, GltfError> {
-        let mut positions = Vec::with_capacity(self.positions.len());
-        for (i, p) in self.positions.iter().enumerate() {
-            let w = world.transform_point3(*p);
-            if !w.is_finite() {
-                return Err(GltfError::Primitive {
-                    file: file.to_path_buf(),
-                    mesh: at.0,
-                    primitive: at.1,
-                    reason: format!("position {i} is not finite in the world: {w} (local {p})"),
-                });
-            }
-            positions.push(w);
-        }
-        let mut triangles = self.triangles.clone();
-        // A mirroring transform flips the winding; flip it back so front faces stay front.
-        if world.determinant() < 0.0 {
-            for t in &mut triangles {
-                t.swap(1, 2);
-            }
-        }
-        let to_world = Mat3::from_mat4(world).inverse().transpose();
-        let normals = self.normals.as_ref().map(|normals| {
-            normals
-                .iter()
-                .map(|v| (to_world * *v).try_normalize().unwrap_or(Vec3::ZERO))
-                .collect()
-        });
-        Ok(GltfMesh {
-            node,
-            mesh: at.0,
-            primitive: at.1,
-            material_index: self.material_index,
-            positions,
-            triangles,
-            material: self.material,
-            uvs: self.uvs.clone(),
-            colors: self.colors.clone(),
-            normals,
-            base_color_texture: self.base_color_texture.clone(),
-            emission_texture: self.emission_texture.clone(),
-        })
     }
 }

@@ -1,10 +1,11 @@
 //! The node graph walk: from the chosen scene's roots with an explicit stack, composing world
-//! transforms. A node reached twice (a cycle, or a child shared by two parents) or a chain
+//! transforms in f64 (a georeferenced root node's kilometres of translation and its children's
+//! millimetres stay apart until the scene is re-centred). A node reached twice (a cycle, or a child shared by two parents) or a chain
 //! deeper than [`MAX_DEPTH`] is an error, so hostile graphs cost bounded time and memory.
 
 use std::path::Path;
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{DMat4, DQuat, DVec3};
 use gltf::json;
 
 use super::error::GltfError;
@@ -12,10 +13,10 @@ use super::error::GltfError;
 /// The deepest node chain accepted (root nodes have depth 1).
 pub const MAX_DEPTH: usize = 256;
 
-/// A node reached from the scene, with its world transform.
+/// A node reached from the scene, with its world transform (f64, before re-centring).
 pub(super) struct PlacedNode {
     pub index: usize,
-    pub world: Mat4,
+    pub world: DMat4,
 }
 
 /// The root nodes to walk: the default scene, else scene 0, else every node that is no
@@ -56,7 +57,8 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
     let mut visited = vec![false; root.nodes.len()];
     let mut placed = Vec::new();
     // (node, parent's world transform, depth); reversed so that pops follow document order.
-    let mut stack: Vec<(usize, Mat4, usize)> = roots.iter().rev().map(|&n| (n, Mat4::IDENTITY, 1)).collect();
+    let mut stack: Vec<(usize, DMat4, usize)> =
+        roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, 1)).collect();
     while let Some((index, parent, depth)) = stack.pop() {
         let node = root.nodes.get(index).ok_or_else(|| {
             node_error(
@@ -86,19 +88,20 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
     Ok(placed)
 }
 
-/// The node's local transform: its column-major `matrix`, else translation × rotation × scale.
-fn local_transform(node: &json::Node) -> Result<Mat4, String> {
+/// The node's local transform in f64: its column-major `matrix`, else translation × rotation ×
+/// scale (the quaternion normalised in f64).
+fn local_transform(node: &json::Node) -> Result<DMat4, String> {
     if let Some(m) = node.matrix {
-        let m = Mat4::from_cols_array(&m);
+        let m = DMat4::from_cols_array(&m.map(f64::from));
         return if m.is_finite() {
             Ok(m)
         } else {
             Err("matrix is not finite".into())
         };
     }
-    let t = Vec3::from(node.translation.unwrap_or([0.0; 3]));
-    let s = Vec3::from(node.scale.unwrap_or([1.0; 3]));
-    let r = Quat::from_array(node.rotation.map_or([0.0, 0.0, 0.0, 1.0], |q| q.0));
+    let t = DVec3::from(node.translation.unwrap_or([0.0; 3]).map(f64::from));
+    let s = DVec3::from(node.scale.unwrap_or([1.0; 3]).map(f64::from));
+    let r = DQuat::from_array(node.rotation.map_or([0.0, 0.0, 0.0, 1.0], |q| q.0).map(f64::from));
     if !(t.is_finite() && s.is_finite() && r.is_finite()) {
         return Err("translation, rotation or scale is not finite".into());
     }
@@ -106,5 +109,5 @@ fn local_transform(node: &json::Node) -> Result<Mat4, String> {
     if length < 1e-6 {
         return Err("rotation quaternion has zero length".into());
     }
-    Ok(Mat4::from_scale_rotation_translation(s, r / length, t))
+    Ok(DMat4::from_scale_rotation_translation(s, r / length, t))
 }

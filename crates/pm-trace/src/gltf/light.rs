@@ -5,20 +5,21 @@
 
 use std::path::Path;
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 use gltf::json;
 use json::extensions::scene::khr_lights_punctual::{Light, Type};
 use json::validation::Checked;
 
 use super::error::GltfError;
 use super::options::GltfOptions;
+use super::origin::unit_f32;
 
 /// A punctual light placed in the world, in radiometric units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GltfLight {
     /// Emits equally in all directions.
     Point {
-        /// World position in metres.
+        /// Position in metres, relative to [`GltfContent::origin_offset`](super::GltfContent::origin_offset).
         position: Vec3,
         /// Radiant intensity in W/sr per channel: `color × candela × punctual_factor ×
         /// light_scale` (`punctual_factor` is 1/683 by default; see `LightUnits`).
@@ -26,7 +27,7 @@ pub enum GltfLight {
     },
     /// Emits in a cone around `direction` (the node's −Z axis).
     Spot {
-        /// World position in metres.
+        /// Position in metres, relative to [`GltfContent::origin_offset`](super::GltfContent::origin_offset).
         position: Vec3,
         /// Unit direction of the cone's axis.
         direction: Vec3,
@@ -46,14 +47,16 @@ pub enum GltfLight {
     },
 }
 
-/// Places light `light` of the file at a node with world transform `world`. `range` is
-/// ignored: the inverse-square law needs no cut-off.
+/// Places light `light` of the file at a node with world transform `world` (f64), its
+/// position re-centred on `origin`. `range` is ignored: the inverse-square law needs no
+/// cut-off.
 pub(super) fn place_light(
     file: &Path,
     root: &json::Root,
     node: usize,
     light: usize,
-    world: Mat4,
+    world: DMat4,
+    origin: DVec3,
     options: &GltfOptions,
 ) -> Result<GltfLight, GltfError> {
     let error = |reason: String| GltfError::Node {
@@ -79,8 +82,8 @@ pub(super) fn place_light(
             "light {light}: colour × intensity {power} is not finite and non-negative"
         )));
     }
-    let position = world.transform_point3(Vec3::ZERO);
-    let direction = world.transform_vector3(Vec3::NEG_Z).try_normalize();
+    let position = (world.transform_point3(DVec3::ZERO) - origin).as_vec3();
+    let direction = unit_f32(world.transform_vector3(DVec3::NEG_Z));
     let Checked::Valid(ty) = l.type_ else {
         return Err(error(format!("light {light}: invalid type")));
     };
@@ -88,15 +91,23 @@ pub(super) fn place_light(
         let reason = format!("light {light}: the node's −Z axis is degenerate");
         direction.ok_or_else(|| error(reason))
     };
+    let need_position = || {
+        let reason = format!("light {light}: its position is not finite in f32 once re-centred on {origin}");
+        if position.is_finite() {
+            Ok(position)
+        } else {
+            Err(error(reason))
+        }
+    };
     Ok(match ty {
         Type::Point => GltfLight::Point {
-            position,
+            position: need_position()?,
             intensity: power,
         },
         Type::Spot => {
             let (inner, outer) = spot_cone(l).map_err(|r| error(format!("light {light}: {r}")))?;
             GltfLight::Spot {
-                position,
+                position: need_position()?,
                 direction: need_direction()?,
                 intensity: power,
                 inner_cone_angle: inner,

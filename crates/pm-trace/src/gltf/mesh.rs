@@ -20,7 +20,8 @@ pub struct GltfMesh {
     pub primitive: usize,
     /// Index of the material in `materials`, `None` for the default material.
     pub material_index: Option<usize>,
-    /// World-space vertex positions in metres.
+    /// World-space vertex positions in metres, relative to
+    /// [`GltfContent::origin_offset`](super::GltfContent::origin_offset).
     pub positions: Vec<Vec3>,
     /// Triangles as indices into `positions` (each checked in range), counter-clockwise
     /// seen from the front.

@@ -32,7 +32,8 @@
 //!
 //! - **Geometry**: the default scene (else scene 0, else every root node) is walked with an
 //!   explicit stack; a node reached twice (a cycle) or deeper than [`MAX_DEPTH`] is an error.
-//!   World transforms compose `matrix` (column-major) or translation × rotation × scale.
+//!   World transforms compose `matrix` (column-major) or translation × rotation × scale, in
+//!   f64 (see *Placement* below).
 //!   Triangle lists, strips and fans are read, each primitive becoming one scene mesh;
 //!   points and lines are skipped and counted ([`GltfContent::skipped_non_triangle`]).
 //!   Non-finite positions and out-of-range indices are errors.
@@ -86,6 +87,33 @@
 //!   light at the camera gives 1 W/m² at the centre of the bounds; without it the file is an
 //!   error ([`GltfError::Scene`]).
 //!
+//! # Placement: f64 transforms and re-centring
+//!
+//! Georeferenced models (architecture, city and terrain exports) keep small coordinates in
+//! their accessors and put a large translation — kilometres, a UTM northing — in a root node;
+//! composed and applied in f32, that translation leaves a few centimetres or metres of
+//! precision and thin walls collapse. So node transforms are composed in f64, every vertex is
+//! placed in f64 (`world · p`), and the world bounds of all placed vertices are taken in f64.
+//! When their centre lies farther from the file's origin than the bounds' largest side, the
+//! scene is re-centred: that centre is subtracted from every vertex, camera and punctual light
+//! position (in f64) before they are rounded to f32 once; normals and directions are unchanged.
+//! A model around its own origin is left exactly where the file puts it (moving it would gain
+//! at most two bits of f32 precision and change images by rounding). The offset removed is
+//! [`GltfContent::origin_offset`] and [`Scene::origin_offset`] (zero when nothing moved): a
+//! point `p` of the scene is `origin_offset + p` in the file, so nothing a user measures in
+//! the file's coordinates is lost; the render example reports it (`"origin_offset"` in
+//! `--stats-json`).
+//!
+//! What remains is f64's own precision at the offset (a step of 1.9 nm at 10⁴ km) and the gltf
+//! crate's, which reads `translation`, `scale` and `matrix` as f32: a translation of 6,400 km
+//! is exact, but an arbitrary northing is rounded to f32 (half a metre there) before it is
+//! composed. That moves a model as a whole; it does not change its geometry, though two
+//! sibling nodes carrying separate large translations can be shifted apart by that much.
+//! Geometry is refused, with an error naming the primitive, only where a re-centred position
+//! is not finite in f32, and by the scene builder past ±10¹⁸ m
+//! ([`SceneError::GeometryOutOfRange`](crate::SceneError::GeometryOutOfRange)); that limit
+//! applies to the re-centred scene, so it bounds a model's extent, not its distance.
+//!
 //! # Example
 //!
 //! ```
@@ -116,6 +144,8 @@ mod light;
 mod material;
 mod mesh;
 mod options;
+mod origin;
+mod place;
 mod primitive;
 mod source;
 mod texture_ref;

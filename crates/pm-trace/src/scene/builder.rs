@@ -16,7 +16,7 @@ use crate::part::{PartId, PartSource};
 use crate::shape::Shape;
 use crate::shape::ring::{Ring, RingSide};
 use crate::shape::sphere::Sphere;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use pm_geom::MeshOptions;
 use std::sync::Arc;
 
@@ -47,6 +47,7 @@ impl Scene {
             lights: self.lights,
             camera: Some(self.camera),
             mesh_options: self.mesh_options,
+            origin_offset: self.origin_offset,
             ..SceneBuilder::default()
         }
     }
@@ -73,6 +74,7 @@ pub struct SceneBuilder {
     pub(super) camera: Option<Camera>,
     pub(super) mesh_options: MeshOptions,
     pub(super) max_triangles: Option<usize>,
+    pub(super) origin_offset: DVec3,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -251,6 +253,16 @@ impl SceneBuilder {
         self
     }
 
+    /// Records that the scene's coordinates are relative to the world point `offset` (in
+    /// metres, f64): a position `p` in the scene stands for `offset + p` in the world the
+    /// geometry came from. Only recorded ([`Scene::origin_offset`]); nothing is moved. The glTF
+    /// loader sets it when it re-centres a scene far from its origin. A non-finite offset is
+    /// [`SceneError::InvalidParameter`].
+    pub fn origin_offset(mut self, offset: DVec3) -> Self {
+        self.origin_offset = offset;
+        self
+    }
+
     /// Sets the mesh options (weld tolerance) used for meshes.
     pub fn mesh_options(mut self, options: MeshOptions) -> Self {
         self.mesh_options = options;
@@ -273,6 +285,12 @@ impl SceneBuilder {
             return Err(SceneError::TooManyTriangles {
                 triangles: triangle_count,
                 limit,
+            });
+        }
+        if !self.origin_offset.is_finite() {
+            return Err(SceneError::InvalidParameter {
+                what: "origin offset".into(),
+                reason: format!("{} is not finite", self.origin_offset),
             });
         }
         // Kept faces have at least one triangle each, so this is within the limit too.
@@ -322,6 +340,7 @@ impl SceneBuilder {
             has_shading: meshes.has_shading,
             has_emission_textures: meshes.has_emission_textures,
             has_culling,
+            origin_offset: self.origin_offset,
         })
     }
 }

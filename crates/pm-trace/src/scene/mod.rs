@@ -22,7 +22,7 @@ use crate::light::Light;
 use crate::material::{Material, Surface};
 use crate::part::{PartId, PartSource, SourceFace};
 use crate::shape::Shape;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use pm_geom::{Aabb, FaceId, HalfEdgeMesh, MeshOptions};
 use std::sync::Arc;
 
@@ -123,6 +123,8 @@ pub struct Scene {
     has_emission_textures: bool,
     /// True when some surface is [`crate::Sides::Single`] (else camera rays cull nothing).
     has_culling: bool,
+    /// The world point the scene's coordinates are relative to ([`Scene::origin_offset`]).
+    origin_offset: DVec3,
 }
 
 /// Stacks of the sphere proxy polygons (`stacks × 2·stacks` cells = 512 polygons).
@@ -164,6 +166,15 @@ impl Scene {
             .map_err(|reason| SceneError::InvalidCamera { reason })?;
         self.camera = camera;
         Ok(self)
+    }
+
+    /// The world point, in metres and f64, that this scene's origin stands for: a position `p`
+    /// in the scene is `origin_offset + p` in the world its geometry was given in. Zero unless
+    /// the scene was re-centred, as the glTF loader does for a model far from its origin
+    /// (see `gltf`'s module documentation), so f32 keeps the model's detail; add it to map a
+    /// point of the scene (a hit, a photon, the camera) back to the file's coordinates.
+    pub fn origin_offset(&self) -> DVec3 {
+        self.origin_offset
     }
 
     /// Bounds of all geometry.

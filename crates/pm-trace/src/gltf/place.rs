@@ -1,0 +1,80 @@
+//! A decoded primitive placed by a node: its vertices taken through the node's f64 world
+//! transform, moved by the scene's re-centring offset, and only then rounded to f32; its
+//! normals by the transform's inverse transpose; its winding kept front-facing under mirrors.
+
+use std::path::Path;
+
+use glam::{DMat3, DMat4, DVec3, Vec3};
+
+use super::decoded::LocalPrimitive;
+use super::error::GltfError;
+use super::mesh::GltfMesh;
+use super::origin::{WorldBounds, unit_f32};
+
+impl LocalPrimitive {
+    /// Adds the world position (f64, before re-centring) of every vertex under `world` to
+    /// `bounds`.
+    pub(super) fn add_world_bounds(&self, world: DMat4, bounds: &mut WorldBounds) {
+        for p in &self.positions {
+            bounds.add(world.transform_point3(p.as_dvec3()));
+        }
+    }
+
+    /// The primitive placed by node `node` with world transform `world`, re-centred on
+    /// `origin`: each position is `world · p − origin` in f64, then rounded once to f32 (and
+    /// checked finite there); normals by the inverse transpose of `world`'s linear part; the
+    /// winding flipped back under a mirroring transform.
+    pub(super) fn place(
+        &self,
+        file: &Path,
+        node: usize,
+        at: (usize, usize),
+        world: DMat4,
+        origin: DVec3,
+    ) -> Result<GltfMesh, GltfError> {
+        let mut positions = Vec::with_capacity(self.positions.len());
+        for (i, p) in self.positions.iter().enumerate() {
+            let w = world.transform_point3(p.as_dvec3()) - origin;
+            let w32 = w.as_vec3();
+            if !w32.is_finite() {
+                return Err(GltfError::Primitive {
+                    file: file.to_path_buf(),
+                    mesh: at.0,
+                    primitive: at.1,
+                    reason: format!(
+                        "position {i} is not finite in the world: {w} (local {p}, re-centred on {origin})"
+                    ),
+                });
+            }
+            positions.push(w32);
+        }
+        let mut triangles = self.triangles.clone();
+        // A mirroring transform flips the winding; flip it back so front faces stay front.
+        if world.determinant() < 0.0 {
+            for t in &mut triangles {
+                t.swap(1, 2);
+            }
+        }
+        let to_world = DMat3::from_mat4(world).inverse().transpose();
+        let normals = self.normals.as_ref().map(|normals| {
+            normals
+                .iter()
+                .map(|v| unit_f32(to_world * v.as_dvec3()).unwrap_or(Vec3::ZERO))
+                .collect()
+        });
+        Ok(GltfMesh {
+            node,
+            mesh: at.0,
+            primitive: at.1,
+            material_index: self.material_index,
+            positions,
+            triangles,
+            material: self.material,
+            uvs: self.uvs.clone(),
+            colors: self.colors.clone(),
+            normals,
+            base_color_texture: self.base_color_texture.clone(),
+            emission_texture: self.emission_texture.clone(),
+        })
+    }
+}
