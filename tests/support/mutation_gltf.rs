@@ -81,7 +81,13 @@ impl Accessor {
     }
 }
 
-fn scene_json(b: &Buffers, accessors: &[Accessor], image_uri: &str, tex_coord: u32) -> String {
+fn scene_json(
+    b: &Buffers,
+    accessors: &[Accessor],
+    image_uri: &str,
+    tex_coord: u32,
+    placement: &str,
+) -> String {
     let views: Vec<String> = b
         .blocks
         .iter()
@@ -106,9 +112,10 @@ fn scene_json(b: &Buffers, accessors: &[Accessor], image_uri: &str, tex_coord: u
         "images":[{{"uri":"{image_uri}"}}],"textures":[{{"source":0}}],
         "materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0,"texCoord":{tex_coord}}},"metallicFactor":0}}}}],
         "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2,"COLOR_0":3}},"indices":4,"material":0}}]}}],
-        "nodes":[{{"mesh":0}},{{"translation":[0.5,0.5,0.5],"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}}],
+        "nodes":[{{"mesh":0}},{{"translation":[0.5,0.5,0.5],"extensions":{{"KHR_lights_punctual":{{"light":0}}}}}},
+            {{"children":[0,1]{placement}}}],
         "cameras":[{{"type":"perspective","perspective":{{"yfov":1.2,"znear":0.01}}}}],
-        "scenes":[{{"nodes":[0,1]}}],"scene":0}}"#,
+        "scenes":[{{"nodes":[2]}}],"scene":0}}"#,
         b.bin.len(),
         views.join(","),
         accessor_json.join(","),
@@ -188,9 +195,10 @@ pub fn gltf_mutant(rng: &mut Rng) -> Mutant {
     let mut image = png(4, 4, png::ColorType::Rgb, png::BitDepth::Eight);
     let mut image_name = "tex.png";
     let mut tex_coord = 0;
+    let mut placement = String::new();
     let mut done = Vec::new();
     for _ in 0..1 + rng.below(3) {
-        match rng.below(10) {
+        match rng.below(11) {
             0 => {
                 // An attribute's component type and normalized flag.
                 let a = 1 + rng.below(3);
@@ -276,6 +284,30 @@ pub fn gltf_mutant(rng: &mut Rng) -> Mutant {
                 image.truncate(keep);
                 done.push(format!("image cut at {keep}"));
             }
+            9 => {
+                // The root node's transform: zero, negative and non-uniform scales, huge
+                // translations (a georeferenced model), degenerate matrices and rotations.
+                placement = rng
+                    .pick(&[
+                        r#","scale":[1,1,0]"#,
+                        r#","scale":[0,0,0]"#,
+                        r#","scale":[-1,1,1]"#,
+                        r#","scale":[1e-6,1,1e6]"#,
+                        r#","scale":[1e-30,1e-30,1e-30]"#,
+                        r#","scale":[1e30,1e30,1e30]"#,
+                        r#","translation":[6400000,0,0]"#,
+                        r#","translation":[1e7,-1e7,3e6],"scale":[1e-3,1e-3,1e-3]"#,
+                        r#","translation":[1e30,0,0]"#,
+                        r#","translation":[3e38,3e38,0]"#,
+                        r#","rotation":[0,0,0,0]"#,
+                        r#","rotation":[0,0,0,1e20]"#,
+                        r#","matrix":[0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]"#,
+                        r#","matrix":[1,0,0,0,0,1,0,0,0,0,1,0,1e7,1e7,1e7,1]"#,
+                        r#","matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,0]"#,
+                    ])
+                    .to_string();
+                done.push(format!("root node{placement}"));
+            }
             _ => {
                 if rng.below(2) == 0 {
                     tex_coord = 1;
@@ -293,7 +325,7 @@ pub fn gltf_mutant(rng: &mut Rng) -> Mutant {
     let mut files = BTreeMap::new();
     files.insert(
         "scene.gltf",
-        scene_json(&b, &accessors, image_name, tex_coord).into_bytes(),
+        scene_json(&b, &accessors, image_name, tex_coord, &placement).into_bytes(),
     );
     files.insert("scene.bin", b.bin);
     files.insert(image_name, image);
