@@ -178,6 +178,24 @@ pub fn json_object(r: &Record<'_>) -> String {
         s.threads,
         r.args.seed,
     );
+    if photon_maps && s.occupancy.maps > 0 {
+        let m = &s.occupancy;
+        let _ = write!(
+            o,
+            "\"map_occupancy\": {{\"k\": {}, \"maps\": {}, \"empty\": {}, \"below_k\": {}, \"photons_below_k\": {}, \"photons_per_map_p10_p50_p90_max\": [{}, {}, {}, {}], \"area\": {}, \"area_share_below_k\": {}}}, ",
+            m.k,
+            m.maps,
+            m.empty,
+            m.below_k,
+            m.photons_below_k,
+            m.photons_per_map[0],
+            m.photons_per_map[1],
+            m.photons_per_map[2],
+            m.photons_per_map[3],
+            json_number(m.area),
+            json_number(m.area_share_below_k()),
+        );
+    }
     if r.settings.mode == photon_maps::render::Mode::FinalGather {
         let _ = write!(
             o,

@@ -115,6 +115,7 @@ impl<E: Estimator> Renderer<E> {
         let maps = PhotonMaps::build(scene, assignment, traced)?;
         stats.build = start.elapsed();
         stats.photon_channels_below_range = maps.channels_below_range();
+        stats.occupancy = maps.occupancy(self.settings.k);
         Ok(maps)
     }
 

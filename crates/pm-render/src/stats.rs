@@ -20,6 +20,9 @@ pub struct RenderStats {
     pub near_light_fraction: f64,
     /// Number of photon maps.
     pub map_count: u32,
+    /// How the photons fill the maps, against the estimate's k: maps with none or fewer than
+    /// k, and the surface they cover (all zero when the mode traces no photons).
+    pub occupancy: pm_trace::MapOccupancy,
     /// Worker threads used.
     pub threads: usize,
     /// Photon tracing.

@@ -140,8 +140,8 @@ pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };
 pub use photons::{
-    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps,
-    TraceOptions, TraceStats, TracedPhotons, trace_photons,
+    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy, NEAR_LIGHT_DISTANCE, PhotonMap,
+    PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;

@@ -3,6 +3,7 @@
 
 mod light_picker;
 mod maps;
+mod occupancy;
 mod options;
 mod path;
 mod scatter;
@@ -10,6 +11,7 @@ mod trace;
 mod traced;
 
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
+pub use occupancy::MapOccupancy;
 pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};
 pub use scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use trace::trace_photons;
