@@ -129,6 +129,12 @@ struct Args {
     /// never) [default: 5 % of the scene's bounding-box diagonal].
     #[arg(long)]
     corner_distance: Option<f32>,
+    /// Contact maps: faces closer than this fraction of the scene's bounding-box diagonal
+    /// count as touching, and no map joins across them (0 < f ≤ 0.1) [default: 0.002]. A
+    /// modelled interior of small objects splits into far fewer maps with a smaller one: the
+    /// obvhs kitchen (7.9 m) makes 134,420 maps at 0.002, 30,197 at 0.0001.
+    #[arg(long)]
+    contact_gap: Option<f32>,
 }
 
 impl Args {
@@ -258,7 +264,7 @@ fn run(args: &Args) -> Result<(), String> {
     // scene as it is, so the partitioned scene serves the next variant.
     let mut scene = Some(scene);
     for variant in &variants {
-        let partition = variant.maps.partitioner();
+        let partition = variant.maps.partitioner(args.contact_gap)?;
         let partitioned = partition
             .partition(scene.take().ok_or("no scene")?)
             .map_err(|e| e.to_string())?;

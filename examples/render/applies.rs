@@ -2,7 +2,7 @@
 //! mode would not use is refused with one line, never silently ignored.
 
 use super::Args;
-use super::choices::ModeChoice;
+use super::choices::{MapsChoice, ModeChoice};
 use clap::ArgMatches;
 use clap::parser::ValueSource;
 use std::path::Path;
@@ -30,6 +30,9 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
     let ok = match (option, run) {
         (_, Run::Merge) => return Some("no merge"),
         ("maps" | "estimator", Run::Single(m) | Run::Passes(m)) => maps_mode(m),
+        ("contact_gap", Run::Single(m) | Run::Passes(m)) => {
+            maps_mode(m) && args.maps() == MapsChoice::Contact
+        }
         ("photons" | "k", Run::Single(m) | Run::Passes(m)) => m != PathTrace,
         ("spp", Run::Single(_)) => true,
         ("spp", Run::Passes(m)) => m == Progressive,
@@ -47,6 +50,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
     }
     Some(match option {
         "maps" | "estimator" => "the photon-map modes (photon-map, shadow-rays, final-gather, progressive)",
+        "contact_gap" => "--maps contact (the default) in the photon-map modes",
         "gather_rays" | "cache_every" | "corner_distance" => "--mode final-gather and --mode progressive",
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
@@ -58,7 +62,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 18] = [
+const OPTIONS: [(&str, &str); 19] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -77,6 +81,7 @@ const OPTIONS: [(&str, &str); 18] = [
     ("gather_rays", "--gather-rays"),
     ("cache_every", "--cache-every"),
     ("corner_distance", "--corner-distance"),
+    ("contact_gap", "--contact-gap"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

@@ -21,13 +21,26 @@ pub enum MapsChoice {
 }
 
 impl MapsChoice {
-    /// The partitioner.
-    pub fn partitioner(self) -> Box<dyn Partitioner> {
-        match self {
+    /// The partitioner; `contact_gap` (`--contact-gap`) is the contact partition's relative
+    /// gap, refused outside (0, 0.1].
+    pub fn partitioner(self, contact_gap: Option<f32>) -> Result<Box<dyn Partitioner>, String> {
+        Ok(match self {
             MapsChoice::Single => Box::new(SingleMap),
             MapsChoice::Crease => Box::new(CreaseAngle::default()),
-            MapsChoice::Contact => Box::new(Contact::default()),
-        }
+            MapsChoice::Contact => {
+                let defaults = Contact::default();
+                let relative_gap = contact_gap.unwrap_or(defaults.relative_gap);
+                if !(relative_gap > 0.0 && relative_gap <= 0.1) {
+                    return Err(format!(
+                        "--contact-gap {relative_gap}: expected a fraction of the scene's diagonal in (0, 0.1]"
+                    ));
+                }
+                Box::new(Contact {
+                    relative_gap,
+                    ..defaults
+                })
+            }
+        })
     }
 }
 

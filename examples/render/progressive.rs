@@ -99,7 +99,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             contacts,
         )
     } else {
-        let partition = args.maps().partitioner();
+        let partition = args.maps().partitioner(args.contact_gap)?;
         let partitioned = partition.partition(scene).map_err(|e| e.to_string())?;
         let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
