@@ -104,6 +104,7 @@
 //!   report" in these docs is that report. The reproduction is in the repository's
 //!   `docs/results.md`.
 
+pub mod bsdf;
 mod bvh;
 pub mod camera;
 pub mod emission;
@@ -126,6 +127,7 @@ pub mod texture_transform;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 
+pub use bsdf::{Bsdf, BsdfSample, Lobes, ShadingPoint};
 pub use camera::Camera;
 pub use emission::EmissionTexture;
 pub use error::{MapError, PhotonFault, SceneError, TraceError};
