@@ -15,6 +15,12 @@
 //! scenes, the same rooms built from solid boxes, and scale scenes for measuring how cost grows,
 //! are in [`scenes`].
 //!
+//! How a surface scatters light is a [`Bsdf`] ([`bsdf`]): the built-in Lambertian, mirror
+//! and glass of [`Material`] implement it, and a renderer author brings their own through
+//! [`Material::Custom`] ([`Surface::with_bsdf`]); the photon tracer and the renderer's delta
+//! chain and path tracer scatter through it. The module docs give its conventions (world
+//! space, `eval` without the cosine, delta lobes) and an example implementation.
+//!
 //! # Conventions
 //!
 //! - Units: metres; light *power* is the total emitted flux in watts per RGB channel;

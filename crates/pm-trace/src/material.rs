@@ -3,7 +3,12 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::bsdf::{Bsdf, BsdfSample, Glass, Lambertian, Lobes, Mirror, ShadingPoint};
+use crate::bsdf::glass::Glass;
+use crate::bsdf::lambertian::Lambertian;
+use crate::bsdf::lobes::Lobes;
+use crate::bsdf::mirror::Mirror;
+use crate::bsdf::shading_point::ShadingPoint;
+use crate::bsdf::{Bsdf, BsdfSample};
 use crate::rng::Rng;
 use crate::sides::Sides;
 

@@ -1,8 +1,10 @@
 //! Smooth colourless glass: Fresnel reflection and refraction, two delta lobes chosen by the
 //! Fresnel reflectance, about the shading normal with the geometric normal as the fallback.
 
+use super::lobes::Lobes;
 use super::scatter::{GlassBounce, glass_bounce};
-use super::{Bsdf, BsdfSample, Lobes, ShadingPoint};
+use super::shading_point::ShadingPoint;
+use super::{Bsdf, BsdfSample};
 use crate::rng::Rng;
 use glam::{Vec2, Vec3};
 

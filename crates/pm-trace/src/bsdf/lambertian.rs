@@ -1,6 +1,8 @@
 //! The ideal diffuse reflector: `f = ρ/π` above the shading normal, sampled by the cosine.
 
-use super::{Bsdf, BsdfSample, Lobes, ShadingPoint};
+use super::lobes::Lobes;
+use super::shading_point::ShadingPoint;
+use super::{Bsdf, BsdfSample};
 use crate::rng::Rng;
 use crate::sampling::cosine_hemisphere;
 use glam::{Vec2, Vec3};

@@ -1,8 +1,10 @@
 //! The perfect specular reflector: one delta lobe about the shading normal (the geometric one
 //! where that would reflect into the surface).
 
+use super::lobes::Lobes;
 use super::scatter::mirror_direction;
-use super::{Bsdf, BsdfSample, Lobes, ShadingPoint};
+use super::shading_point::ShadingPoint;
+use super::{Bsdf, BsdfSample};
 use crate::rng::Rng;
 use glam::{Vec2, Vec3};
 

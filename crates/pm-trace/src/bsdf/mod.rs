@@ -90,12 +90,12 @@
 //! assert!(s.wi.y > 0.0 && (s.weight - Vec3::splat(0.5)).abs().max_element() < 1e-6);
 //! ```
 
-mod glass;
-mod lambertian;
-mod lobes;
-mod mirror;
+pub(crate) mod glass;
+pub(crate) mod lambertian;
+pub(crate) mod lobes;
+pub(crate) mod mirror;
 pub mod scatter;
-mod shading_point;
+pub(crate) mod shading_point;
 
 pub use glass::Glass;
 pub use lambertian::Lambertian;

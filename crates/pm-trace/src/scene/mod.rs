@@ -15,7 +15,7 @@ pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
-use crate::bsdf::ShadingPoint;
+use crate::bsdf::shading_point::ShadingPoint;
 use crate::bvh::SceneBvh;
 use crate::camera::Camera;
 use crate::error::SceneError;
@@ -202,7 +202,7 @@ impl Scene {
     }
 
     /// The reflectance at a hit: a Lambertian surface's albedo or a mirror's reflectance (one
-    /// for glass, a custom BSDF's [`Bsdf::diffuse_albedo`]), times the mesh's base-colour
+    /// for glass, a custom BSDF's [`crate::bsdf::Bsdf::diffuse_albedo`]), times the mesh's base-colour
     /// texture at the hit's texture coordinates and its interpolated vertex colours where the
     /// mesh has them. Use this, not the material's factor, wherever a hit's colour matters;
     /// the photon-map estimators read radiance `albedo_at/π · E` with it.
@@ -251,7 +251,7 @@ impl Scene {
         Some(shading.colour_at(face, hit.position, footprint))
     }
 
-    /// Where `hit`'s surface scatters ([`Bsdf`]'s argument): the shading normal
+    /// Where `hit`'s surface scatters ([`crate::bsdf::Bsdf`]'s argument): the shading normal
     /// ([`Scene::shading_normal_at`]) and the tint at the point ([`Scene::tint_over`]).
     #[inline]
     pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
