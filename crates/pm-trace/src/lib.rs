@@ -15,6 +15,12 @@
 //! scenes, the same rooms built from solid boxes, and scale scenes for measuring how cost grows,
 //! are in [`scenes`].
 //!
+//! How a surface scatters light is a [`Bsdf`] ([`bsdf`]): the built-in Lambertian, mirror
+//! and glass of [`Material`] implement it, and a renderer author brings their own through
+//! [`Material::Custom`] ([`Surface::with_bsdf`]); the photon tracer and the renderer's delta
+//! chain and path tracer scatter through it. The module docs give its conventions (world
+//! space, `eval` without the cosine, delta lobes) and an example implementation.
+//!
 //! # Conventions
 //!
 //! - Units: metres; light *power* is the total emitted flux in watts per RGB channel;
@@ -104,6 +110,7 @@
 //!   report" in these docs is that report. The reproduction is in the repository's
 //!   `docs/results.md`.
 
+pub mod bsdf;
 mod bvh;
 pub mod camera;
 pub mod emission;
@@ -126,6 +133,7 @@ pub mod texture_transform;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 
+pub use bsdf::{Bsdf, BsdfSample, Lobes, ShadingPoint};
 pub use camera::Camera;
 pub use emission::EmissionTexture;
 pub use error::{MapError, PhotonFault, SceneError, TraceError};

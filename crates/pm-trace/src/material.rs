@@ -1,12 +1,30 @@
-//! Materials and surfaces: how light scatters at a surface, whether it emits, whether the
-//! camera sees it.
+//! Materials and surfaces: how light scatters at a surface (a built-in BSDF or the caller's
+//! own), whether it emits, whether the camera sees it.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
+use crate::bsdf::glass::Glass;
+use crate::bsdf::lambertian::Lambertian;
+use crate::bsdf::lobes::Lobes;
+use crate::bsdf::mirror::Mirror;
+use crate::bsdf::shading_point::ShadingPoint;
+use crate::bsdf::{Bsdf, BsdfSample};
+use crate::rng::Rng;
 use crate::sides::Sides;
 
-/// How a surface scatters light.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// How a surface scatters light: one of the built-in BSDFs, or a [`Bsdf`] of the caller's.
+///
+/// The built-ins stay enum variants (matched without a virtual call in the renderer's hot
+/// loops, compared by value, and named as before by scenes and the glTF loader);
+/// [`Material::Custom`] holds any other BSDF. `Material` is itself a [`Bsdf`], dispatching to
+/// the variant's.
+///
+/// A custom BSDF is held as `&'static dyn Bsdf` so that `Material` and [`Surface`] stay `Copy`
+/// (scenes pass one surface to many meshes by value, and the renderer copies surfaces in its
+/// loops without reference counting). A BSDF known at compile time is a `static`; one made at
+/// run time is leaked once (`Box::leak(Box::new(bsdf))`), which costs its size for the rest of
+/// the program: make each distinct BSDF once, not once per scene load.
+#[derive(Clone, Copy, Debug)]
 pub enum Material {
     /// Ideal diffuse reflector; `albedo` per channel in `[0, 1]`.
     Lambertian {
@@ -23,12 +41,91 @@ pub enum Material {
         /// Index of refraction (inside / outside), e.g. 1.5.
         ior: f32,
     },
+    /// A BSDF of the caller's (see [`crate::bsdf`]).
+    Custom(&'static dyn Bsdf),
 }
 
 impl Material {
-    /// True for diffuse materials (photons are stored there).
+    /// True for materials with a diffuse or glossy lobe (photons are stored there).
     pub fn is_diffuse(&self) -> bool {
-        matches!(self, Material::Lambertian { .. })
+        self.lobes().has_non_delta()
+    }
+}
+
+/// Built-ins compare by value, custom BSDFs by identity (the same object).
+impl PartialEq for Material {
+    fn eq(&self, other: &Material) -> bool {
+        match (self, other) {
+            (Material::Lambertian { albedo: a }, Material::Lambertian { albedo: b }) => a == b,
+            (Material::Mirror { reflectance: a }, Material::Mirror { reflectance: b }) => a == b,
+            (Material::Glass { ior: a }, Material::Glass { ior: b }) => a == b,
+            (Material::Custom(a), Material::Custom(b)) => std::ptr::addr_eq(*a, *b),
+            _ => false,
+        }
+    }
+}
+
+/// Calls `$call` on the variant's BSDF: the built-ins statically, a custom one through its
+/// `Arc`.
+macro_rules! dispatch {
+    ($material:expr, $bsdf:ident => $call:expr) => {
+        match $material {
+            Material::Lambertian { albedo } => {
+                let $bsdf = Lambertian { albedo: *albedo };
+                $call
+            }
+            Material::Mirror { reflectance } => {
+                let $bsdf = Mirror {
+                    reflectance: *reflectance,
+                };
+                $call
+            }
+            Material::Glass { ior } => {
+                let $bsdf = Glass { ior: *ior };
+                $call
+            }
+            Material::Custom(custom) => {
+                let $bsdf = *custom;
+                $call
+            }
+        }
+    };
+}
+
+impl Bsdf for Material {
+    #[inline]
+    fn lobes(&self) -> Lobes {
+        dispatch!(self, b => b.lobes())
+    }
+
+    #[inline]
+    fn eval(&self, at: &ShadingPoint, wo: Vec3, wi: Vec3) -> Vec3 {
+        dispatch!(self, b => b.eval(at, wo, wi))
+    }
+
+    #[inline]
+    fn pdf(&self, at: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
+        dispatch!(self, b => b.pdf(at, wo, wi))
+    }
+
+    #[inline]
+    fn sample(&self, at: &ShadingPoint, wo: Vec3, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
+        dispatch!(self, b => b.sample(at, wo, u, u_lobe))
+    }
+
+    #[inline]
+    fn sample_from(&self, at: &ShadingPoint, wo: Vec3, rng: &mut Rng) -> Option<BsdfSample> {
+        dispatch!(self, b => b.sample_from(at, wo, rng))
+    }
+
+    #[inline]
+    fn albedo(&self, at: &ShadingPoint, wo: Vec3) -> Vec3 {
+        dispatch!(self, b => b.albedo(at, wo))
+    }
+
+    #[inline]
+    fn diffuse_albedo(&self, at: &ShadingPoint) -> Vec3 {
+        dispatch!(self, b => b.diffuse_albedo(at))
     }
 }
 
@@ -72,6 +169,17 @@ impl Surface {
     pub fn glass(ior: f32) -> Self {
         Surface {
             material: Material::Glass { ior },
+            emission: Vec3::ZERO,
+            camera_visible: true,
+            sides: Sides::Front,
+        }
+    }
+
+    /// A visible, non-emitting surface scattering by `bsdf` (a renderer author's own).
+    /// (See [`Material`] for why it is `'static`.)
+    pub fn with_bsdf(bsdf: &'static dyn Bsdf) -> Self {
+        Surface {
+            material: Material::Custom(bsdf),
             emission: Vec3::ZERO,
             camera_visible: true,
             sides: Sides::Front,

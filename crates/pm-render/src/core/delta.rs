@@ -1,11 +1,12 @@
-//! Delta scattering: mirror reflection and Fresnel glass, the bounces the render core follows.
+//! Delta scattering: the bounces the render core follows at surfaces whose BSDF has only delta
+//! lobes (mirror reflection, Fresnel glass, or a renderer author's own), sampled through
+//! [`Bsdf`].
 
 use glam::Vec3;
-use pm_trace::photons::{glass_direction, mirror_direction};
-use pm_trace::{Hit, Material, Ray, Rng, Scene};
+use pm_trace::{Bsdf, Hit, Ray, Rng, Scene};
 
-/// The next ray and throughput factor after a delta (mirror or glass) bounce at `hit`, or
-/// `None` when the material is diffuse.
+/// The next ray and throughput factor (the sample's weight) after a delta (mirror or glass)
+/// bounce at `hit`, or `None` when the material has a non-delta lobe or absorbs.
 ///
 /// Mirrors and glass bend light about the interpolated shading normal
 /// ([`Scene::shading_normal_at`]), so a smooth (`NORMAL`-attributed) mesh reflects and
@@ -15,17 +16,10 @@ use pm_trace::{Hit, Material, Ray, Rng, Scene};
 /// bounce uses the geometric normal instead, so no path crosses a surface it should not.
 #[inline]
 pub fn specular_bounce(scene: &Scene, hit: &Hit, ray: &Ray, rng: &mut Rng) -> Option<(Ray, Vec3)> {
-    let d = ray.direction;
-    match *scene.material(hit) {
-        Material::Lambertian { .. } => None,
-        Material::Mirror { .. } => {
-            let r = mirror_direction(d, hit.normal, scene.shading_normal_at(hit));
-            Some((scene.spawn_ray(hit, r), scene.albedo_at(hit)))
-        }
-        Material::Glass { ior } => {
-            let eta = if hit.front_face { 1.0 / ior } else { ior };
-            let direction = glass_direction(d, hit.normal, scene.shading_normal_at(hit), eta, rng);
-            Some((scene.spawn_ray(hit, direction), Vec3::ONE))
-        }
+    let material = scene.material(hit);
+    if material.lobes().has_non_delta() {
+        return None;
     }
+    let sample = material.sample_from(&scene.shading_point(hit), -ray.direction, rng)?;
+    Some((scene.spawn_ray(hit, sample.wi), sample.weight))
 }

@@ -17,7 +17,7 @@ pub use tiles::{Frame, SampleStreams, Tile, render_tiles};
 
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_trace::{Hit, Material, Ray, RayKind, Rng, Scene};
+use pm_trace::{Bsdf, Hit, Ray, RayKind, Rng, Scene};
 
 /// Longest chain of delta bounces followed to the first vertex where radiance is read.
 pub const MAX_DELTA_BOUNCES: u32 = 16;
@@ -38,8 +38,8 @@ pub struct PathVertex {
     pub bounces: u32,
 }
 
-/// Follows `ray` through delta bounces (mirror, glass: [`Material::Lambertian`] is the one
-/// non-delta material) to its first non-delta hit, at most [`MAX_DELTA_BOUNCES`] bounces.
+/// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`] are all delta: mirror,
+/// glass) to its first hit with a non-delta lobe, at most [`MAX_DELTA_BOUNCES`] bounces.
 /// `visit(hit, ray, throughput, bounce)` sees every hit first, the delta ones and the last,
 /// with the throughput that reaches it (so a caller can count emission on the way).
 /// `None` when the path leaves the scene, or a bounce ends it, before a non-delta hit.
@@ -57,7 +57,7 @@ pub fn follow_delta_bounces(
         let hit = scene.intersect(&ray, f32::INFINITY, kind)?;
         distance += hit.t;
         visit(&hit, &ray, throughput, bounces);
-        if let Material::Lambertian { .. } = *scene.material(&hit) {
+        if scene.material(&hit).lobes().has_non_delta() {
             return Some(PathVertex {
                 hit,
                 ray,
@@ -122,7 +122,7 @@ pub fn camera_radiance<S: RadianceSource + ?Sized>(
     let mut seen = Vec3::ZERO;
     let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, rng, |hit, _, throughput, _| {
         // Emission on a mirror or glass surface on the way (the last vertex's is the source's).
-        if !matches!(*scene.material(hit), Material::Lambertian { .. }) {
+        if !scene.material(hit).lobes().has_non_delta() {
             let le = scene.emission(hit);
             if le != Vec3::ZERO {
                 seen += throughput * le;

@@ -32,7 +32,7 @@ use crate::settings::RenderSettings;
 use crate::source::direct::direct_irradiance;
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
-use pm_trace::{MapAssignment, Material, RayKind, Rng, Scene};
+use pm_trace::{Bsdf, MapAssignment, RayKind, Rng, Scene};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};
 use std::ops::ControlFlow;
@@ -290,7 +290,7 @@ impl Pass<'_> {
         let ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
         let mut seen = Vec3::ZERO;
         let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, &mut rng, |hit, _, throughput, _| {
-            if !matches!(*scene.material(hit), Material::Lambertian { .. }) {
+            if !scene.material(hit).lobes().has_non_delta() {
                 let le = scene.emission(hit);
                 if le != Vec3::ZERO {
                     seen += throughput * le;

@@ -7,9 +7,8 @@ use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradian
 use crate::core::delta::specular_bounce;
 use crate::core::{PathVertex, RadianceSource};
 use crate::estimator::scratch::EstimatorScratch;
-use glam::{Vec2, Vec3};
-use pm_trace::sampling::cosine_hemisphere;
-use pm_trace::{Material, RayKind, Rng, Scene};
+use glam::Vec3;
+use pm_trace::{Bsdf, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Longest path (a safety net; Russian roulette ends paths long before).
@@ -81,38 +80,42 @@ fn trace_from(scene: &Scene, vertex: &PathVertex, first: VertexEmission, rng: &m
                     throughput * le * bsdf_emission_weight(scene, from, ray.direction, hit.t, 1.0, pdf);
             }
         }
-        match *scene.material(&hit) {
-            Material::Lambertian { .. } => {
-                let albedo = scene.albedo_at(&hit);
-                let shading = scene.shading_normal_at(&hit);
-                let direct = if mis {
-                    direct_irradiance_mis(scene, &hit, shading, 1.0, rng)
-                } else {
-                    direct_irradiance_shaded(scene, &hit, shading, rng)
-                };
-                radiance += throughput * albedo * FRAC_1_PI * direct;
-                // Cosine sampling about the shading normal: f · cos / pdf = (albedo / π) · cos /
-                // (cos / π) = albedo. A direction below the geometric surface (possible where
-                // the shading normal leans away from it, near the terminator) ends the path
-                // rather than leaking through the surface.
-                let direction = cosine_hemisphere(shading, Vec2::new(rng.next_f32(), rng.next_f32()));
-                if direction.dot(hit.normal) <= 0.0 {
-                    break;
-                }
-                throughput *= albedo;
-                ray = scene.spawn_ray(&hit, direction);
-                count_emission = false;
-                diffuse_from = mis.then(|| (hit.position, shading.dot(direction).max(0.0) * FRAC_1_PI));
+        let material = scene.material(&hit);
+        if material.lobes().has_non_delta() {
+            let at = scene.shading_point(&hit);
+            let direct = if mis {
+                direct_irradiance_mis(scene, &hit, at.shading, 1.0, rng)
+            } else {
+                direct_irradiance_shaded(scene, &hit, at.shading, rng)
+            };
+            radiance += throughput * material.diffuse_albedo(&at) * FRAC_1_PI * direct;
+            // For a Lambertian surface, cosine sampling about the shading normal: weight
+            // f · cos / pdf = (albedo / π) · cos / (cos / π) = albedo. A direction below the
+            // geometric surface (possible where the shading normal leans away from it, near
+            // the terminator) ends the path rather than leaking through the surface.
+            let Some(sample) = material.sample_from(&at, -ray.direction, rng) else {
+                break;
+            };
+            if sample.wi.dot(hit.normal) <= 0.0 {
+                break;
             }
-            _ => {
-                let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
-                    break;
-                };
-                throughput *= factor;
-                ray = next;
+            throughput *= sample.weight;
+            ray = scene.spawn_ray(&hit, sample.wi);
+            if sample.lobe.has_delta() {
                 count_emission = true;
                 diffuse_from = None;
+            } else {
+                count_emission = false;
+                diffuse_from = mis.then_some((hit.position, sample.pdf));
             }
+        } else {
+            let Some((next, factor)) = specular_bounce(scene, &hit, &ray, rng) else {
+                break;
+            };
+            throughput *= factor;
+            ray = next;
+            count_emission = true;
+            diffuse_from = None;
         }
         if depth >= ROULETTE_AFTER {
             let survive = throughput.max_element().min(0.95);

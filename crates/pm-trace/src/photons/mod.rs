@@ -6,13 +6,12 @@ mod maps;
 mod occupancy;
 mod options;
 mod path;
-mod scatter;
 mod trace;
 mod traced;
 
+pub use crate::bsdf::scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
 pub use occupancy::MapOccupancy;
 pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};
-pub use scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use trace::trace_photons;
 pub use traced::{TraceStats, TracedPhotons};

@@ -3,14 +3,12 @@
 
 use super::light_picker::LightPicker;
 use super::options::{NEAR_LIGHT_DISTANCE, TraceOptions};
-use super::scatter::{glass_direction, mirror_direction};
-use crate::material::Material;
+use crate::bsdf::Bsdf;
 use crate::partition::assignment::MapAssignment;
 use crate::ray::Ray;
 use crate::rng::Rng;
-use crate::sampling::cosine_hemisphere;
 use crate::scene::{Hit, RayKind, Scene};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use pm_kdtree::{Photon, PhotonKind};
 
 /// Traces paths `begin..end` into `out`, in path order.
@@ -182,53 +180,57 @@ impl PhotonPath {
             // into the wall or ceiling it sits on.
             self.near_light = self.emitted;
         }
-        let direction = match *scene.material(&hit) {
-            Material::Lambertian { .. } => {
-                let albedo = scene.albedo_at(&hit);
-                let kind = match (self.diffuse_bounces, self.specular) {
-                    (0, false) => PhotonKind::Direct,
-                    (0, true) => PhotonKind::Caustic,
-                    _ => PhotonKind::Indirect,
-                };
-                out.push((
-                    assignment.map_of(hit.part),
-                    Photon {
-                        position: hit.position,
-                        power: self.power,
-                        direction: self.ray.direction,
-                        kind,
-                    },
-                ));
-                // Russian roulette on albedo: survive with q, scale by albedo / q (unbiased).
-                let q = albedo.max_element().min(1.0);
-                if self.rng.next_f32() >= q {
-                    self.bounces_left = 0;
-                    return;
-                }
-                self.power *= albedo / q;
+        let material = scene.material(&hit);
+        let wo = -self.ray.direction;
+        let direction = if material.lobes().has_non_delta() {
+            // Photons scatter about the geometric normal (no shading-normal adjoint to correct).
+            let at = scene.shading_point_about(&hit, hit.normal, 0.0);
+            let albedo = material.albedo(&at, wo);
+            let kind = match (self.diffuse_bounces, self.specular) {
+                (0, false) => PhotonKind::Direct,
+                (0, true) => PhotonKind::Caustic,
+                _ => PhotonKind::Indirect,
+            };
+            out.push((
+                assignment.map_of(hit.part),
+                Photon {
+                    position: hit.position,
+                    power: self.power,
+                    direction: self.ray.direction,
+                    kind,
+                },
+            ));
+            // Russian roulette on the albedo: survive with q, then carry the sample's weight
+            // over q (unbiased for any q, as the weight's mean is the albedo).
+            let q = albedo.max_element().min(1.0);
+            if self.rng.next_f32() >= q {
+                self.bounces_left = 0;
+                return;
+            }
+            let Some(sample) = material.sample_from(&at, wo, &mut self.rng) else {
+                self.bounces_left = 0;
+                return;
+            };
+            self.power *= sample.weight / q;
+            if sample.lobe.has_delta() {
+                self.specular = true;
+            } else {
                 self.diffuse_bounces += 1;
-                cosine_hemisphere(hit.normal, Vec2::new(self.rng.next_f32(), self.rng.next_f32()))
             }
-            Material::Mirror { .. } => {
-                self.power *= scene.albedo_at(&hit);
-                if self.power.max_element() <= 0.0 {
-                    self.bounces_left = 0;
-                    return;
-                }
-                self.specular = true;
-                mirror_direction(self.ray.direction, hit.normal, scene.shading_normal_at(&hit))
+            sample.wi
+        } else {
+            let at = scene.shading_point(&hit);
+            let Some(sample) = material.sample_from(&at, wo, &mut self.rng) else {
+                self.bounces_left = 0;
+                return;
+            };
+            self.power *= sample.weight;
+            if self.power.max_element() <= 0.0 {
+                self.bounces_left = 0;
+                return;
             }
-            Material::Glass { ior } => {
-                self.specular = true;
-                let eta = if hit.front_face { 1.0 / ior } else { ior };
-                glass_direction(
-                    self.ray.direction,
-                    hit.normal,
-                    scene.shading_normal_at(&hit),
-                    eta,
-                    &mut self.rng,
-                )
-            }
+            self.specular = true;
+            sample.wi
         };
         self.ray = scene.spawn_ray(&hit, direction);
     }

@@ -45,6 +45,12 @@ impl SurfaceTable {
             Material::Lambertian { albedo } => (0, albedo),
             Material::Mirror { reflectance } => (1, reflectance),
             Material::Glass { ior } => (2, Vec3::splat(ior)),
+            // The object's address identifies a custom BSDF (its two halves as the colour).
+            Material::Custom(bsdf) => {
+                let address = std::ptr::from_ref(bsdf).cast::<u8>() as usize as u64;
+                let (low, high) = (address as u32, (address >> 32) as u32);
+                (3, Vec3::new(f32::from_bits(low), f32::from_bits(high), 0.0))
+            }
         };
         let e = surface.emission;
         let key = [

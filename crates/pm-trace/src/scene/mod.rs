@@ -15,6 +15,7 @@ pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
+use crate::bsdf::shading_point::ShadingPoint;
 use crate::bvh::SceneBvh;
 use crate::camera::Camera;
 use crate::error::SceneError;
@@ -201,9 +202,10 @@ impl Scene {
     }
 
     /// The reflectance at a hit: a Lambertian surface's albedo or a mirror's reflectance (one
-    /// for glass), times the mesh's base-colour texture at the hit's texture coordinates and
-    /// its interpolated vertex colours where the mesh has them. Use this, not the material's
-    /// factor, wherever a hit's colour matters.
+    /// for glass, a custom BSDF's [`crate::bsdf::Bsdf::diffuse_albedo`]), times the mesh's base-colour
+    /// texture at the hit's texture coordinates and its interpolated vertex colours where the
+    /// mesh has them. Use this, not the material's factor, wherever a hit's colour matters;
+    /// the photon-map estimators read radiance `albedo_at/π · E` with it.
     #[inline]
     pub fn albedo_at(&self, hit: &Hit) -> Vec3 {
         self.albedo_over(hit, 0.0)
@@ -219,17 +221,54 @@ impl Scene {
             Material::Lambertian { albedo } => albedo,
             Material::Mirror { reflectance } => reflectance,
             Material::Glass { .. } => Vec3::ONE,
+            Material::Custom(bsdf) => {
+                let at = self.shading_point_about(hit, self.shading_normal_at(hit), footprint);
+                return bsdf.diffuse_albedo(&at);
+            }
         };
+        match self.tint(hit, footprint) {
+            Some(tint) => base * tint,
+            None => base,
+        }
+    }
+
+    /// The base-colour texture times the vertex colours at `hit`, averaged over `footprint`
+    /// metres (see [`Scene::albedo_over`]); one where the mesh has neither.
+    #[inline]
+    pub fn tint_over(&self, hit: &Hit, footprint: f32) -> Vec3 {
+        self.tint(hit, footprint).unwrap_or(Vec3::ONE)
+    }
+
+    /// The tint at `hit`, `None` where the mesh has no texture or vertex colours.
+    #[inline]
+    fn tint(&self, hit: &Hit, footprint: f32) -> Option<Vec3> {
         if !self.has_shading || hit.part.0 >= self.mesh_part_count {
-            return base;
+            return None;
         }
         let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
-        match &mesh.shading {
-            Some(shading) => {
-                let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
-                base * shading.colour_at(face, hit.position, footprint)
-            }
-            None => base,
+        let shading = mesh.shading.as_ref()?;
+        let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
+        Some(shading.colour_at(face, hit.position, footprint))
+    }
+
+    /// Where `hit`'s surface scatters ([`crate::bsdf::Bsdf`]'s argument): the shading normal
+    /// ([`Scene::shading_normal_at`]) and the tint at the point ([`Scene::tint_over`]).
+    #[inline]
+    pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
+        self.shading_point_about(hit, self.shading_normal_at(hit), 0.0)
+    }
+
+    /// [`Scene::shading_point`] shaded about the unit normal `shading` (on the geometric
+    /// normal's side; the photon tracer scatters diffusely about the geometric normal) with
+    /// the tint averaged over `footprint` metres.
+    #[inline]
+    pub fn shading_point_about(&self, hit: &Hit, shading: Vec3, footprint: f32) -> ShadingPoint {
+        ShadingPoint {
+            position: hit.position,
+            geometric: hit.normal,
+            shading,
+            front_face: hit.front_face,
+            tint: self.tint_over(hit, footprint),
         }
     }
 

@@ -1,6 +1,6 @@
 //! Specular scattering: mirror reflection, refraction and the dielectric Fresnel reflectance,
-//! and the mirror and glass bounces about a shading normal that the photon tracer and the
-//! render modes share.
+//! and the mirror and glass bounces about a shading normal that the built-in delta BSDFs
+//! ([`super::Mirror`], [`super::Glass`]) make.
 
 use crate::rng::Rng;
 use glam::Vec3;
@@ -39,37 +39,78 @@ fn shaded_mirror_direction(d: Vec3, geometric: Vec3, shading: Vec3) -> Vec3 {
 /// refraction back out), the bounce is made about the geometric normal instead.
 #[inline]
 pub fn glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+    glass_bounce(d, geometric, shading, eta, &mut || rng.next_f32()).direction
+}
+
+/// One bounce off smooth glass: the direction, whether it reflected, and the probability of
+/// that choice (the Fresnel reflectance, or one minus it; 1 under total internal reflection).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct GlassBounce {
+    pub(crate) direction: Vec3,
+    pub(crate) reflected: bool,
+    pub(crate) probability: f32,
+}
+
+/// [`glass_direction`] with its uniform number from `draw`, called at most once and only when
+/// refraction is possible (so a caller drawing from a stream keeps the stream's order).
+#[inline]
+pub(crate) fn glass_bounce(
+    d: Vec3,
+    geometric: Vec3,
+    shading: Vec3,
+    eta: f32,
+    draw: &mut impl FnMut() -> f32,
+) -> GlassBounce {
     if shading == geometric {
-        glass_about(d, geometric, eta, &mut || rng.next_f32()).0
+        glass_about(d, geometric, eta, draw)
     } else {
-        shaded_glass_direction(d, geometric, shading, eta, rng)
+        shaded_glass_bounce(d, geometric, shading, eta, draw)
     }
 }
 
-/// [`glass_direction`] where the normals differ; out of line, as meshes without normals never
+/// [`glass_bounce`] where the normals differ; out of line, as meshes without normals never
 /// come here.
 #[inline(never)]
-fn shaded_glass_direction(d: Vec3, geometric: Vec3, shading: Vec3, eta: f32, rng: &mut Rng) -> Vec3 {
+fn shaded_glass_bounce(
+    d: Vec3,
+    geometric: Vec3,
+    shading: Vec3,
+    eta: f32,
+    draw: &mut impl FnMut() -> f32,
+) -> GlassBounce {
     let mut drawn = None;
-    let mut u = || *drawn.get_or_insert_with(|| rng.next_f32());
+    let mut u = || *drawn.get_or_insert_with(&mut *draw);
     if shading.dot(d) < 0.0 {
-        let (t, reflected) = glass_about(d, shading, eta, &mut u);
-        if reflected == (t.dot(geometric) > 0.0) {
-            return t;
+        let bounce = glass_about(d, shading, eta, &mut u);
+        if bounce.reflected == (bounce.direction.dot(geometric) > 0.0) {
+            return bounce;
         }
     }
-    glass_about(d, geometric, eta, &mut u).0
+    glass_about(d, geometric, eta, &mut u)
 }
 
 /// Fresnel reflection or refraction of `d` about the unit normal `n` (facing against `d`),
 /// refraction chosen when `u()` (called only when refraction is possible) is at least the
-/// reflectance; also whether it reflected.
+/// reflectance.
 #[inline]
-fn glass_about(d: Vec3, n: Vec3, eta: f32, u: &mut impl FnMut() -> f32) -> (Vec3, bool) {
+fn glass_about(d: Vec3, n: Vec3, eta: f32, u: &mut impl FnMut() -> f32) -> GlassBounce {
     let f = fresnel_dielectric(-d.dot(n), eta);
     match refract(d, n, eta) {
-        Some(t) if u() >= f => (t, false),
-        _ => (reflect(d, n), true),
+        Some(t) if u() >= f => GlassBounce {
+            direction: t,
+            reflected: false,
+            probability: 1.0 - f,
+        },
+        Some(_) => GlassBounce {
+            direction: reflect(d, n),
+            reflected: true,
+            probability: f,
+        },
+        None => GlassBounce {
+            direction: reflect(d, n),
+            reflected: true,
+            probability: 1.0,
+        },
     }
 }
 
