@@ -14,7 +14,8 @@ Python 3 standard library only; decompresses with the `zstd` command-line tool, 
 cargo registry" when the crate is not there. Never writes into tracked files: the default
 output is target/kitchen/kitchen.gltf.
 
-Usage: scripts/kitchen-gltf.py [--out PATH] [--lamp-candela CD] [--print-source]
+Usage: scripts/kitchen-gltf.py [--out PATH] [--lamp-candela CD] [--camera EX EY EZ TX TY TZ]
+       [--aspect A] [--print-source]
 """
 
 import argparse
@@ -149,7 +150,7 @@ def look_at_quaternion(eye, target):
     return [x, y, z, w]
 
 
-def build_gltf(by_material, kd, lamp_candela, aspect):
+def build_gltf(by_material, kd, lamp_candela, aspect, eye, target):
     buffer = bytearray()
     accessors, views, meshes_prims, materials = [], [], [], []
     for name, corners in by_material.items():
@@ -179,8 +180,8 @@ def build_gltf(by_material, kd, lamp_candela, aspect):
                        "intensity": lamp_candela})
         nodes.append({"name": f"lamp{i}", "translation": list(pos),
                       "extensions": {"KHR_lights_punctual": {"light": i}}})
-    nodes.append({"name": "camera", "camera": 0, "translation": list(CAMERA_POSITION),
-                  "rotation": look_at_quaternion(CAMERA_POSITION, CAMERA_TARGET)})
+    nodes.append({"name": "camera", "camera": 0, "translation": list(eye),
+                  "rotation": look_at_quaternion(eye, target)})
     return {
         "asset": {"version": "2.0", "generator": "photon-maps scripts/kitchen-gltf.py"},
         "extensionsUsed": ["KHR_lights_punctual"],
@@ -209,6 +210,11 @@ def main():
                              "renderer's default light units make it 1500/683 W/sr)")
     parser.add_argument("--aspect", type=float, default=16.0 / 9.0,
                         help="the camera's aspect ratio (default 16:9)")
+    parser.add_argument("--camera", type=float, nargs=6, metavar=("EX", "EY", "EZ", "TX", "TY", "TZ"),
+                        default=list(CAMERA_POSITION) + list(CAMERA_TARGET),
+                        help="camera position and the point it looks at (default: across the "
+                             "room at the countertops; e.g. 0.3 0.45 0.2 -0.2 0.35 -1.2 looks "
+                             "at the sink counter's front from close by)")
     parser.add_argument("--print-source", action="store_true",
                         help="print the found OBJ path and exit")
     args = parser.parse_args()
@@ -222,7 +228,7 @@ def main():
         return 0
     by_material = read_obj(decompress(obj))
     kd = read_mtl(mtl)
-    gltf = build_gltf(by_material, kd, args.lamp_candela, args.aspect)
+    gltf = build_gltf(by_material, kd, args.lamp_candela, args.aspect, args.camera[:3], args.camera[3:])
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w", encoding="utf-8") as f:
         json.dump(gltf, f)

@@ -5,6 +5,7 @@
 //! sliver panel touched near its sharp corner) and on the obvhs kitchen when it has been
 //! converted (`scripts/kitchen-gltf.py`; skipped with a message otherwise).
 //!
+//! A shadow ray from each hit to a random point must be blocked in both scenes or in neither.
 //! The truth is the original scene itself: each split hit is checked against the original
 //! face its piece came from (its plane and outline), not against the split's own record.
 //! Where the original has two coincident faces of different surfaces (z-fighting in the
@@ -76,6 +77,19 @@ fn triangle_test_error(polygon: &[Vec3], ray: &Ray, t: f32) -> f32 {
     8.0 * f32::EPSILON * condition * (ray.origin.abs().max_element() + t)
 }
 
+/// Whether the shadow rays from the hits are compared too.
+#[derive(Clone, Copy, Debug)]
+enum Shadows {
+    Checked,
+    /// Not compared, where known disagreements remain (issue 33): on the sliver panel case a
+    /// shadow ray from the plate's top is blocked in the split scene only (1 in 3000; most
+    /// likely the piece itself, as a sliver triangle's hit distance is less precise than the
+    /// spawn offset assumes); on the kitchen 2 in 200,000 are blocked as given and not after
+    /// the split, from hits within 0.1 mm of another surface (cause not yet established).
+    /// Before the pinch fix the kitchen's camera rays disagreed 29 times in 386,000.
+    Unchecked,
+}
+
 /// What went wrong with one ray, if anything.
 fn mismatch(
     original: &Scene,
@@ -83,6 +97,8 @@ fn mismatch(
     split: &Partitioned,
     ray: &Ray,
     kind: RayKind,
+    lamp: Vec3,
+    shadows: Shadows,
 ) -> Option<String> {
     let far = 4.0 * original.bounds().diagonal() + ray.origin.length();
     let tolerance = 2e-6 * original.bounds().diagonal();
@@ -146,6 +162,17 @@ fn mismatch(
             piece_polygon(split.scene(), b.part)
         ));
     }
+    // A shadow ray from the hit towards a point of the scene is blocked in both or neither.
+    let (shadowed, split_shadowed) = (
+        original.occluded_from(&a, lamp),
+        split.scene().occluded_from(&b, lamp),
+    );
+    if matches!(shadows, Shadows::Checked) && shadowed != split_shadowed {
+        return Some(format!(
+            "the shadow ray from {} to {lamp} is blocked as given: {shadowed}, split: {split_shadowed}",
+            a.position
+        ));
+    }
     if original.surface(&a) != split.scene().surface(&b) {
         // Coincident faces of different surfaces: the split may show either, but only where
         // the face it shows really is.
@@ -160,8 +187,15 @@ fn mismatch(
 }
 
 /// Rays of both kinds: from random points of the scene's bounds (grown by half) in random
-/// directions, and aimed at random points of random faces (small pieces get their share).
-fn check_rays(original: &Scene, split: &Partitioned, count: usize, seed: u64) -> Result<(), String> {
+/// directions, and aimed at random points of random faces (small pieces get their share);
+/// from each hit a shadow ray to a random point of the bounds.
+fn check_rays(
+    original: &Scene,
+    split: &Partitioned,
+    count: usize,
+    seed: u64,
+    shadows: Shadows,
+) -> Result<(), String> {
     let faces = original_faces(original);
     let polygons: Vec<&Vec<Vec3>> = {
         let mut keys: Vec<_> = faces.keys().collect();
@@ -196,7 +230,8 @@ fn check_rays(original: &Scene, split: &Partitioned, count: usize, seed: u64) ->
         } else {
             RayKind::Camera
         };
-        if let Some(m) = mismatch(original, &faces, split, &ray, kind) {
+        let lamp = bounds.min + Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * size;
+        if let Some(m) = mismatch(original, &faces, split, &ray, kind, lamp, shadows) {
             failures.push(format!("ray {i} from {origin} along {direction}: {m}"));
         }
     }
@@ -254,7 +289,7 @@ fn boxes(list: &[(Vec3, Vec3)], corners: Corners) -> Scene {
         .expect("a valid scene")
 }
 
-fn assert_split_keeps_visibility(scene: Scene, seed: u64) -> Result<(), TestCaseError> {
+fn assert_split_keeps_visibility(scene: Scene, seed: u64, shadows: Shadows) -> Result<(), TestCaseError> {
     let split = Contact::default()
         .partition(scene.clone())
         .expect("the split succeeds");
@@ -263,7 +298,7 @@ fn assert_split_keeps_visibility(scene: Scene, seed: u64) -> Result<(), TestCase
         counts.meetings() > 0,
         "the case must make the split cut: {counts:?}"
     );
-    check_rays(&scene, &split, 3000, seed).map_err(TestCaseError::fail)
+    check_rays(&scene, &split, 3000, seed, shadows).map_err(TestCaseError::fail)
 }
 
 fn corners() -> impl Strategy<Value = Corners> {
@@ -284,7 +319,7 @@ proptest! {
         corners in corners(), seed in 0u64..1000,
     ) {
         let scene = boxes(&[SLAB, (Vec3::new(x, lift, z), Vec3::new(x + w, lift + h, z + w))], corners);
-        assert_split_keeps_visibility(scene, seed)?;
+        assert_split_keeps_visibility(scene, seed, Shadows::Checked)?;
     }
 
     /// A post through the slab and a second box through the post.
@@ -295,7 +330,7 @@ proptest! {
     ) {
         let post = (Vec3::new(x, -0.3, z), Vec3::new(x + w, 0.9, z + w));
         let bar = (Vec3::new(x - 0.2, y, z + 0.3 * w), Vec3::new(x + w + 0.2, y + 0.05, z + 0.6 * w));
-        assert_split_keeps_visibility(boxes(&[SLAB, post, bar], corners), seed)?;
+        assert_split_keeps_visibility(boxes(&[SLAB, post, bar], corners), seed, Shadows::Checked)?;
     }
 
     /// Two boxes sharing part of a face plane (side by side, overlapping in the plane where
@@ -307,7 +342,7 @@ proptest! {
         let a = (Vec3::new(x, 0.0, -0.2), Vec3::new(x + w, 0.4, 0.2));
         let b = (Vec3::new(x + w, 0.0, -0.2 + shift), Vec3::new(x + 2.0 * w, 0.3, 0.2 + shift));
         let c = (Vec3::new(x, 0.4, -0.2), Vec3::new(x + w, 0.6, 0.2 + shift.abs()));
-        assert_split_keeps_visibility(boxes(&[SLAB, a, b, c], corners), seed)?;
+        assert_split_keeps_visibility(boxes(&[SLAB, a, b, c], corners), seed, Shadows::Checked)?;
     }
 
     /// A long kick plate (its triangles 1.4° sharp at the ends, as in the kitchen) on the slab,
@@ -321,15 +356,12 @@ proptest! {
     ) {
         let plate = (Vec3::new(-0.99, 0.0, 0.5), Vec3::new(0.99, 0.0484, 0.5 + depth));
         let panel = (Vec3::new(-0.99 + near, 0.0, 0.3), Vec3::new(-0.99 + near + 0.02, 0.6, 0.6));
-        assert_split_keeps_visibility(boxes(&[SLAB, plate, panel], corners), seed)?;
+        assert_split_keeps_visibility(boxes(&[SLAB, plate, panel], corners), seed, Shadows::Unchecked)?;
     }
 }
 
-/// The kitchen of the obvhs crate, converted by `scripts/kitchen-gltf.py` (to
-/// `target/kitchen/kitchen.gltf`, or where `PM_KITCHEN_GLTF` says): 200,000 rays, none of
-/// which may see a different surface or distance after the split.
-#[test]
-fn kitchen_split_keeps_visibility() {
+/// The kitchen as converted by `scripts/kitchen-gltf.py`, or `None` (with a message).
+fn kitchen() -> Option<Scene> {
     let path = std::env::var_os("PM_KITCHEN_GLTF").map_or_else(
         || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/kitchen/kitchen.gltf"),
         std::path::PathBuf::from,
@@ -339,11 +371,31 @@ fn kitchen_split_keeps_visibility() {
             "skipped: {} not found (run scripts/kitchen-gltf.py, which needs the obvhs crate's kitchen in the cargo registry)",
             path.display()
         );
-        return;
+        return None;
     }
-    let scene = photon_maps::trace::gltf::load_scene(&path).expect("the kitchen loads");
+    Some(photon_maps::trace::gltf::load_scene(&path).expect("the kitchen loads"))
+}
+
+/// The kitchen of the obvhs crate, converted by `scripts/kitchen-gltf.py` (to
+/// `target/kitchen/kitchen.gltf`, or where `PM_KITCHEN_GLTF` says): 200,000 rays, none of
+/// which may see a different surface or distance after the split.
+#[test]
+fn kitchen_split_keeps_visibility() {
+    let Some(scene) = kitchen() else { return };
     let split = Contact::default()
         .partition(scene.clone())
         .expect("the split succeeds");
-    check_rays(&scene, &split, 200_000, 1).unwrap();
+    check_rays(&scene, &split, 200_000, 1, Shadows::Unchecked).unwrap();
+}
+
+/// The same rays with shadow rays from their hits to random points: 2 of 200,000 disagree
+/// (see [`Shadows::Unchecked`]).
+#[test]
+#[ignore = "known: 2 of 200,000 shadow rays disagree (issue 33, remaining; see Shadows::Unchecked)"]
+fn kitchen_split_keeps_shadows() {
+    let Some(scene) = kitchen() else { return };
+    let split = Contact::default()
+        .partition(scene.clone())
+        .expect("the split succeeds");
+    check_rays(&scene, &split, 200_000, 1, Shadows::Checked).unwrap();
 }
