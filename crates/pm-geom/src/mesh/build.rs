@@ -23,8 +23,11 @@ impl HalfEdgeMesh {
     /// Steps: every position must be finite and every face must have ≥ 3 in-range indices
     /// (else an error naming the culprit); vertices within `options.weld_tolerance` (at most
     /// [`MeshOptions::MAX_RELATIVE_WELD`] of the mesh's own size) are welded; in each face, consecutive duplicate vertices are removed; faces left with
-    /// fewer than 3 vertices, a vertex used twice, or (near) zero area are dropped and
-    /// counted ([`HalfEdgeMesh::dropped_face_count`]). Two half-edges on the same vertex pair
+    /// fewer than 3 vertices or (near) zero area are dropped and counted
+    /// ([`HalfEdgeMesh::dropped_face_count`]); a face in which welding brought two vertices
+    /// that are not neighbours together (a pinch) is kept as its simple loops that have area,
+    /// several faces with the same [`HalfEdgeMesh::source_face`], so welding moves a face's
+    /// outline by at most the weld distance and never removes more of it. Two half-edges on the same vertex pair
     /// with opposite directions become twins; an edge with more than two half-edges, or with
     /// two of the same direction (inconsistent winding), links none and counts as
     /// non-manifold.
@@ -65,14 +68,37 @@ impl HalfEdgeMesh {
             let repeats = ring
                 .iter()
                 .any(|&v| std::mem::replace(&mut seen[v as usize], stamp) == stamp);
+            if !repeats {
+                polygon.clear();
+                polygon.extend(ring.iter().map(|&v| mesh.positions[v as usize]));
+                match (ring.len() >= 3)
+                    .then(|| face_normal_and_area(&polygon))
+                    .flatten()
+                {
+                    Some(_) => mesh.push_face(&ring, source),
+                    None => mesh.dropped_faces += 1,
+                }
+                continue;
+            }
+            // Welding brought two vertices of the face together that are not neighbours (a
+            // sliver corner of a cut piece): the ring is pinched there. Its simple loops are
+            // the face, moved by at most the weld distance as its neighbours are; the loops
+            // that have no area (the collapsed sliver) or turn against the face are left out.
             polygon.clear();
             polygon.extend(ring.iter().map(|&v| mesh.positions[v as usize]));
-            match (ring.len() >= 3 && !repeats)
-                .then(|| face_normal_and_area(&polygon))
-                .flatten()
-            {
-                Some(_) => mesh.push_face(&ring, source),
-                None => mesh.dropped_faces += 1,
+            let facing = polygon_vector_area(&polygon);
+            let mut kept = false;
+            for simple in simple_loops(&ring) {
+                polygon.clear();
+                polygon.extend(simple.iter().map(|&v| mesh.positions[v as usize]));
+                let faces_along = face_normal_and_area(&polygon).is_some_and(|(n, _)| n.dot(facing) > 0.0);
+                if simple.len() >= 3 && faces_along {
+                    mesh.push_face(&simple, source);
+                    kept = true;
+                }
+            }
+            if !kept {
+                mesh.dropped_faces += 1;
             }
         }
         mesh.link_twins();
@@ -143,6 +169,25 @@ impl HalfEdgeMesh {
             self.he_origin[self.next_index(he) as usize],
         )
     }
+}
+
+/// The simple loops of a closed ring of vertex ids in which a vertex may occur more than
+/// once: cut off at each repeat (the part between the two occurrences is a loop of its own),
+/// in order. Loops of fewer than 3 vertices are included; the caller drops them.
+fn simple_loops(ring: &[u32]) -> Vec<Vec<u32>> {
+    let mut loops = Vec::new();
+    let mut stack: Vec<u32> = Vec::with_capacity(ring.len());
+    for &v in ring {
+        if let Some(k) = stack.iter().position(|&u| u == v) {
+            let mut closed = stack.split_off(k + 1);
+            closed.insert(0, v);
+            loops.push(closed);
+        } else {
+            stack.push(v);
+        }
+    }
+    loops.push(stack);
+    loops
 }
 
 /// The unit normal and area of a face polygon, `None` when its area is zero up to the

@@ -142,8 +142,8 @@ impl HalfEdgeMesh {
         self.source_faces[face.0 as usize] as usize
     }
 
-    /// Number of input faces dropped as degenerate: fewer than 3 distinct vertices or a
-    /// vertex repeated after welding, or zero area.
+    /// Number of input faces dropped as degenerate: fewer than 3 distinct vertices or zero
+    /// area after welding (a face pinched by welding keeps its loops that have area).
     pub fn dropped_face_count(&self) -> usize {
         self.dropped_faces
     }

@@ -1,0 +1,218 @@
+#!/usr/bin/env python3
+"""Independent reference for a glTF scene written by scripts/kitchen-gltf.py: renders it with
+Mitsuba 3's `path` integrator (pip install mitsuba numpy) and writes an EXR plus a .npy of
+per-pixel means and standard errors, for scripts/compare-reference.py.
+
+What it reads of the glTF, and how it matches the project's renderer (examples/render):
+- every mesh primitive (triangles, POSITION only, node transforms applied) with flat face
+  normals, as the renderer shades a mesh without normals;
+- materials: baseColorFactor as the albedo of a Lambertian BSDF on both sides (the file's
+  materials are double-sided, metallic 0, roughness 1);
+- KHR_lights_punctual point lamps: radiant intensity = colour x candela x punctual factor,
+  the factor 1/683 W/lm of the renderer's default `--light-units mixed` (1 with `viewer`);
+  see pm-trace/src/gltf/light.rs and units.rs;
+- the first perspective camera: its position, -Z axis and +Y axis, vertical field of view
+  yfov, at the image size given (the renderer uses the image's aspect ratio);
+- pixels: box filter over the pixel, centre at +0.5 (the renderer jitters uniformly in the
+  pixel and averages).
+
+Standard errors come from `--passes` independent renders with different seeds (each of
+spp / passes samples per pixel): the per-pixel standard error of their mean.
+
+Usage: scripts/mitsuba-reference.py SCENE.gltf --size 320x180 --spp 1024 --out ref.exr
+Not run in tests (CI has no Mitsuba).
+"""
+
+import argparse
+import base64
+import json
+import math
+import os
+import struct
+import sys
+
+import numpy as np
+
+
+def quat_to_matrix(q):
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def node_matrix(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T
+    m = np.eye(4)
+    s = np.diag(node.get("scale", [1, 1, 1]) + [1])
+    r = np.eye(4)
+    r[:3, :3] = quat_to_matrix(node.get("rotation", [0, 0, 0, 1]))
+    t = np.eye(4)
+    t[:3, 3] = node.get("translation", [0, 0, 0])
+    return t @ r @ s @ m
+
+
+def walk(gltf, visit):
+    """Calls visit(node, world matrix) for every node of the default scene."""
+    scene = gltf["scenes"][gltf.get("scene", 0)]
+    stack = [(n, np.eye(4)) for n in scene["nodes"]]
+    while stack:
+        index, parent = stack.pop()
+        node = gltf["nodes"][index]
+        world = parent @ node_matrix(node)
+        visit(node, world)
+        stack.extend((c, world) for c in node.get("children", []))
+
+
+def buffer_bytes(gltf, path):
+    out = []
+    for b in gltf["buffers"]:
+        uri = b["uri"]
+        if uri.startswith("data:"):
+            out.append(base64.b64decode(uri.split(",", 1)[1]))
+        else:
+            with open(os.path.join(os.path.dirname(path), uri), "rb") as f:
+                out.append(f.read())
+    return out
+
+
+def accessor(gltf, buffers, index):
+    a = gltf["accessors"][index]
+    view = gltf["bufferViews"][a["bufferView"]]
+    comps = {"SCALAR": 1, "VEC3": 3}[a["type"]]
+    fmt = {5126: "f", 5125: "I", 5123: "H", 5121: "B"}[a["componentType"]]
+    size = struct.calcsize(fmt)
+    stride = view.get("byteStride", size * comps)
+    data = buffers[view["buffer"]]
+    base = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    values = [struct.unpack_from("<%d%s" % (comps, fmt), data, base + i * stride) for i in range(a["count"])]
+    return np.array(values)
+
+
+def write_ply(path, positions, triangles):
+    """A binary little-endian PLY of the triangles (Mitsuba's ply loader)."""
+    header = (
+        "ply\nformat binary_little_endian 1.0\n"
+        f"element vertex {len(positions)}\nproperty float x\nproperty float y\nproperty float z\n"
+        f"element face {len(triangles)}\nproperty list uchar uint vertex_indices\nend_header\n"
+    )
+    faces = np.zeros(len(triangles), dtype=[("n", "u1"), ("v", "<u4", 3)])
+    faces["n"] = 3
+    faces["v"] = triangles
+    with open(path, "wb") as f:
+        f.write(header.encode("ascii"))
+        f.write(positions.astype("<f4").tobytes())
+        f.write(faces.tobytes())
+
+
+def build_scene(path, width, height, punctual_factor, max_depth, workdir):
+    import mitsuba as mi
+
+    with open(path, encoding="utf-8") as f:
+        gltf = json.load(f)
+    buffers = buffer_bytes(gltf, path)
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": max_depth, "rr_depth": 5}}
+    lights = gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    camera = {}
+    shapes = []
+
+    def visit(node, world):
+        if "mesh" in node:
+            for k, prim in enumerate(gltf["meshes"][node["mesh"]]["primitives"]):
+                if prim.get("mode", 4) != 4:
+                    continue
+                p = accessor(gltf, buffers, prim["attributes"]["POSITION"]).astype(np.float64)
+                p = (world[:3, :3] @ p.T).T + world[:3, 3]
+                if "indices" in prim:
+                    idx = accessor(gltf, buffers, prim["indices"]).reshape(-1, 3).astype(np.uint32)
+                else:
+                    idx = np.arange(len(p), dtype=np.uint32).reshape(-1, 3)
+                mat = gltf["materials"][prim["material"]] if "material" in prim else {}
+                rgb = mat.get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3]
+                ply = os.path.join(workdir, f"mesh{len(shapes)}.ply")
+                write_ply(ply, p.astype(np.float32), idx)
+                shapes.append((ply, rgb))
+        ext = node.get("extensions", {}).get("KHR_lights_punctual")
+        if ext is not None:
+            light = lights[ext["light"]]
+            if light["type"] != "point":
+                sys.exit(f"error: only point lights are supported, not {light['type']}")
+            colour = np.array(light.get("color", [1, 1, 1])) * light.get("intensity", 1.0) * punctual_factor
+            scene[f"light{ext['light']}"] = {
+                "type": "point",
+                "position": world[:3, 3].tolist(),
+                "intensity": {"type": "rgb", "value": colour.tolist()},
+            }
+        if "camera" in node and not camera:
+            cam = gltf["cameras"][node["camera"]]
+            eye = world[:3, 3]
+            forward = world[:3, :3] @ np.array([0, 0, -1.0])
+            up = world[:3, :3] @ np.array([0, 1.0, 0])
+            camera.update(eye=eye, target=eye + forward, up=up,
+                          fov=math.degrees(cam["perspective"]["yfov"]))
+
+    walk(gltf, visit)
+    if not camera:
+        sys.exit("error: the file has no perspective camera")
+    for k, (ply, rgb) in enumerate(shapes):
+        scene[f"shape{k}"] = {
+            "type": "ply", "filename": ply, "face_normals": True,
+            "bsdf": {"type": "twosided", "bsdf": {
+                "type": "diffuse", "reflectance": {"type": "rgb", "value": list(rgb)}}},
+        }
+    scene["sensor"] = {
+        "type": "perspective",
+        "fov_axis": "y",
+        "fov": camera["fov"],
+        "to_world": mi.ScalarTransform4f().look_at(
+            origin=camera["eye"].tolist(), target=camera["target"].tolist(), up=camera["up"].tolist()),
+        "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
+                 "pixel_format": "rgb"},
+        "sampler": {"type": "independent"},
+    }
+    return mi.load_dict(scene)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scene")
+    parser.add_argument("--size", default="320x180")
+    parser.add_argument("--spp", type=int, default=1024, help="samples per pixel in all")
+    parser.add_argument("--passes", type=int, default=8, help="independent renders for the errors")
+    parser.add_argument("--light-units", choices=["mixed", "photometric", "viewer"], default="mixed")
+    parser.add_argument("--max-depth", type=int, default=-1, help="-1: Russian roulette only, as ours")
+    parser.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant (llvm_ad_rgb is faster where its JIT works; it failed to compile on the machine this was written on)")
+    parser.add_argument("--out", default=os.path.join("target", "kitchen", "mitsuba.exr"))
+    args = parser.parse_args()
+    import mitsuba as mi
+
+    try:
+        mi.set_variant(args.variant)
+    except Exception:  # noqa: BLE001 (no LLVM on this machine)
+        mi.set_variant("scalar_rgb")
+    width, height = (int(v) for v in args.size.lower().split("x"))
+    factor = 1.0 if args.light_units == "viewer" else 1.0 / 683.0
+    workdir = os.path.splitext(args.out)[0] + "-meshes"
+    os.makedirs(workdir, exist_ok=True)
+    scene = build_scene(args.scene, width, height, factor, args.max_depth, workdir)
+    per_pass = max(1, args.spp // args.passes)
+    images = []
+    for k in range(args.passes):
+        img = np.array(mi.render(scene, spp=per_pass, seed=1000 + k))[:, :, :3]
+        images.append(img)
+        print(f"pass {k + 1}/{args.passes}: mean {img.mean():.5f}", flush=True)
+    stack = np.stack(images)
+    mean = stack.mean(0)
+    stderr = stack.std(0, ddof=1) / math.sqrt(args.passes) if args.passes > 1 else np.zeros_like(mean)
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    mi.Bitmap(mean.astype(np.float32)).write(args.out)
+    np.save(os.path.splitext(args.out)[0] + ".npy", np.stack([mean, stderr]).astype(np.float32))
+    print(f"wrote {args.out} and its .npy (mean, standard error): {width}x{height}, "
+          f"{per_pass * args.passes} spp, mean rgb {mean.reshape(-1, 3).mean(0)}")
+
+
+if __name__ == "__main__":
+    main()
