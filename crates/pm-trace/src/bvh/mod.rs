@@ -196,6 +196,23 @@ impl SceneBvh {
         }
     }
 
+    /// Where `ray` meets triangle `hit`, interpolated from its corners by the watertight
+    /// test's barycentric weights, with the magnitude that point's rounding scales with (the
+    /// largest coordinate of `Σ |bᵢ vᵢ|`); `None` for shapes, and for a triangle edge-on to
+    /// the ray.
+    #[inline]
+    pub(crate) fn interpolated_point(&self, ray: &Ray, hit: HitPrimitive) -> Option<(Vec3, f32)> {
+        let HitPrimitive::Triangle(i) = hit else {
+            return None;
+        };
+        let v = &self.triangles[i as usize].v;
+        let [b0, b1, b2] = WatertightRay::new(ray.origin, ray.direction).barycentrics(v)?;
+        let (p0, p1, p2) = (v[0] * b0, v[1] * b1, v[2] * b2);
+        let point = p0 + p1 + p2;
+        let magnitude = (p0.abs() + p1.abs() + p2.abs()).max_element();
+        (point.is_finite() && magnitude.is_finite()).then_some((point, magnitude))
+    }
+
     /// Number of triangles.
     pub(crate) fn triangle_count(&self) -> usize {
         self.triangles.len()

@@ -1,7 +1,7 @@
 //! The scene's ray queries: closest hits (one ray, or two interleaved), occlusion between two
 //! points, and rays leaving a hit.
 
-use super::offset::{offset_point, point_error};
+use super::offset::{interpolated_point_error, offset_point, point_error};
 use super::{Hit, RayKind, Scene};
 use crate::bvh::{Crossing, HitPrimitive};
 use crate::part::PartSurface;
@@ -77,7 +77,16 @@ impl Scene {
     /// The hit of `ray` at distance `t` on primitive `index`.
     #[inline(always)]
     fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Hit {
-        let position = ray.at(t);
+        // On a triangle the point is interpolated from its corners, so it lies on the
+        // triangle's plane within rounding of the corners however thin the triangle is
+        // (`origin + t · direction` carries t's error, which a sliver magnifies).
+        let (position, error) = match self.bvh.interpolated_point(ray, index) {
+            Some((point, magnitude)) => (point, interpolated_point_error(magnitude)),
+            None => {
+                let point = ray.at(t);
+                (point, point_error(ray.origin, point, t))
+            }
+        };
         let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
         let front_face = n.dot(ray.direction) < 0.0;
         Hit {
@@ -87,7 +96,7 @@ impl Scene {
             front_face,
             part,
             surface,
-            error: point_error(ray.origin, position, t),
+            error,
         }
     }
 
