@@ -409,8 +409,10 @@ fn gltf_messages_have_one_prefix_and_world_positions() {
     let file = scratch.0.join("far.gltf");
     std::fs::write(&file, json).unwrap();
     let message = gltf::load_scene(&file).unwrap_err().to_string();
+    // f64 composition puts it at 6e38 m, 1.5e38 m from the re-centred origin: past the
+    // photon maps' range, refused where it is placed.
     assert!(
-        message.contains("in the world") && message.contains("inf"),
+        message.contains("in the world") && message.contains("position"),
         "{message}"
     );
 }

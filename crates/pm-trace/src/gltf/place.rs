@@ -36,13 +36,17 @@ impl LocalPrimitive {
         for (i, p) in self.positions.iter().enumerate() {
             let w = world.transform_point3(p.as_dvec3()) - origin;
             let w32 = w.as_vec3();
-            if !w32.is_finite() {
+            // Beyond the photon maps' coordinate range the scene is refused anyway; saying so
+            // here names the position (a face that large would otherwise be dropped as
+            // degenerate, its area past f32, and the scene refused as having no geometry).
+            if !(w32.is_finite() && w32.abs().max_element() < pm_kdtree::MAX_COORDINATE) {
                 return Err(GltfError::Primitive {
                     file: file.to_path_buf(),
                     mesh: at.0,
                     primitive: at.1,
                     reason: format!(
-                        "position {i} is not finite in the world: {w} (local {p}, re-centred on {origin})"
+                        "position {i} is not finite or beyond ±{:e} m in the world: {w} (local {p}, re-centred on {origin})",
+                        pm_kdtree::MAX_COORDINATE
                     ),
                 });
             }
