@@ -1,56 +1,6 @@
 //! glTF 2.0's metallic-roughness material as its specification's Appendix B writes it (with
 //! `KHR_materials_ior` and `KHR_materials_specular`): a GGX specular lobe over a Lambertian
 //! one for the dielectric, a GGX lobe with Schlick's Fresnel of the base colour for the metal.
-//!
-//! # The BRDF (Appendix B, height-correlated Smith visibility)
-//!
-//! With `α = roughness²` (at least [`MIN_ALPHA`](super::microfacet::MIN_ALPHA)), `H` the half-vector of `wo` and `wi`,
-//! `w = (1 − |wo·H|)⁵`, `base = baseColor · tint` and the [`TrowbridgeReitz`] `D` and `V`:
-//!
-//! ```text
-//! specular_brdf   = V · D
-//! f0              = min(((ior − 1)/(ior + 1))² · specularColor, 1) · specular   (per channel)
-//! F               = f0 + (specular − f0) · w                                    (per channel)
-//! dielectric_brdf = F · specular_brdf + (1 − max(F.r, F.g, F.b)) · base / π
-//! metal_brdf      = specular_brdf · (base + (1 − base) · w)
-//! f               = mix(dielectric_brdf, metal_brdf, metallic)
-//! ```
-//!
-//! With `ior = 1.5` and `specular = 1`, `specularColor = 1` (the defaults) `F` is Appendix B's
-//! `0.04 + 0.96 w` and `dielectric_brdf` its `mix(base/π, specular_brdf, F)`. The
-//! `KHR_materials_specular` form (`max` over channels in the diffuse weight, `f0` clamped to
-//! 1 before `specular` scales it) is the ratified extension's. `specular = 0` leaves the
-//! Lambertian `base/π` alone (how a file says "matte"); glTF's default matte (metallic 0,
-//! roughness 1) keeps a Fresnel layer with `f0 = 0.04`, as the specification says.
-//!
-//! Reflection only: `f = 0` unless both directions are above the lobe normal, which is the
-//! shading normal when `wo` is above it and the geometric normal otherwise (near a coarse
-//! mesh's silhouette, as the mirror does); `f` is reciprocal wherever both directions are above
-//! the shading normal.
-//!
-//! # What is approximated
-//!
-//! Single scattering only, as the specification: light that bounces more than once between
-//! microfacets is lost, so a white metal's directional albedo falls below one as roughness
-//! grows (measured by `tests/ggx.rs`, quadrature and sampling agreeing): at roughness 1 and
-//! normal incidence it reflects `1 − ln 2 ≈ 0.307` (a closed form there), a loss of 69 %;
-//! 0.38 to 0.76 at other incidences; at roughness 0.6 0.78 to 0.88; at roughness 0.3 0.99 at
-//! normal incidence and 0.88 at `cos θo = 0.1`. The specification's `fresnel_mix` is not
-//! energy-conserving the other way: the dielectric's diffuse weight `1 − F(wo·H)` is not the
-//! light the specular lobe leaves over, so a white dielectric reflects more than it receives
-//! at oblique incidence (1.07 at roughness 0.1 and `cos θo = 0.4`, 1.53 at `cos θo = 0.1`; a
-//! 0.5 grey one 1.06 there). Both are the specification's, kept so that images agree with
-//! other glTF renderers.
-//!
-//! # Sampling
-//!
-//! One-sample multiple importance sampling over two lobes: the specular lobe by visible
-//! normals ([`TrowbridgeReitz::sample_visible_normal`], pdf `D_wo(H) / (4 |wo·H|)`) and the
-//! diffuse one by the cosine, picked with a probability from their estimated albedos at `wo`
-//! (clamped to `[0.1, 0.9]` when both lobes are present, so neither is starved). `pdf` is the
-//! mixture `p · pdf_spec + (1 − p) · pdf_diff` and a sample's weight `f · cos θi / pdf` with
-//! the whole `f`. A specular sample that reflects below the surface is `None` (that mass is
-//! missing from the density: it integrates to less than one at high roughness).
 
 use super::lobes::Lobes;
 use super::microfacet::TrowbridgeReitz;
@@ -61,9 +11,58 @@ use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame};
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
-/// The glTF 2.0 metallic-roughness material (see the [module docs](self) for the formulas).
-/// Made by [`MetallicRoughness::new`] and its `with_` methods, which check every parameter, so
-/// a value of this type is always in range.
+/// The glTF 2.0 metallic-roughness material. Made by [`MetallicRoughness::new`] and its
+/// `with_` methods, which check every parameter, so a value of this type is always in range.
+///
+/// # The BRDF (Appendix B, height-correlated Smith visibility)
+///
+/// With `α = roughness²` (at least [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA)), `H` the half-vector of `wo` and `wi`,
+/// `w = (1 − |wo·H|)⁵`, `base = baseColor · tint` and the [`TrowbridgeReitz`] `D` and `V`:
+///
+/// ```text
+/// specular_brdf   = V · D
+/// f0              = min(((ior − 1)/(ior + 1))² · specularColor, 1) · specular   (per channel)
+/// F               = f0 + (specular − f0) · w                                    (per channel)
+/// dielectric_brdf = F · specular_brdf + (1 − max(F.r, F.g, F.b)) · base / π
+/// metal_brdf      = specular_brdf · (base + (1 − base) · w)
+/// f               = mix(dielectric_brdf, metal_brdf, metallic)
+/// ```
+///
+/// With `ior = 1.5` and `specular = 1`, `specularColor = 1` (the defaults) `F` is Appendix B's
+/// `0.04 + 0.96 w` and `dielectric_brdf` its `mix(base/π, specular_brdf, F)`. The
+/// `KHR_materials_specular` form (`max` over channels in the diffuse weight, `f0` clamped to
+/// 1 before `specular` scales it) is the ratified extension's. `specular = 0` leaves the
+/// Lambertian `base/π` alone (how a file says "matte"); glTF's default matte (metallic 0,
+/// roughness 1) keeps a Fresnel layer with `f0 = 0.04`, as the specification says.
+///
+/// Reflection only: `f = 0` unless both directions are above the lobe normal, which is the
+/// shading normal when `wo` is above it and the geometric normal otherwise (near a coarse
+/// mesh's silhouette, as the mirror does); `f` is reciprocal wherever both directions are above
+/// the shading normal.
+///
+/// # What is approximated
+///
+/// Single scattering only, as the specification: light that bounces more than once between
+/// microfacets is lost, so a white metal's directional albedo falls below one as roughness
+/// grows (measured by `tests/ggx.rs`, quadrature and sampling agreeing): at roughness 1 and
+/// normal incidence it reflects `1 − ln 2 ≈ 0.307` (a closed form there), a loss of 69 %;
+/// 0.38 to 0.76 at other incidences; at roughness 0.6 0.78 to 0.88; at roughness 0.3 0.99 at
+/// normal incidence and 0.88 at `cos θo = 0.1`. The specification's `fresnel_mix` is not
+/// energy-conserving the other way: the dielectric's diffuse weight `1 − F(wo·H)` is not the
+/// light the specular lobe leaves over, so a white dielectric reflects more than it receives
+/// at oblique incidence (1.07 at roughness 0.1 and `cos θo = 0.4`, 1.53 at `cos θo = 0.1`; a
+/// 0.5 grey one 1.06 there). Both are the specification's, kept so that images agree with
+/// other glTF renderers.
+///
+/// # Sampling
+///
+/// One-sample multiple importance sampling over two lobes: the specular lobe by visible
+/// normals ([`TrowbridgeReitz::sample_visible_normal`], pdf `D_wo(H) / (4 |wo·H|)`) and the
+/// diffuse one by the cosine, picked with a probability from their estimated albedos at `wo`
+/// (clamped to `[0.1, 0.9]` when both lobes are present, so neither is starved). `pdf` is the
+/// mixture `p · pdf_spec + (1 − p) · pdf_diff` and a sample's weight `f · cos θi / pdf` with
+/// the whole `f`. A specular sample that reflects below the surface is `None` (that mass is
+/// missing from the density: it integrates to less than one at high roughness).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MetallicRoughness {
     base_color: Vec3,
@@ -177,7 +176,7 @@ impl MetallicRoughness {
         self.specular_color
     }
 
-    /// The microfacet distribution, `α = roughness²` raised to [`MIN_ALPHA`](super::microfacet::MIN_ALPHA).
+    /// The microfacet distribution, `α = roughness²` raised to [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA).
     pub fn distribution(&self) -> TrowbridgeReitz {
         TrowbridgeReitz::new(self.roughness * self.roughness)
     }
@@ -375,7 +374,7 @@ impl Bsdf for MetallicRoughness {
     }
 
     /// An estimate, each channel in `[0, 1]`: the Fresnel-weighted lobes at `wo·H = cos θo`
-    /// (see the module docs), which ignores the microfacets' shadowing and so overestimates
+    /// (see [`MetallicRoughness`]), which ignores the microfacets' shadowing and so overestimates
     /// the true albedo at high roughness; the photon tracer's roulette is unbiased for any
     /// value in `(0, 1]`, and this one is positive whenever a lobe is.
     fn albedo(&self, at: &ShadingPoint, wo: Vec3) -> Vec3 {

@@ -21,6 +21,9 @@ pub const MIN_ALPHA: f32 = 1e-3;
 
 /// The isotropic Trowbridge-Reitz (GGX) distribution of microfacet normals of width `α`.
 /// Directions are unit vectors in a local frame whose `z` axis is the macro-surface normal.
+/// References: Walter et al. 2007; Heitz 2014 (`Λ`, height-correlated `G2`, the visible-normal
+/// density); Dupuy & Benyoub 2023 (spherical-cap sampling, equivalent to Heitz 2018);
+/// pbrt-v4's `TrowbridgeReitzDistribution`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrowbridgeReitz {
     alpha: f32,
