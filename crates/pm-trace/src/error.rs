@@ -199,3 +199,19 @@ pub enum MapError {
         source: pm_kdtree::BuildError,
     },
 }
+
+/// Why a material could not be made from its parameters.
+#[derive(Debug, Error, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum MaterialError {
+    /// A parameter (or one channel of a colour) is NaN, infinite or outside its range.
+    #[error("{parameter} is {value}: it must be {range}")]
+    OutOfRange {
+        /// The parameter's name (glTF's, e.g. `metallicFactor`).
+        parameter: &'static str,
+        /// The offending value (the first offending channel of a colour).
+        value: f32,
+        /// The allowed range, in words.
+        range: &'static str,
+    },
+}

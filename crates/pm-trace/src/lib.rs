@@ -136,7 +136,7 @@ pub mod gltf;
 pub use bsdf::{Bsdf, BsdfSample, Lobes, ShadingPoint};
 pub use camera::Camera;
 pub use emission::EmissionTexture;
-pub use error::{MapError, PhotonFault, SceneError, TraceError};
+pub use error::{MapError, MaterialError, PhotonFault, SceneError, TraceError};
 pub use glam;
 pub use light::{
     AreaLight, DirectionalLight, EmittedRay, IncidentPdf, Light, LightClone, LightSample, PointLight,

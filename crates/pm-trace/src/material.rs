@@ -6,6 +6,7 @@ use glam::{Vec2, Vec3};
 use crate::bsdf::glass::Glass;
 use crate::bsdf::lambertian::Lambertian;
 use crate::bsdf::lobes::Lobes;
+use crate::bsdf::metallic_roughness::MetallicRoughness;
 use crate::bsdf::mirror::Mirror;
 use crate::bsdf::shading_point::ShadingPoint;
 use crate::bsdf::{Bsdf, BsdfSample};
@@ -41,6 +42,9 @@ pub enum Material {
         /// Index of refraction (inside / outside), e.g. 1.5.
         ior: f32,
     },
+    /// glTF 2.0's metallic-roughness material (GGX over Lambert, Appendix B), made by
+    /// [`MetallicRoughness::new`], which checks its ranges.
+    MetallicRoughness(MetallicRoughness),
     /// A BSDF of the caller's (see [`crate::bsdf`]).
     Custom(&'static dyn Bsdf),
 }
@@ -59,6 +63,7 @@ impl PartialEq for Material {
             (Material::Lambertian { albedo: a }, Material::Lambertian { albedo: b }) => a == b,
             (Material::Mirror { reflectance: a }, Material::Mirror { reflectance: b }) => a == b,
             (Material::Glass { ior: a }, Material::Glass { ior: b }) => a == b,
+            (Material::MetallicRoughness(a), Material::MetallicRoughness(b)) => a == b,
             (Material::Custom(a), Material::Custom(b)) => std::ptr::addr_eq(*a, *b),
             _ => false,
         }
@@ -66,7 +71,7 @@ impl PartialEq for Material {
 }
 
 /// Calls `$call` on the variant's BSDF: the built-ins statically, a custom one through its
-/// `Arc`.
+/// reference.
 macro_rules! dispatch {
     ($material:expr, $bsdf:ident => $call:expr) => {
         match $material {
@@ -82,6 +87,10 @@ macro_rules! dispatch {
             }
             Material::Glass { ior } => {
                 let $bsdf = Glass { ior: *ior };
+                $call
+            }
+            Material::MetallicRoughness(bsdf) => {
+                let $bsdf = bsdf;
                 $call
             }
             Material::Custom(custom) => {
@@ -169,6 +178,16 @@ impl Surface {
     pub fn glass(ior: f32) -> Self {
         Surface {
             material: Material::Glass { ior },
+            emission: Vec3::ZERO,
+            camera_visible: true,
+            sides: Sides::Front,
+        }
+    }
+
+    /// A visible, non-emitting glTF metallic-roughness surface.
+    pub fn metallic_roughness(material: MetallicRoughness) -> Self {
+        Surface {
+            material: Material::MetallicRoughness(material),
             emission: Vec3::ZERO,
             camera_visible: true,
             sides: Sides::Front,

@@ -1,5 +1,6 @@
 //! How light scatters at a surface point: the [`Bsdf`] trait renderer authors implement, and
-//! the built-in [`Lambertian`], [`Mirror`] and [`Glass`] that implement it.
+//! the built-in [`Lambertian`], [`Mirror`], [`Glass`] and glTF's [`MetallicRoughness`] (over
+//! the [`TrowbridgeReitz`] microfacet distribution) that implement it.
 //!
 //! # Conventions
 //!
@@ -93,6 +94,8 @@
 pub(crate) mod glass;
 pub(crate) mod lambertian;
 pub(crate) mod lobes;
+pub(crate) mod metallic_roughness;
+pub(crate) mod microfacet;
 pub(crate) mod mirror;
 pub mod scatter;
 pub(crate) mod shading_point;
@@ -100,6 +103,8 @@ pub(crate) mod shading_point;
 pub use glass::Glass;
 pub use lambertian::Lambertian;
 pub use lobes::Lobes;
+pub use metallic_roughness::MetallicRoughness;
+pub use microfacet::{MIN_ALPHA, TrowbridgeReitz};
 pub use mirror::Mirror;
 pub use shading_point::ShadingPoint;
 

@@ -35,40 +35,67 @@ pub(super) fn check_lights(lights: &[Box<dyn Light>]) -> Result<(), SceneError> 
 #[derive(Default)]
 pub(super) struct SurfaceTable {
     pub(super) surfaces: Vec<Surface>,
-    ids: std::collections::HashMap<[u32; 9], u32>,
+    ids: std::collections::HashMap<[u32; 16], u32>,
 }
 
 impl SurfaceTable {
     /// The id of `surface`, added if new. Surfaces are compared by their bits.
     pub(super) fn id_of(&mut self, surface: Surface) -> u32 {
-        let (kind, colour) = match surface.material {
-            Material::Lambertian { albedo } => (0, albedo),
-            Material::Mirror { reflectance } => (1, reflectance),
-            Material::Glass { ior } => (2, Vec3::splat(ior)),
-            // The object's address identifies a custom BSDF (its two halves as the colour).
+        // The material's kind and up to ten parameters, as bits.
+        let (kind, parameters): (u32, [f32; 10]) = match surface.material {
+            Material::Lambertian { albedo } => (0, pad(albedo.to_array())),
+            Material::Mirror { reflectance } => (1, pad(reflectance.to_array())),
+            Material::Glass { ior } => (2, pad([ior; 3])),
+            // The object's address identifies a custom BSDF (its two halves as parameters).
             Material::Custom(bsdf) => {
                 let address = std::ptr::from_ref(bsdf).cast::<u8>() as usize as u64;
                 let (low, high) = (address as u32, (address >> 32) as u32);
-                (3, Vec3::new(f32::from_bits(low), f32::from_bits(high), 0.0))
+                (3, pad([f32::from_bits(low), f32::from_bits(high), 0.0]))
+            }
+            Material::MetallicRoughness(m) => {
+                let (c, s) = (m.base_color(), m.specular_color());
+                (
+                    4,
+                    [
+                        c.x,
+                        c.y,
+                        c.z,
+                        m.metallic(),
+                        m.roughness(),
+                        m.ior(),
+                        m.specular(),
+                        s.x,
+                        s.y,
+                        s.z,
+                    ],
+                )
             }
         };
         let e = surface.emission;
-        let key = [
-            kind,
-            colour.x.to_bits(),
-            colour.y.to_bits(),
-            colour.z.to_bits(),
+        let mut key = [0u32; 16];
+        key[0] = kind;
+        for (k, p) in key[1..11].iter_mut().zip(parameters) {
+            *k = p.to_bits();
+        }
+        key[11..].copy_from_slice(&[
             e.x.to_bits(),
             e.y.to_bits(),
             e.z.to_bits(),
             surface.camera_visible as u32,
             surface.sides as u32,
-        ];
+        ]);
         *self.ids.entry(key).or_insert_with(|| {
             self.surfaces.push(surface);
             (self.surfaces.len() - 1) as u32
         })
     }
+}
+
+/// Three parameters followed by zeros.
+fn pad(three: [f32; 3]) -> [f32; 10] {
+    let mut all = [0.0; 10];
+    all[..3].copy_from_slice(&three);
+    all
 }
 
 /// On the −z side of the bounds looking along +z at their centre (the built-in scenes' view).

@@ -15,6 +15,7 @@ pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
+use crate::bsdf::Bsdf;
 use crate::bsdf::shading_point::ShadingPoint;
 use crate::bvh::SceneBvh;
 use crate::camera::Camera;
@@ -202,7 +203,7 @@ impl Scene {
     }
 
     /// The reflectance at a hit: a Lambertian surface's albedo or a mirror's reflectance (one
-    /// for glass, a custom BSDF's [`crate::bsdf::Bsdf::diffuse_albedo`]), times the mesh's base-colour
+    /// for glass, a custom or metallic-roughness BSDF's [`crate::bsdf::Bsdf::diffuse_albedo`]), times the mesh's base-colour
     /// texture at the hit's texture coordinates and its interpolated vertex colours where the
     /// mesh has them. Use this, not the material's factor, wherever a hit's colour matters;
     /// the photon-map estimators read radiance `albedo_at/π · E` with it.
@@ -224,6 +225,10 @@ impl Scene {
             Material::Custom(bsdf) => {
                 let at = self.shading_point_about(hit, self.shading_normal_at(hit), footprint);
                 return bsdf.diffuse_albedo(&at);
+            }
+            Material::MetallicRoughness(m) => {
+                let at = self.shading_point_about(hit, self.shading_normal_at(hit), footprint);
+                return m.diffuse_albedo(&at);
             }
         };
         match self.tint(hit, footprint) {
