@@ -2,6 +2,7 @@
 //! multiple-importance weights against cosine-weighted rays that hit the lights.
 
 use glam::Vec3;
+use pm_trace::bsdf::{Bsdf, ShadingPoint};
 use pm_trace::{Hit, Light, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
@@ -21,15 +22,15 @@ pub(crate) fn direct_irradiance_shaded(scene: &Scene, hit: &Hit, shading: Vec3, 
 }
 
 /// The sum over the scene's lights of one shadow-ray sample each, `radiance_over_pdf · cos ·
-/// weight(light, direction, cos)`, counting only samples above both the shading and the
+/// weight(light, direction, cos)` (a number, or a colour such as `f(wo, wi)` times one), counting only samples above both the shading and the
 /// geometric surface, finite, and unoccluded.
 #[inline]
-fn unoccluded_sum(
+fn unoccluded_sum<W: Weight>(
     scene: &Scene,
     hit: &Hit,
     shading: Vec3,
     rng: &mut Rng,
-    weight: impl Fn(&dyn Light, Vec3, f32) -> f32,
+    weight: impl Fn(&dyn Light, Vec3, f32) -> W,
 ) -> Vec3 {
     let mut e = Vec3::ZERO;
     for light in scene.lights() {
@@ -43,9 +44,29 @@ fn unoccluded_sum(
         if scene.occluded_from(hit, hit.position + sample.direction * sample.distance) {
             continue;
         }
-        e += sample.radiance_over_pdf * cos * weight(light.as_ref(), sample.direction, cos);
+        e += weight(light.as_ref(), sample.direction, cos).scale(sample.radiance_over_pdf * cos);
     }
     e
+}
+
+/// What a light sample is multiplied by: a number (a weight) or a colour (`f` times one).
+trait Weight {
+    /// `v` times this.
+    fn scale(self, v: Vec3) -> Vec3;
+}
+
+impl Weight for f32 {
+    #[inline]
+    fn scale(self, v: Vec3) -> Vec3 {
+        v * self
+    }
+}
+
+impl Weight for Vec3 {
+    #[inline]
+    fn scale(self, v: Vec3) -> Vec3 {
+        v * self
+    }
 }
 
 /// True when every light of `scene` gives exact densities for multiple importance sampling
@@ -101,4 +122,38 @@ pub(crate) fn bsdf_emission_weight(
         .map(|p| p.pdf)
         .sum();
     power_heuristic(bsdf_samples * bsdf_pdf, light_pdf)
+}
+
+/// Radiance reflected at `hit` towards `wo` straight from the scene's lights through `bsdf`:
+/// one shadow ray per light, `f(wo, wi) · L · cos / pdf_light`, weighted by the power heuristic
+/// against one sample of the BSDF's own density ([`Bsdf::pdf`]) when `mis` holds (delta lights
+/// keep weight 1). For BSDFs with a glossy lobe, whose reflection is not `ρ_d/π` times the
+/// irradiance; the BSDF-sampled side is [`bsdf_emission_weight`] with the sample's pdf.
+pub(crate) fn direct_radiance_through(
+    scene: &Scene,
+    hit: &Hit,
+    at: &ShadingPoint,
+    bsdf: &dyn Bsdf,
+    wo: Vec3,
+    mis: Mis,
+    rng: &mut Rng,
+) -> Vec3 {
+    unoccluded_sum(scene, hit, at.shading, rng, |light, direction, _| {
+        let f = bsdf.eval(at, wo, direction);
+        let weight = match (mis, light.incident_pdf(hit.position, direction)) {
+            (Mis::Weighted, Some(p)) => power_heuristic(p.pdf, bsdf.pdf(at, wo, direction)),
+            _ => 1.0,
+        };
+        f * weight
+    })
+}
+
+/// Whether light samples are weighted against BSDF samples (every light gives exact
+/// densities, [`mis_enabled`]) or carry direct light alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Mis {
+    /// Power-heuristic weights on both strategies.
+    Weighted,
+    /// Shadow rays alone.
+    ShadowRaysOnly,
 }

@@ -3,12 +3,16 @@
 //! (power heuristic); Russian roulette ends long paths. With the render core's delta chain in
 //! front of it, the path-trace mode: the reference every estimator is measured against.
 
-use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
+use super::direct::{
+    Mis, bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, direct_radiance_through,
+    mis_enabled,
+};
 use crate::core::delta::specular_bounce;
 use crate::core::{PathVertex, RadianceSource};
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_trace::{Bsdf, RayKind, Rng, Scene};
+use pm_trace::bsdf::ShadingPoint;
+use pm_trace::{Bsdf, Hit, Material, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Longest path (a safety net; Russian roulette ends paths long before).
@@ -83,12 +87,13 @@ fn trace_from(scene: &Scene, vertex: &PathVertex, first: VertexEmission, rng: &m
         let material = scene.material(&hit);
         if material.lobes().has_non_delta() {
             let at = scene.shading_point(&hit);
-            let direct = if mis {
-                direct_irradiance_mis(scene, &hit, at.shading, 1.0, rng)
-            } else {
-                direct_irradiance_shaded(scene, &hit, at.shading, rng)
+            let vertex = Reflecting {
+                hit: &hit,
+                at: &at,
+                material,
+                wo: -ray.direction,
             };
-            radiance += throughput * material.diffuse_albedo(&at) * FRAC_1_PI * direct;
+            radiance += direct_light(scene, &vertex, throughput, mis, rng);
             // For a Lambertian surface, cosine sampling about the shading normal: weight
             // f · cos / pdf = (albedo / π) · cos / (cos / π) = albedo. A direction below the
             // geometric surface (possible where the shading normal leans away from it, near
@@ -126,4 +131,38 @@ fn trace_from(scene: &Scene, vertex: &PathVertex, first: VertexEmission, rng: &m
         }
     }
     radiance
+}
+
+/// Radiance reflected at a non-delta `hit` towards `wo` straight from the lights, times the
+/// path's `throughput` (multiplied in the order the images' bits were made with). A BSDF with a
+/// glossy lobe is evaluated per light sample (`f · L · cos`, weighted against its own
+/// density); one whose non-delta part is diffuse reflects `ρ_d/π` times the irradiance, read
+/// with the cosine density's weights, which for a Lambertian lobe is the same sum.
+fn direct_light(scene: &Scene, vertex: &Reflecting<'_>, throughput: Vec3, mis: bool, rng: &mut Rng) -> Vec3 {
+    let Reflecting {
+        hit,
+        at,
+        material,
+        wo,
+    } = *vertex;
+    if material.lobes().has_glossy() {
+        let weights = if mis { Mis::Weighted } else { Mis::ShadowRaysOnly };
+        return throughput * direct_radiance_through(scene, hit, at, material, wo, weights, rng);
+    }
+    let direct = if mis {
+        direct_irradiance_mis(scene, hit, at.shading, 1.0, rng)
+    } else {
+        direct_irradiance_shaded(scene, hit, at.shading, rng)
+    };
+    throughput * material.diffuse_albedo(at) * FRAC_1_PI * direct
+}
+
+/// A non-delta path vertex as its direct light is read: the hit, its shading point, its
+/// material and the direction back along the path.
+#[derive(Clone, Copy)]
+struct Reflecting<'a> {
+    hit: &'a Hit,
+    at: &'a ShadingPoint,
+    material: &'a Material,
+    wo: Vec3,
 }
