@@ -101,6 +101,14 @@ macro_rules! dispatch {
     };
 }
 
+impl Material {
+    /// [`Bsdf::sample_from`] for every material but the Lambertian, out of line.
+    #[inline(never)]
+    fn sample_from_out_of_line(&self, at: &ShadingPoint, wo: Vec3, rng: &mut Rng) -> Option<BsdfSample> {
+        dispatch!(self, b => b.sample_from(at, wo, rng))
+    }
+}
+
 impl Bsdf for Material {
     #[inline]
     fn lobes(&self) -> Lobes {
@@ -122,9 +130,14 @@ impl Bsdf for Material {
         dispatch!(self, b => b.sample(at, wo, u, u_lobe))
     }
 
+    /// The built-in Lambertian's sampling inline (every diffuse bounce of every path); the
+    /// others out of line, so that this stays small enough to inline where paths are traced.
     #[inline]
     fn sample_from(&self, at: &ShadingPoint, wo: Vec3, rng: &mut Rng) -> Option<BsdfSample> {
-        dispatch!(self, b => b.sample_from(at, wo, rng))
+        match self {
+            Material::Lambertian { albedo } => Lambertian { albedo: *albedo }.sample_from(at, wo, rng),
+            other => other.sample_from_out_of_line(at, wo, rng),
+        }
     }
 
     #[inline]
