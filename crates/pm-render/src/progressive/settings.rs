@@ -11,7 +11,7 @@ use std::time::Duration;
 /// The version of the progressive algorithm, part of [`ProgressiveSettings::identity`]: bumped
 /// whenever the same settings would render a different image (v2: pilot extents at sparse
 /// sites, computed once; v3: ray offsets by each hit's rounding error, the final gather's cache
-/// in full precision; v4: triangle hit points interpolated from the corners), so that shards
+/// in full precision; v4: triangle hit points moved onto the triangle's plane), so that shards
 /// of different versions are never merged.
 pub const PROGRESSIVE_VERSION: &str = "v4";
 

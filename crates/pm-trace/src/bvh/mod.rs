@@ -196,20 +196,27 @@ impl SceneBvh {
         }
     }
 
-    /// Where `ray` meets triangle `hit`, interpolated from its corners by the watertight
-    /// test's barycentric weights, with the magnitude that point's rounding scales with (the
-    /// largest coordinate of `Σ |bᵢ vᵢ|`); `None` for shapes, and for a triangle edge-on to
-    /// the ray.
+    /// Where `ray` meets triangle `hit` at distance `t`, moved onto the triangle's plane: the
+    /// ray's point `o + t·d` written in the triangle's own coordinates, `v₀ + b₁ e₁ + b₂ e₂`
+    /// (its weights by projection along the face normal), with the magnitude that point's
+    /// rounding scales with (the largest coordinate of `|v₀| + |b₁ e₁| + |b₂ e₂|`). However thin
+    /// the triangle, the point lies on its plane within a few units in the last place of that
+    /// magnitude (where it lies within the plane matters little), while `o + t·d` carries t's
+    /// error, which a sliver magnifies. `None` for shapes and degenerate triangles.
     #[inline]
-    pub(crate) fn interpolated_point(&self, ray: &Ray, hit: HitPrimitive) -> Option<(Vec3, f32)> {
+    pub(crate) fn interpolated_point(&self, ray: &Ray, hit: HitPrimitive, t: f32) -> Option<(Vec3, f32)> {
         let HitPrimitive::Triangle(i) = hit else {
             return None;
         };
         let v = &self.triangles[i as usize].v;
-        let [b0, b1, b2] = WatertightRay::new(ray.origin, ray.direction).barycentrics(v)?;
-        let (p0, p1, p2) = (v[0] * b0, v[1] * b1, v[2] * b2);
-        let point = p0 + p1 + p2;
-        let magnitude = (p0.abs() + p1.abs() + p2.abs()).max_element();
+        let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+        let n = e1.cross(e2);
+        let q = ray.at(t) - v[0];
+        let inverse = 1.0 / n.length_squared();
+        let (b1, b2) = (q.cross(e2).dot(n) * inverse, e1.cross(q).dot(n) * inverse);
+        let (p1, p2) = (e1 * b1, e2 * b2);
+        let point = v[0] + p1 + p2;
+        let magnitude = (v[0].abs() + p1.abs() + p2.abs()).max_element();
         (point.is_finite() && magnitude.is_finite()).then_some((point, magnitude))
     }
 

@@ -82,23 +82,4 @@ impl WatertightRay {
         let t = (u * az + vv * bz + w * cz) / det;
         if t > t_min && t < t_max { t } else { f32::INFINITY }
     }
-
-    /// The barycentric weights of the point where the ray crosses the plane of triangle `v`,
-    /// by the same sheared edge functions as [`Self::intersect_triangle`] (`None` when the
-    /// triangle is edge-on to the ray). A point interpolated from them lies within a few units
-    /// in the last place of the vertices' magnitudes of the triangle, however thin it is,
-    /// where `origin + t · direction` carries t's error, which grows as the triangle thins.
-    pub(crate) fn barycentrics(&self, v: &[Vec3; 3]) -> Option<[f32; 3]> {
-        let a = v[0] - self.origin;
-        let b = v[1] - self.origin;
-        let c = v[2] - self.origin;
-        let (ax, ay) = (a.dot(self.x_row), a.dot(self.y_row));
-        let (bx, by) = (b.dot(self.x_row), b.dot(self.y_row));
-        let (cx, cy) = (c.dot(self.x_row), c.dot(self.y_row));
-        let u = f64::from(cx) * f64::from(by) - f64::from(cy) * f64::from(bx);
-        let vv = f64::from(ax) * f64::from(cy) - f64::from(ay) * f64::from(cx);
-        let w = f64::from(bx) * f64::from(ay) - f64::from(by) * f64::from(ax);
-        let det = u + vv + w;
-        (det != 0.0 && det.is_finite()).then(|| [(u / det) as f32, (vv / det) as f32, (w / det) as f32])
-    }
 }

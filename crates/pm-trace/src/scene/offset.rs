@@ -29,9 +29,9 @@ pub fn point_error(origin: Vec3, position: Vec3, t: f32) -> f32 {
     ERROR_ULPS * f32::EPSILON * (reach(origin) + reach(position) + t.abs())
 }
 
-/// A bound on the distance of a point interpolated from a triangle's corners by barycentric
-/// weights from its triangle, `magnitude` being the largest coordinate of `Σ |bᵢ vᵢ|`
-/// (pbrt-v4's γ₇ bound, taken at [`ERROR_ULPS`] like the ray-parametric one). It does not
+/// A bound on the distance of a point written in a triangle's coordinates, `v₀ + b₁ e₁ + b₂ e₂`,
+/// from the triangle's plane, `magnitude` being the largest coordinate of `Σ |bᵢ vᵢ|`
+/// (after pbrt-v4, taken at [`ERROR_ULPS`] like the ray-parametric one). It does not
 /// grow with the triangle's thinness, as the error of `origin + t · direction` does.
 #[inline]
 pub fn interpolated_point_error(magnitude: f32) -> f32 {

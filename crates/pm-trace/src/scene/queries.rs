@@ -77,10 +77,10 @@ impl Scene {
     /// The hit of `ray` at distance `t` on primitive `index`.
     #[inline(always)]
     fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Hit {
-        // On a triangle the point is interpolated from its corners, so it lies on the
-        // triangle's plane within rounding of the corners however thin the triangle is
+        // On a triangle the point is written in the triangle's own coordinates, so it lies on
+        // the triangle's plane within rounding of the corners however thin the triangle is
         // (`origin + t · direction` carries t's error, which a sliver magnifies).
-        let (position, error) = match self.bvh.interpolated_point(ray, index) {
+        let (position, error) = match self.bvh.interpolated_point(ray, index, t) {
             Some((point, magnitude)) => (point, interpolated_point_error(magnitude)),
             None => {
                 let point = ray.at(t);
