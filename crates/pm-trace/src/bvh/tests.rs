@@ -1,6 +1,7 @@
 //! Tests of the scene's ray queries: the BVH against the flat scan (brute force), rays along
 //! axes, shared edges, and distances against closed forms.
 
+use super::closest::Crossing;
 use super::*;
 use crate::Rng;
 use crate::sampling::uniform_sphere;

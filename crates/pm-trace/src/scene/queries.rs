@@ -3,7 +3,8 @@
 
 use super::offset::{interpolated_point_error, offset_point, point_error};
 use super::{Hit, RayKind, Scene};
-use crate::bvh::{Crossing, HitPrimitive};
+use crate::bvh::HitPrimitive;
+use crate::bvh::closest::Crossing;
 use crate::part::PartSurface;
 use crate::ray::Ray;
 use glam::Vec3;
