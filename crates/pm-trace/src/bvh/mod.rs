@@ -191,12 +191,18 @@ impl SceneBvh {
     /// Where `ray` meets triangle `hit` at distance `t`, moved onto the triangle's plane: the
     /// ray's point `o + t·d` written in the triangle's own coordinates, `v₀ + b₁ e₁ + b₂ e₂`
     /// (its weights by projection along the face normal), with the magnitude that point's
-    /// rounding scales with (the largest coordinate of `|v₀| + |b₁ e₁| + |b₂ e₂|`). However thin
+    /// rounding scales with (the largest coordinate of `|v₀| + |b₁ e₁| + |b₂ e₂|`) and the
+    /// triangle's condition `L² / 2A`. However thin
     /// the triangle, the point lies on its plane within a few units in the last place of that
     /// magnitude (where it lies within the plane matters little), while `o + t·d` carries t's
-    /// error, which a sliver magnifies. `None` for shapes and degenerate triangles.
+    /// error, which a sliver magnifies. `None` for shapes, and for triangles whose squared normal leaves f32's range.
     #[inline]
-    pub(crate) fn interpolated_point(&self, ray: &Ray, hit: HitPrimitive, t: f32) -> Option<(Vec3, f32)> {
+    pub(crate) fn interpolated_point(
+        &self,
+        ray: &Ray,
+        hit: HitPrimitive,
+        t: f32,
+    ) -> Option<(Vec3, f32, f32)> {
         let HitPrimitive::Triangle(i) = hit else {
             return None;
         };
@@ -205,11 +211,24 @@ impl SceneBvh {
         let n = e1.cross(e2);
         let q = ray.at(t) - v[0];
         let inverse = 1.0 / n.length_squared();
+        // |n|² overflows for edges past about 4·10⁹ m and underflows below about 10⁻¹⁰ m: the
+        // ray's own point then (a zero inverse would put every hit on the first corner).
+        if !(inverse.is_finite() && inverse > 0.0) {
+            return None;
+        }
         let (b1, b2) = (q.cross(e2).dot(n) * inverse, e1.cross(q).dot(n) * inverse);
         let (p1, p2) = (e1 * b1, e2 * b2);
         let point = v[0] + p1 + p2;
         let magnitude = (v[0].abs() + p1.abs() + p2.abs()).max_element();
-        (point.is_finite() && magnitude.is_finite()).then_some((point, magnitude))
+        // The triangle's condition, longest edge squared over twice the area: how much the
+        // watertight test's distance, and so `o + t·d`, may be off for a thin triangle.
+        let longest = e1
+            .length_squared()
+            .max(e2.length_squared())
+            .max((e2 - e1).length_squared());
+        let condition = longest * inverse.sqrt();
+        (point.is_finite() && magnitude.is_finite() && condition.is_finite())
+            .then_some((point, magnitude, condition))
     }
 
     /// Number of triangles.

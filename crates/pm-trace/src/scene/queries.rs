@@ -81,12 +81,25 @@ impl Scene {
         // On a triangle the point is written in the triangle's own coordinates, so it lies on
         // the triangle's plane within rounding of the corners however thin the triangle is
         // (`origin + t · direction` carries t's error, which a sliver magnifies).
+        // Of the two, the point with the smaller bound: the corner form rounds at the corners'
+        // scale, the ray's point at the ray's, times the triangle's condition (a sliver
+        // magnifies t's error). A ground plane kilometres wide seen from near the origin
+        // keeps the ray's point; a sliver piece of the contact split takes the corner form.
+        let on_ray = ray.at(t);
+        let ray_error = point_error(ray.origin, on_ray, t);
         let (position, error) = match self.bvh.interpolated_point(ray, index, t) {
-            Some((point, magnitude)) => (point, interpolated_point_error(magnitude)),
-            None => {
-                let point = ray.at(t);
-                (point, point_error(ray.origin, point, t))
+            Some((point, magnitude, condition)) => {
+                let (corner_error, on_ray_error) = (
+                    interpolated_point_error(magnitude),
+                    ray_error * condition.max(1.0),
+                );
+                if corner_error <= on_ray_error {
+                    (point, corner_error)
+                } else {
+                    (on_ray, on_ray_error)
+                }
             }
+            None => (on_ray, ray_error),
         };
         let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
         let front_face = n.dot(ray.direction) < 0.0;

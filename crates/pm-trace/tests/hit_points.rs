@@ -1,0 +1,46 @@
+//! Hit points at the ends of the size range: a ray's hit on a triangle lies where the ray
+//! meets the triangle's plane, for a thin sliver as for a triangle of edges near the largest
+//! the scene builder keeps (larger ones, whose area leaves f32, are dropped as degenerate).
+
+use pm_trace::glam::Vec3;
+use pm_trace::{Camera, PointLight, Ray, RayKind, Scene, Surface};
+
+fn one_triangle(corners: [Vec3; 3]) -> Scene {
+    Scene::builder()
+        .mesh(&corners, &[[0, 1, 2]], Surface::diffuse(Vec3::splat(0.5)))
+        .light(PointLight::new(Vec3::new(0.0, 1.0, 0.0), Vec3::ONE))
+        .camera(Camera::new(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0))
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn hits_lie_where_the_ray_meets_the_plane_for_huge_and_sliver_triangles() {
+    // Edges of 2·10⁹ m: |e₁ × e₂|² is about 10³⁷, near the top of f32.
+    let big = 1e9f32;
+    let huge = one_triangle([
+        Vec3::new(-big, 0.0, -big),
+        Vec3::new(0.0, 0.0, big),
+        Vec3::new(big, 0.0, -big),
+    ]);
+    // A sliver 2 m long and 10 µm wide, its corners 1.4° sharp at the ends.
+    let sliver = one_triangle([
+        Vec3::new(-1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1e-5),
+        Vec3::new(1.0, 0.0, 0.0),
+    ]);
+    for (scene, target, height) in [
+        (&huge, Vec3::new(3.0, 0.0, 2.0), 1e4f32),
+        (&sliver, Vec3::new(0.25, 0.0, 2e-6), 1.0),
+    ] {
+        let origin = Vec3::new(0.3, height, -0.2);
+        let ray = Ray::new(origin, (target - origin).normalize());
+        let hit = scene.intersect(&ray, f32::INFINITY, RayKind::Other).unwrap();
+        assert!(
+            hit.position.y.abs() <= hit.error(),
+            "{hit:?} is off the plane by more than its bound"
+        );
+        let along = hit.position.distance(target);
+        assert!(along < 1e-5 * height, "hit {} against {target}", hit.position);
+    }
+}
