@@ -205,20 +205,15 @@ fn the_lit_room_reads_the_origins_mean_at_every_distance_and_scale() {
 
 #[test]
 fn the_origin_offset_maps_the_scene_back_onto_the_files_coordinates() {
-    let t = along_diagonal(6.4e6);
-    let scale = 1e-3f32;
-    let scene = load(
-        Walls::SolidSlabs,
-        Room::Lit,
-        Placement {
-            translation: t,
-            scale,
-        },
-    );
-    // The file's world, computed here in f64: root translation + scale × local point.
-    let world = |local: [f32; 3]| {
-        DVec3::from(t.map(f64::from)) + f64::from(scale) * DVec3::from(local.map(f64::from))
+    let placement = Placement {
+        translation: along_diagonal(6.4e6),
+        scale: 1e-3,
     };
+    let scene = load(Walls::SolidSlabs, Room::Lit, placement);
+    // The file's world, computed here in f64 from the numbers its text states (not the f32s
+    // they were printed from): root translation + scale × local point.
+    let (t, scale) = (placement.translation_in_file(), placement.scale_in_file());
+    let world = |local: [f32; 3]| DVec3::from(t) + scale * DVec3::from(local.map(f64::from));
     let slab = f64::from(georeferenced_rooms::SLAB);
     // Bounds: x from −slab to 2 + 2·slab, y and z from −slab to 1 + slab.
     let centre = (world([-0.02, -0.02, -0.02]) + world([2.04, 1.02, 1.02])) * 0.5;
@@ -230,7 +225,7 @@ fn the_origin_offset_maps_the_scene_back_onto_the_files_coordinates() {
     );
     // The camera and the lamp, mapped back, stand where the file puts them, to f32's
     // precision at the model's own size (not at 6,400 km).
-    let tolerance = 4.0 * f64::from(f32::EPSILON) * 2.0 * f64::from(scale);
+    let tolerance = 4.0 * f64::from(f32::EPSILON) * 2.0 * scale;
     let eye = offset + scene.camera().position().as_dvec3();
     assert!(
         (eye - world([0.8, 0.5, 0.5])).abs().max_element() < tolerance,
@@ -248,7 +243,7 @@ fn the_origin_offset_maps_the_scene_back_onto_the_files_coordinates() {
         "{hi}"
     );
     // Re-centred: the scene's coordinates are the model's size, not the offset's.
-    assert!(b.min.abs().max(b.max.abs()).max_element() < 2.0 * scale);
+    assert!(f64::from(b.min.abs().max(b.max.abs()).max_element()) < 2.0 * scale);
 }
 
 #[test]
@@ -337,8 +332,8 @@ fn the_render_example_reports_the_origin_offset() {
             .map(|v| v.as_f64().unwrap())
             .collect();
         // The slabs' bounds run from −0.02 to (2.04, 1.02, 1.02): their centre is
-        // (1.01, 0.5, 0.5) past the root node's translation.
-        let t = along_diagonal(offset).map(f64::from);
+        // (1.01, 0.5, 0.5) past the root node's translation (as the file's text states it).
+        let t = placement.translation_in_file();
         let expected = if moved {
             [t[0] + 1.01, t[1] + 0.5, t[2] + 0.5]
         } else {

@@ -108,12 +108,26 @@ pub enum Room {
     Dark,
 }
 
-/// Where a root node puts the rooms: `translation` metres (as the file's f32 holds them) and
-/// a uniform `scale`.
+/// Where a root node puts the rooms: `translation` metres and a uniform `scale`, written to
+/// the file as the f32s' shortest decimal text.
 #[derive(Clone, Copy, Debug)]
 pub struct Placement {
     pub translation: [f32; 3],
     pub scale: f32,
+}
+
+impl Placement {
+    /// The translation the file states: its decimal text (which need not be the f32's exact
+    /// value: 0.6 × 6.4e6 in f32 is 3,840,000.25, written "3840000.3") as the nearest f64, as
+    /// the loader reads it.
+    pub fn translation_in_file(&self) -> [f64; 3] {
+        self.translation.map(|v| format!("{v:?}").parse().unwrap())
+    }
+
+    /// The scale the file states, as the nearest f64 to its decimal text.
+    pub fn scale_in_file(&self) -> f64 {
+        format!("{:e}", self.scale).parse().unwrap()
+    }
 }
 
 /// The lamp's position in the lit room, local metres.

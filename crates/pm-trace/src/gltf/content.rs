@@ -20,9 +20,10 @@ use super::error::GltfError;
 use super::graph::{PlacedNode, root_nodes, walk};
 use super::light::{GltfLight, place_light};
 use super::mesh::GltfMesh;
+use super::node_transform::{NodeTransform, read_node_transforms};
 use super::options::GltfOptions;
 use super::origin::WorldBounds;
-use super::source::{guard, parse, read_bounded};
+use super::source::{guard, json_text, parse, read_bounded};
 
 /// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -69,9 +70,11 @@ impl GltfContent {
 pub fn read_content(path: &Path, options: &GltfOptions) -> Result<GltfContent, GltfError> {
     let bytes = read_bounded(path, options.max_file_bytes)?;
     let (root, blob, warnings) = parse(path, &bytes)?;
+    // The gltf crate holds node transforms in f32; the walk composes them from the text.
+    let transforms = read_node_transforms(path, json_text(&bytes), root.nodes.len())?;
     drop(bytes);
     let buffers = resolve_buffers(path, &root, blob, options.max_file_bytes)?;
-    let mut content = guard(path, || flatten(path, &root, &buffers, options))?;
+    let mut content = guard(path, || flatten(path, &root, &transforms, &buffers, options))?;
     content.warnings.splice(0..0, warnings);
     Ok(content)
 }
@@ -123,10 +126,12 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
 }
 
 /// Flattens the scene of `root` into world-space content: every node the scene reaches, in
-/// walk order, adds its mesh's primitives, its camera (the first one only) and its light.
+/// walk order, placed by its `transforms` entry, adds its mesh's primitives, its camera (the
+/// first one only) and its light.
 fn flatten(
     file: &Path,
     root: &json::Root,
+    transforms: &[NodeTransform],
     buffers: &[Buffer],
     options: &GltfOptions,
 ) -> Result<GltfContent, GltfError> {
@@ -135,7 +140,7 @@ fn flatten(
     let scene_bytes: u64 = buffers_held(buffers);
     let buffer_bytes: u64 = buffers.iter().map(|b| b.as_slice().len() as u64).sum();
     let roots = root_nodes(file, root)?;
-    let placed = walk(file, root, &roots)?;
+    let placed = walk(file, root, transforms, &roots)?;
     let mut flattening = Flattening {
         sources: TextureSources {
             file,

@@ -92,6 +92,31 @@ pub enum GltfError {
         /// What was wrong.
         reason: String,
     },
+    /// A node's `translation`, `rotation`, `scale` or `matrix`, read again from the JSON text
+    /// in f64 (the gltf crate holds them in f32), is not an array of the field's length (3, 4,
+    /// 3, 16) of numbers finite in f64.
+    #[error("{file}: node {node} {field}: {reason}")]
+    NodeTransform {
+        /// The scene file.
+        file: PathBuf,
+        /// Index of the node in `nodes`.
+        node: usize,
+        /// The field, as the JSON names it (`"translation"`, `"rotation"`, `"scale"`, `"matrix"`).
+        field: &'static str,
+        /// What was wrong.
+        reason: String,
+    },
+    /// The JSON text, read again for the nodes' f64 transforms, holds a different number of
+    /// nodes than the gltf crate parsed from it.
+    #[error("{file}: the JSON text holds {found} nodes where the glTF parser read {parsed}")]
+    NodeCount {
+        /// The scene file.
+        file: PathBuf,
+        /// Nodes in the JSON text's `nodes` array.
+        found: usize,
+        /// Nodes the gltf crate parsed.
+        parsed: usize,
+    },
     /// The scene would take more memory than
     /// [`GltfOptions::max_scene_bytes`](super::GltfOptions) (counted before decoding).
     #[error(
@@ -153,6 +178,8 @@ impl GltfError {
             Self::Accessor { .. } => "accessor",
             Self::Primitive { .. } => "primitive",
             Self::Node { .. } => "node",
+            Self::NodeTransform { .. } => "node-transform",
+            Self::NodeCount { .. } => "node-count",
             Self::Build { .. } => "build",
             Self::SceneTooLarge { .. } => "scene-too-large",
             Self::Scene { .. } => "scene",

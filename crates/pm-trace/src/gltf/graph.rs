@@ -9,6 +9,7 @@ use glam::{DMat4, DQuat, DVec3};
 use gltf::json;
 
 use super::error::GltfError;
+use super::node_transform::NodeTransform;
 
 /// The deepest node chain accepted (root nodes have depth 1).
 pub const MAX_DEPTH: usize = 256;
@@ -47,8 +48,14 @@ pub(super) fn root_nodes(file: &Path, root: &json::Root) -> Result<Vec<usize>, G
     Ok((0..root.nodes.len()).filter(|&i| !is_child[i]).collect())
 }
 
-/// Walks the graph below `roots`, depth first in document order.
-pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Vec<PlacedNode>, GltfError> {
+/// Walks the graph below `roots`, depth first in document order, composing each node's
+/// `transforms` entry (its fields in f64, one entry per node of `root`).
+pub(super) fn walk(
+    file: &Path,
+    root: &json::Root,
+    transforms: &[NodeTransform],
+    roots: &[usize],
+) -> Result<Vec<PlacedNode>, GltfError> {
     let node_error = |node: usize, reason: String| GltfError::Node {
         file: file.to_path_buf(),
         node,
@@ -60,7 +67,7 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
     let mut stack: Vec<(usize, DMat4, usize)> =
         roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, 1)).collect();
     while let Some((index, parent, depth)) = stack.pop() {
-        let node = root.nodes.get(index).ok_or_else(|| {
+        let (node, transform) = root.nodes.get(index).zip(transforms.get(index)).ok_or_else(|| {
             node_error(
                 index,
                 format!("does not exist (the file has {})", root.nodes.len()),
@@ -75,7 +82,7 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
         if depth > MAX_DEPTH {
             return Err(node_error(index, format!("lies deeper than {MAX_DEPTH} levels")));
         }
-        let local = local_transform(node).map_err(|reason| node_error(index, reason))?;
+        let local = local_transform(transform).map_err(|reason| node_error(index, reason))?;
         let world = parent * local;
         if !world.is_finite() {
             return Err(node_error(index, "world transform is not finite".into()));
@@ -89,19 +96,19 @@ pub(super) fn walk(file: &Path, root: &json::Root, roots: &[usize]) -> Result<Ve
 }
 
 /// The node's local transform in f64: its column-major `matrix`, else translation × rotation ×
-/// scale (the quaternion normalised in f64).
-fn local_transform(node: &json::Node) -> Result<DMat4, String> {
+/// scale (the quaternion normalised in f64), from the fields as the file writes them.
+fn local_transform(node: &NodeTransform) -> Result<DMat4, String> {
     if let Some(m) = node.matrix {
-        let m = DMat4::from_cols_array(&m.map(f64::from));
+        let m = DMat4::from_cols_array(&m);
         return if m.is_finite() {
             Ok(m)
         } else {
             Err("matrix is not finite".into())
         };
     }
-    let t = DVec3::from(node.translation.unwrap_or([0.0; 3]).map(f64::from));
-    let s = DVec3::from(node.scale.unwrap_or([1.0; 3]).map(f64::from));
-    let r = DQuat::from_array(node.rotation.map_or([0.0, 0.0, 0.0, 1.0], |q| q.0).map(f64::from));
+    let t = DVec3::from(node.translation.unwrap_or([0.0; 3]));
+    let s = DVec3::from(node.scale.unwrap_or([1.0; 3]));
+    let r = DQuat::from_array(node.rotation.unwrap_or([0.0, 0.0, 0.0, 1.0]));
     if !(t.is_finite() && s.is_finite() && r.is_finite()) {
         return Err("translation, rotation or scale is not finite".into());
     }

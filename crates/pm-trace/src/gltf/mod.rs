@@ -104,11 +104,15 @@
 //! the file's coordinates is lost; the render example reports it (`"origin_offset"` in
 //! `--stats-json`).
 //!
-//! What remains is f64's own precision at the offset (a step of 1.9 nm at 10⁴ km) and the gltf
-//! crate's, which reads `translation`, `scale` and `matrix` as f32: a translation of 6,400 km
-//! is exact, but an arbitrary northing is rounded to f32 (half a metre there) before it is
-//! composed. That moves a model as a whole; it does not change its geometry, though two
-//! sibling nodes carrying separate large translations can be shifted apart by that much.
+//! The gltf crate holds `translation`, `rotation`, `scale` and `matrix` in f32, which would
+//! round an arbitrary northing by up to half a metre before it is composed (and shift two
+//! sibling nodes carrying separate large translations apart by that much). So the loader reads
+//! those four fields of every node again from the JSON text (the `.gltf` file, or a GLB's JSON
+//! chunk), each number as the f64 nearest its decimal text; a value exactly representable in
+//! f32 reads as the same f64 as before, bit for bit. A field that is not an array of its
+//! length of numbers finite in f64 is [`GltfError::NodeTransform`], naming the node and the
+//! field (the gltf crate refuses most such files first, as [`GltfError::Parse`]). What
+//! remains is f64's own precision at the offset (a step of 1.9 nm at 10⁴ km).
 //! Geometry is refused, with an error naming the primitive, only where a re-centred position
 //! is not finite in f32, and by the scene builder past ±10¹⁸ m
 //! ([`SceneError::GeometryOutOfRange`](crate::SceneError::GeometryOutOfRange)); that limit
@@ -143,6 +147,7 @@ mod image;
 mod light;
 mod material;
 mod mesh;
+mod node_transform;
 mod options;
 mod origin;
 mod place;

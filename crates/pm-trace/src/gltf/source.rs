@@ -97,6 +97,16 @@ pub(super) fn check_glb(bytes: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
+/// The document's JSON text: a GLB container's first chunk (whose lengths [`check_glb`] has
+/// checked; empty if they do not hold), else all of `bytes`, as the gltf crate tells them apart.
+pub(super) fn json_text(bytes: &[u8]) -> &[u8] {
+    if !bytes.starts_with(GLB_MAGIC) {
+        return bytes;
+    }
+    let chunk = u32_at(bytes, 12).and_then(|len| bytes.get(20..20usize.checked_add(len as usize)?));
+    chunk.unwrap_or_default()
+}
+
 /// Runs `f`, turning a panic into [`GltfError::Panic`]. The gltf crate panics on some
 /// malformed files; this is the last line of defence after our own checks. It installs no
 /// panic hook, so the process's hook may still print the panic message.
