@@ -73,8 +73,8 @@ struct Args {
     /// mode, else 1].
     #[arg(long = "samples-per-pixel", visible_alias = "spp")]
     spp: Option<u32>,
-    /// Worker threads; 0 = rayon's global pool, one thread per core unless RAYON_NUM_THREADS
-    /// says otherwise (`RenderSettings::threads`).
+    /// Worker threads for the contact split and the render; 0 = rayon's global pool, one thread
+    /// per core unless RAYON_NUM_THREADS says otherwise (`RenderSettings::threads`).
     #[arg(long, default_value_t = 0)]
     threads: usize,
     /// Seed of all random streams.
@@ -192,6 +192,14 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), String> {
+    // The contact split runs on the current rayon pool (the renderers make their own): the
+    // global pool takes the thread count asked for.
+    if args.threads > 0 {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(args.threads)
+            .build_global()
+            .map_err(|e| format!("--threads {}: {e}", args.threads))?;
+    }
     if !args.merge.is_empty() {
         return progressive::merge(args, &args.merge);
     }

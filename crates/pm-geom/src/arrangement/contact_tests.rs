@@ -6,7 +6,7 @@ use crate::polygon_area;
 use glam::vec3;
 
 /// The arrangement with a 10 µm tolerance and no gap.
-fn split<P: AsRef<[Vec3]>>(polygons: &[P]) -> Arrangement {
+fn split<P: AsRef<[Vec3]> + Sync>(polygons: &[P]) -> Arrangement {
     split_polygons_at_intersections(polygons, &[], &ArrangementOptions::new(1e-5, 1e-5))
         .expect("within bounds")
 }

@@ -1,12 +1,21 @@
 //! T-junctions after cutting: every vertex a cut makes is inserted into each edge of any piece it
 //! lies on, so that welding links the pieces on both sides of a cut and the faces beside a cut
-//! face.
+//! face. Pieces are worked on in parallel (the caller's rayon pool), a wave at a time, and
+//! folded in order: the same result, and the same error, for any number of threads.
 
 use super::budget::{ArrangementError, Budget};
 use super::cut::insert_points_on_edges;
 use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
+use rayon::prelude::*;
+
+/// Pieces worked on together between two folds.
+const WAVE_PIECES: usize = 1024;
+
+/// A piece that finds more cut vertices than this near its edges is left to the folding thread,
+/// so that a wave holds at most `WAVE_PIECES × POINT_CAP` found points.
+const POINT_CAP: usize = 4096;
 
 /// Inserts every vertex of a cut face's pieces into each edge of any piece it lies inside, so
 /// that the pieces on both sides of a cut, and the faces next to a cut face, share vertices.
@@ -25,33 +34,86 @@ pub(super) fn resolve_t_junctions(
         .collect();
     let pad = Vec3::splat(tolerance);
     let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p - pad, p + pad)).collect();
-    let all = boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x));
-    let bvh = BoundsBvh::build(&boxes);
-    let mut found: Vec<Vec3> = Vec::new();
-    for piece in pieces.iter_mut() {
-        let bounds = Aabb::from_points(piece);
-        let bounds = Aabb::new(bounds.min - pad, bounds.max + pad);
-        if !bounds.overlaps(&all) {
-            continue;
+    let near = NearPoints {
+        all: boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x)),
+        bvh: BoundsBvh::build(&boxes),
+        boxes,
+        points,
+        pad,
+    };
+    for wave in pieces.chunks_mut(WAVE_PIECES) {
+        let grown: Vec<Grown> = wave
+            .par_iter()
+            .map(|piece| {
+                let mut found = Vec::new();
+                near.along_edges(piece, POINT_CAP, &mut found);
+                if found.is_empty() {
+                    Grown::Unchanged
+                } else if found.len() > POINT_CAP {
+                    Grown::Crowded
+                } else {
+                    let mut grown = piece.clone();
+                    insert_points_on_edges(&mut grown, &found, tolerance);
+                    Grown::To(grown)
+                }
+            })
+            .collect();
+        for (piece, grown) in wave.iter_mut().zip(grown) {
+            let before = piece.len();
+            match grown {
+                Grown::Unchanged => continue,
+                Grown::To(grown) => *piece = grown,
+                Grown::Crowded => {
+                    let mut found = Vec::new();
+                    near.along_edges(piece, usize::MAX, &mut found);
+                    insert_points_on_edges(piece, &found, tolerance);
+                }
+            }
+            budget.check(budget.pieces, budget.vertices + piece.len() - before)?;
+            budget.vertices += piece.len() - before;
         }
+    }
+    Ok(())
+}
+
+/// What the workers made of one piece.
+enum Grown {
+    /// No cut vertex lies near its edges.
+    Unchanged,
+    /// The piece with the cut vertices on its edges inserted.
+    To(Vec<Vec3>),
+    /// More than [`POINT_CAP`] cut vertices near its edges: left to the folding thread.
+    Crowded,
+}
+
+/// The vertices of the cut faces' pieces, padded by the tolerance, in a hierarchy.
+struct NearPoints {
+    points: Vec<Vec3>,
+    boxes: Vec<Aabb>,
+    all: Aabb,
+    bvh: BoundsBvh,
+    pad: Vec3,
+}
+
+impl NearPoints {
+    /// The points whose padded boxes meet the padded bounds of one of `piece`'s edges (a point
+    /// once per edge it is near), into `found`; stops adding past `cap` of them.
+    fn along_edges(&self, piece: &[Vec3], cap: usize, found: &mut Vec<Vec3>) {
         found.clear();
+        let bounds = Aabb::from_points(piece);
+        let bounds = Aabb::new(bounds.min - self.pad, bounds.max + self.pad);
+        if !bounds.overlaps(&self.all) {
+            return;
+        }
         let n = piece.len();
         for i in 0..n {
             let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
-            let edge = Aabb::new(edge.min - pad, edge.max + pad);
-            bvh.for_each_candidate(&edge, |k| {
-                if boxes[k as usize].overlaps(&edge) {
-                    found.push(points[k as usize]);
+            let edge = Aabb::new(edge.min - self.pad, edge.max + self.pad);
+            self.bvh.for_each_candidate(&edge, |k| {
+                if self.boxes[k as usize].overlaps(&edge) && found.len() <= cap {
+                    found.push(self.points[k as usize]);
                 }
             });
         }
-        if found.is_empty() {
-            continue;
-        }
-        let before = piece.len();
-        insert_points_on_edges(piece, &found, tolerance);
-        budget.check(budget.pieces, budget.vertices + piece.len() - before)?;
-        budget.vertices += piece.len() - before;
     }
-    Ok(())
 }

@@ -6,10 +6,11 @@ use super::counts::IntersectionCounts;
 use super::cut::{Cut, add_cut};
 use super::dedup::dedup_segments;
 use super::options::ArrangementOptions;
-use super::pair::{Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
+use super::pair::{Constraint, Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
 use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// What the pairs of faces gave: each face's cuts, the barrier segments, the same-facing
 /// copies (hidden face, covering face) and the meetings counted by kind.
@@ -20,110 +21,295 @@ pub(super) struct Meetings {
     pub(super) counts: IntersectionCounts,
 }
 
+/// Faces whose candidate pairs are met together on the worker threads, between two sequential
+/// folds of what they found.
+const WAVE_FACES: usize = 256;
+
+/// A face with more candidate partners than this is met on the folding thread instead (as a
+/// single thread would), so that a wave holds at most `WAVE_FACES × PARTNER_CAP` pairs
+/// however the faces crowd together.
+const PARTNER_CAP: usize = 4096;
+
 /// Examines every candidate pair of `faces` and gathers the cuts, within the options' bounds
 /// on pairs and cut segments.
+///
+/// The pairs are met in parallel (on the caller's rayon pool) a wave of faces at a time and
+/// folded in the order one thread would take them, so the result, and the error when a bound
+/// is passed, are the same for any number of threads.
 pub(super) fn find_meetings(
     faces: &[Option<Face>],
     tolerance: f32,
     gap: f32,
     options: &ArrangementOptions,
 ) -> Result<Meetings, ArrangementError> {
-    let mut found = Meetings {
-        cuts: vec![Vec::new(); faces.len()],
-        barriers: Vec::new(),
-        hidden_by: Vec::new(),
-        counts: IntersectionCounts::default(),
+    let mut fold = Fold {
+        found: Meetings {
+            cuts: vec![Vec::new(); faces.len()],
+            barriers: Vec::new(),
+            hidden_by: Vec::new(),
+            counts: IntersectionCounts::default(),
+        },
+        faces,
+        tolerance,
+        gap,
+        options,
+        cut_count: 0,
+        pair_count: 0,
     };
-    let mut cut_count = 0usize;
-    let mut scratch = PairScratch::default();
-    let mut outcome = PairOutcome::default();
-    let mut pair_count = 0usize;
-    let mut failure = None;
-    for_each_candidate_pair(faces, gap, |i, j| {
-        if failure.is_some() {
-            return;
+    let candidates = CandidatePairs::new(faces, gap);
+    for wave in (0..candidates.live.len()).collect::<Vec<_>>().chunks(WAVE_FACES) {
+        let met: Vec<FaceMeetings> = wave
+            .par_iter()
+            .map_init(PairScratch::default, |scratch, &n| {
+                candidates.meet_partners(n, faces, tolerance, gap, scratch)
+            })
+            .collect();
+        for (&n, face) in wave.iter().zip(met) {
+            fold.face(&candidates, n, face)?;
         }
-        pair_count += 1;
-        if pair_count > options.max_pairs {
-            failure = Some(ArrangementError::TooManyPairs {
-                limit: options.max_pairs,
+    }
+    // A piercing or in-plane meeting reports its segment for both faces: keep it once.
+    let mut found = fold.found;
+    found.barriers = dedup_segments(std::mem::take(&mut found.barriers), tolerance);
+    Ok(found)
+}
+
+/// The pairs of faces whose bounds come within `gap` of each other, found through a
+/// bounding-volume hierarchy over the padded bounds; each pair once, `i < j`, in an order
+/// fixed by the faces and the tree, whatever the machine.
+struct CandidatePairs {
+    /// The faces that take part (index into the input, padded bounds).
+    live: Vec<(usize, Aabb)>,
+    /// Their padded bounds, in the tree's index space.
+    boxes: Vec<Aabb>,
+    bvh: BoundsBvh,
+    pad: Vec3,
+}
+
+impl CandidatePairs {
+    fn new(faces: &[Option<Face>], gap: f32) -> Self {
+        let live: Vec<(usize, Aabb)> = faces
+            .iter()
+            .enumerate()
+            .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
+            .collect();
+        let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
+        // Every face queries the tree once: leaves of 12 halve the levels each query walks
+        // (82 against 97 ms on split-rooms-100's 120,000 quads with leaves of 4).
+        let bvh = BoundsBvh::build_with_leaves(&boxes, 12);
+        CandidatePairs {
+            live,
+            boxes,
+            bvh,
+            pad: Vec3::splat(gap),
+        }
+    }
+
+    /// The later live faces (tree indices `m > n`) whose padded bounds overlap live face `n`'s
+    /// own bounds, in the tree's order, into `partners`; stops adding past `cap` of them.
+    fn partners(&self, n: usize, cap: usize, partners: &mut Vec<u32>) {
+        let padded = self.live[n].1;
+        let own = Aabb::new(padded.min + self.pad, padded.max - self.pad);
+        partners.clear();
+        self.bvh.for_each_candidate(&own, |m| {
+            if m as usize > n && own.overlaps(&self.boxes[m as usize]) && partners.len() <= cap {
+                partners.push(m);
+            }
+        });
+    }
+
+    /// Live face `n` met with each of its partners, or [`FaceMeetings::Crowded`] when it has
+    /// more than [`PARTNER_CAP`].
+    fn meet_partners(
+        &self,
+        n: usize,
+        faces: &[Option<Face>],
+        tolerance: f32,
+        gap: f32,
+        scratch: &mut PairScratch,
+    ) -> FaceMeetings {
+        let mut partners = Vec::new();
+        self.partners(n, PARTNER_CAP, &mut partners);
+        if partners.len() > PARTNER_CAP {
+            return FaceMeetings::Crowded;
+        }
+        let mut outcome = PairOutcome::default();
+        let mut met = Met {
+            candidates: partners.len(),
+            ..Met::default()
+        };
+        let a = faces[self.live[n].0].as_ref().expect("live faces are faces");
+        for (position, &m) in partners.iter().enumerate() {
+            let b = faces[self.live[m as usize].0]
+                .as_ref()
+                .expect("live faces are faces");
+            meet(a, b, tolerance, gap, scratch, &mut outcome);
+            if let Some(meeting) = outcome.meeting {
+                met.pairs.push(MetPair {
+                    position,
+                    partner: m,
+                    meeting,
+                    second_hidden: outcome.second_hidden,
+                    on_first: outcome.on_first.len(),
+                    on_second: outcome.on_second.len(),
+                });
+                met.constraints.extend_from_slice(&outcome.on_first);
+                met.constraints.extend_from_slice(&outcome.on_second);
+            }
+        }
+        FaceMeetings::Met(met)
+    }
+}
+
+/// What the worker threads found for one face.
+enum FaceMeetings {
+    /// Its pairs that meet, in partner order.
+    Met(Met),
+    /// More partners than [`PARTNER_CAP`]: left to the folding thread.
+    Crowded,
+}
+
+/// One face's meeting pairs and their cuts.
+#[derive(Default)]
+struct Met {
+    /// How many candidate partners the face had (met or not).
+    candidates: usize,
+    pairs: Vec<MetPair>,
+    /// Each pair's cuts on the first face, then on the second, in pair order.
+    constraints: Vec<Constraint>,
+}
+
+/// A pair that meets: where its partner stood among the candidates, and the outcome.
+struct MetPair {
+    position: usize,
+    partner: u32,
+    meeting: Meeting,
+    second_hidden: bool,
+    on_first: usize,
+    on_second: usize,
+}
+
+/// The sequential fold of the pairs' outcomes into the cuts, counting pairs and cuts against
+/// the options' bounds in the order one thread meets the pairs.
+struct Fold<'a, 'f> {
+    found: Meetings,
+    faces: &'a [Option<Face<'f>>],
+    tolerance: f32,
+    gap: f32,
+    options: &'a ArrangementOptions,
+    cut_count: usize,
+    pair_count: usize,
+}
+
+impl Fold<'_, '_> {
+    /// Folds live face `n`'s pairs (met on the workers, or here when it is crowded).
+    fn face(
+        &mut self,
+        candidates: &CandidatePairs,
+        n: usize,
+        met: FaceMeetings,
+    ) -> Result<(), ArrangementError> {
+        let i = candidates.live[n].0;
+        let met = match met {
+            FaceMeetings::Met(met) => met,
+            FaceMeetings::Crowded => return self.crowded_face(candidates, n),
+        };
+        // The pair that would pass the bound on pairs, if this face has it: the pairs before
+        // it are folded (a bound on cuts may fail first, as it would on one thread).
+        let allowed = self.options.max_pairs.saturating_sub(self.pair_count);
+        let mut constraints = met.constraints.as_slice();
+        for pair in &met.pairs {
+            if pair.position >= allowed {
+                break;
+            }
+            let (first, rest) = constraints.split_at(pair.on_first);
+            let (second, rest) = rest.split_at(pair.on_second);
+            constraints = rest;
+            let j = candidates.live[pair.partner as usize].0;
+            self.pair(i, j, pair.meeting, pair.second_hidden, first, second)?;
+        }
+        if met.candidates > allowed {
+            return Err(ArrangementError::TooManyPairs {
+                limit: self.options.max_pairs,
             });
-            return;
         }
-        let (Some(a), Some(b)) = (&faces[i], &faces[j]) else {
-            return;
-        };
-        meet(a, b, tolerance, gap, &mut scratch, &mut outcome);
-        let Some(meeting) = outcome.meeting else {
-            return;
-        };
-        let counts = &mut found.counts;
+        self.pair_count += met.candidates;
+        Ok(())
+    }
+
+    /// A face with more partners than a wave may hold, met pair by pair here.
+    fn crowded_face(&mut self, candidates: &CandidatePairs, n: usize) -> Result<(), ArrangementError> {
+        let i = candidates.live[n].0;
+        let mut partners = Vec::new();
+        candidates.partners(n, usize::MAX, &mut partners);
+        let mut scratch = PairScratch::default();
+        let mut outcome = PairOutcome::default();
+        let a = self.faces[i].as_ref().expect("live faces are faces");
+        for &m in &partners {
+            self.pair_count += 1;
+            if self.pair_count > self.options.max_pairs {
+                return Err(ArrangementError::TooManyPairs {
+                    limit: self.options.max_pairs,
+                });
+            }
+            let j = candidates.live[m as usize].0;
+            let b = self.faces[j].as_ref().expect("live faces are faces");
+            meet(a, b, self.tolerance, self.gap, &mut scratch, &mut outcome);
+            if let Some(meeting) = outcome.meeting {
+                self.pair(
+                    i,
+                    j,
+                    meeting,
+                    outcome.second_hidden,
+                    &outcome.on_first,
+                    &outcome.on_second,
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Counts one meeting pair `(i, j)` and adds its cuts.
+    fn pair(
+        &mut self,
+        i: usize,
+        j: usize,
+        meeting: Meeting,
+        second_hidden: bool,
+        on_first: &[Constraint],
+        on_second: &[Constraint],
+    ) -> Result<(), ArrangementError> {
+        let counts = &mut self.found.counts;
         match meeting {
             Meeting::Piercing => counts.piercing += 1,
             Meeting::InPlane => counts.in_plane += 1,
             Meeting::CoplanarOverlap => counts.coplanar_overlap += 1,
             Meeting::NearContact => counts.near_contact += 1,
         }
-        if outcome.second_hidden {
-            cut_count += 1;
-            found.hidden_by.push((j, i));
+        if second_hidden {
+            self.cut_count += 1;
+            self.found.hidden_by.push((j, i));
         }
-        for (face, list) in [(i, &outcome.on_first), (j, &outcome.on_second)] {
-            let Some(target) = &faces[face] else { continue };
+        for (face, list) in [(i, on_first), (j, on_second)] {
+            let Some(target) = &self.faces[face] else { continue };
             for &c in list {
                 let c = if c.barrier {
-                    close_barrier_ends(c, target, tolerance, gap)
+                    close_barrier_ends(c, target, self.tolerance, self.gap)
                 } else {
                     c
                 };
-                cut_count += 1;
-                if cut_count > options.max_pieces {
-                    failure = Some(ArrangementError::TooManyPieces {
-                        limit: options.max_pieces,
+                self.cut_count += 1;
+                if self.cut_count > self.options.max_pieces {
+                    return Err(ArrangementError::TooManyPieces {
+                        limit: self.options.max_pieces,
                     });
-                    return;
                 }
-                add_cut(&mut found.cuts[face], c.a, c.b, tolerance);
+                add_cut(&mut self.found.cuts[face], c.a, c.b, self.tolerance);
                 if c.barrier {
-                    found.barriers.push([c.a, c.b]);
+                    self.found.barriers.push([c.a, c.b]);
                 }
             }
         }
-    });
-    if let Some(error) = failure {
-        return Err(error);
-    }
-    // A piercing or in-plane meeting reports its segment for both faces: keep it once.
-    found.barriers = dedup_segments(std::mem::take(&mut found.barriers), tolerance);
-    Ok(found)
-}
-
-/// Calls `f(i, j)`, `i < j`, for every pair of faces whose bounds come within `gap` of each
-/// other (one face's own bounds against the other's, padded by the gap), through a
-/// bounding-volume hierarchy over the padded bounds; the order is fixed by the faces and the
-/// tree, whatever the machine.
-fn for_each_candidate_pair(faces: &[Option<Face>], gap: f32, mut f: impl FnMut(usize, usize)) {
-    let live: Vec<(usize, Aabb)> = faces
-        .iter()
-        .enumerate()
-        .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
-        .collect();
-    let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
-    // Every face queries the tree once: leaves of 12 halve the levels each query walks
-    // (82 against 97 ms on split-rooms-100's 120,000 quads with leaves of 4).
-    let bvh = BoundsBvh::build_with_leaves(&boxes, 12);
-    let mut partners: Vec<u32> = Vec::new();
-    let pad = Vec3::splat(gap);
-    for (n, &(i, padded)) in live.iter().enumerate() {
-        let own = Aabb::new(padded.min + pad, padded.max - pad);
-        partners.clear();
-        bvh.for_each_candidate(&own, |m| {
-            if m as usize > n && own.overlaps(&boxes[m as usize]) {
-                partners.push(m);
-            }
-        });
-        for &m in &partners {
-            f(i, live[m as usize].0);
-        }
+        Ok(())
     }
 }

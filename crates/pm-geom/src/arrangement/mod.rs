@@ -24,6 +24,9 @@ mod meetings;
 mod options;
 mod pair;
 #[cfg(test)]
+mod parallel_tests;
+mod pieces;
+#[cfg(test)]
 mod tests;
 
 pub use barrier::BarrierSet;
@@ -33,13 +36,11 @@ pub use options::ArrangementOptions;
 
 use crate::aabb::Aabb;
 use crate::polygon::polygon_vector_area;
-use budget::Budget;
 use copies::{covered_by, exact_duplicates};
-use cut::{Cut, cut_face};
 use glam::Vec3;
-use junctions::resolve_t_junctions;
 use meetings::{Meetings, find_meetings};
 use pair::Face;
+use pieces::{Pieces, cut_faces};
 
 /// The result of [`split_polygons_at_intersections`].
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -81,8 +82,13 @@ pub struct Arrangement {
 /// meets none of its faces and so is never cut (the end of a bar pushed into a cube).
 ///
 /// Degenerate polygons (fewer than 3 vertices, zero area, non-finite) pass through unchanged.
+///
+/// The face pairs, the cuts and the T-junctions are worked on in parallel on the caller's
+/// rayon pool (call it inside `ThreadPool::install` to choose the threads), a wave at a time,
+/// and folded in input order: the result, and the error when a bound is passed, are the same
+/// bits on any number of threads.
 /// The area of every input polygon is kept by its pieces, except duplicates dropped.
-pub fn split_polygons_at_intersections<P: AsRef<[Vec3]>>(
+pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
     polygons: &[P],
     solids: &[Option<u32>],
     options: &ArrangementOptions,
@@ -157,67 +163,6 @@ fn tolerances<P: AsRef<[Vec3]>>(polygons: &[P], options: &ArrangementOptions) ->
         .max(largest * 8.0 * f32::EPSILON)
         .max(f32::MIN_POSITIVE);
     (tolerance, options.gap.max(tolerance))
-}
-
-/// Every face cut into convex pieces along its cuts, in input order, with the index of the
-/// input polygon each piece lies in; then T-junctions resolved.
-struct Pieces {
-    polygons: Vec<Vec<Vec3>>,
-    source: Vec<usize>,
-    /// For each input polygon, whether it was cut into more than one piece.
-    was_cut: Vec<bool>,
-}
-
-/// Cuts every face met by another into convex pieces (exact duplicates are dropped and
-/// counted), within the options' bounds on pieces and vertices.
-fn cut_faces<P: AsRef<[Vec3]>>(
-    polygons: &[P],
-    faces: &[Option<Face>],
-    duplicate: &[bool],
-    cuts: &[Vec<Cut>],
-    tolerance: f32,
-    options: &ArrangementOptions,
-    counts: &mut IntersectionCounts,
-) -> Result<Pieces, ArrangementError> {
-    let mut budget = Budget::new(options.piece_limit(polygons.len()), options.max_vertices);
-    let mut pieces: Vec<Vec<Vec3>> = Vec::with_capacity(polygons.len());
-    let mut source = Vec::with_capacity(polygons.len());
-    let mut was_cut = vec![false; polygons.len()];
-    for (index, polygon) in polygons.iter().enumerate() {
-        let polygon = polygon.as_ref();
-        if duplicate[index] {
-            counts.duplicate_pieces += 1;
-            counts.coplanar_overlap += 1;
-            continue;
-        }
-        match &faces[index] {
-            Some(face) if !cuts[index].is_empty() => {
-                let done = pieces.len();
-                let current = cut_face(polygon, &cuts[index], face.normal, tolerance, |made| {
-                    budget.check(done + made, 0)
-                })?;
-                was_cut[index] = current.len() > 1;
-                for piece in current {
-                    budget.add(&piece)?;
-                    pieces.push(piece);
-                    source.push(index);
-                }
-            }
-            _ => {
-                budget.add(polygon)?;
-                pieces.push(polygon.to_vec());
-                source.push(index);
-            }
-        }
-    }
-    if was_cut.iter().any(|&c| c) {
-        resolve_t_junctions(&mut pieces, &source, &was_cut, tolerance, &mut budget)?;
-    }
-    Ok(Pieces {
-        polygons: pieces,
-        source,
-        was_cut,
-    })
 }
 
 /// Which pieces to keep: not the hidden copies of overlapping same-facing faces (each pair in

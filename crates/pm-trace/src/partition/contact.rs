@@ -87,6 +87,9 @@ impl Contact {
     /// shapes and the camera are unchanged, and so is the total area of every face except the
     /// hidden copies of duplicated faces. A scene where no faces meet (and none lies inside a solid) comes back unchanged.
     ///
+    /// The split runs on the caller's rayon pool and gives the same scene on any number of
+    /// threads.
+    ///
     /// Fails with [`SceneError::Arrangement`] when the faces meet in more places than the
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
     /// mesh), before allocating past them.
