@@ -11,7 +11,8 @@ use crate::part::{PartId, PartSource, PartSurface};
 use crate::shape::Shape;
 use crate::shape::ring::RingSide;
 use glam::Vec3;
-use pm_geom::{Aabb, HalfEdgeMesh, MeshOptions};
+use pm_geom::{Aabb, HalfEdgeMesh, MeshError, MeshOptions};
+use rayon::prelude::*;
 
 /// The parts as they are numbered: each part's surface id (surfaces stored once), the
 /// triangles with their part for the BVH, and the analytic shapes' primitives.
@@ -84,48 +85,78 @@ pub(super) fn build_meshes(
         has_shading: false,
         has_emission_textures: false,
     };
-    for (mi, input) in inputs.into_iter().enumerate() {
-        if let FaceSurfaces::PerFace(s) = &input.surfaces
-            && s.len() != input.face_count()
-        {
-            return Err(SceneError::SurfaceCount {
-                mesh: mi,
-                surfaces: s.len(),
-                faces: input.face_count(),
-            });
+    let mut inputs = inputs.into_iter().enumerate();
+    loop {
+        let wave: Vec<(usize, MeshInput)> = inputs.by_ref().take(MESH_WAVE).collect();
+        if wave.is_empty() {
+            break;
         }
-        if let Some(shading) = &input.shading {
-            shading
-                .validate()
-                .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
-            out.has_shading = true;
-            out.has_emission_textures |= shading.has_emission_texture();
+        // The wave's half-edge meshes are built on the caller's rayon pool; what is checked
+        // and numbered below stays in mesh order, so errors and parts are as on one thread.
+        let built: Vec<_> = wave
+            .par_iter()
+            .map(|(_, input)| HalfEdgeMesh::build(&input.positions, &input.faces(), mesh_options))
+            .collect();
+        for ((mi, input), mesh) in wave.into_iter().zip(built) {
+            add_mesh(mi, input, mesh, parts, &mut out)?;
         }
-        let mesh = HalfEdgeMesh::build(&input.positions, &input.faces(), mesh_options)
-            .map_err(|source| SceneError::Mesh { mesh: mi, source })?;
-        let first_part = parts.count();
-        let mut polygon = Vec::new();
-        for face in mesh.faces() {
-            let surface = match &input.surfaces {
-                FaceSurfaces::One(s) => *s,
-                FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
-            };
-            check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
-            let part = parts.add(surface);
-            polygon.clear();
-            polygon.extend(mesh.face_polygon(face));
-            for i in 1..polygon.len().saturating_sub(1) {
-                parts.triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
-                parts.triangle_parts.push(part);
-            }
-        }
-        out.meshes.push(SceneMesh {
-            mesh,
-            first_part,
-            shading: input.shading,
-        });
     }
     Ok(out)
+}
+
+/// Meshes whose half-edge meshes are built together: enough to keep the threads busy on a
+/// scene of many meshes, few enough that the built meshes and their inputs are not all held
+/// at once.
+const MESH_WAVE: usize = 16;
+
+/// Checks input mesh `mi` against its built half-edge mesh (or the error building it gave),
+/// numbers its faces as parts and adds it to `out`.
+fn add_mesh(
+    mi: usize,
+    input: MeshInput,
+    mesh: Result<HalfEdgeMesh, MeshError>,
+    parts: &mut PartTable,
+    out: &mut BuiltMeshes,
+) -> Result<(), SceneError> {
+    if let FaceSurfaces::PerFace(s) = &input.surfaces
+        && s.len() != input.face_count()
+    {
+        return Err(SceneError::SurfaceCount {
+            mesh: mi,
+            surfaces: s.len(),
+            faces: input.face_count(),
+        });
+    }
+    if let Some(shading) = &input.shading {
+        shading
+            .validate()
+            .map_err(|reason| SceneError::InvalidAttributes { mesh: mi, reason })?;
+        out.has_shading = true;
+        out.has_emission_textures |= shading.has_emission_texture();
+    }
+    let mesh = mesh.map_err(|source| SceneError::Mesh { mesh: mi, source })?;
+    let first_part = parts.count();
+    let mut polygon = Vec::new();
+    for face in mesh.faces() {
+        let surface = match &input.surfaces {
+            FaceSurfaces::One(s) => *s,
+            FaceSurfaces::PerFace(s) => s[mesh.source_face(face)],
+        };
+        check_surface(&surface, || format!("mesh {mi} face {}", mesh.source_face(face)))?;
+        let part = parts.add(surface);
+        polygon.clear();
+        polygon.extend(mesh.face_polygon(face));
+        for i in 1..polygon.len().saturating_sub(1) {
+            parts.triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
+            parts.triangle_parts.push(part);
+        }
+    }
+    out.meshes.push(SceneMesh {
+        mesh,
+        first_part,
+        shading: input.shading,
+    });
+    Ok(())
 }
 
 /// Checks the analytic shapes and numbers their parts (a sphere is one, a ring four): the
