@@ -12,6 +12,7 @@ use crate::estimator::Estimator;
 use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::Irradiance;
 use glam::{Vec2, Vec3};
 use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
@@ -160,7 +161,15 @@ impl<E: Estimator> GatherReads for CacheReads<'_, E> {
             tree,
             polygons: map.geometry(),
         };
-        estimate_at(self.scene, self.estimator, view, &options, hit, scratch)
+        estimate_at(
+            self.scene,
+            self.estimator,
+            view,
+            &options,
+            &Irradiance,
+            hit,
+            scratch,
+        )
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
