@@ -119,7 +119,7 @@ fn measure_every_photon_mode_against_the_path_tracer() {
     );
     let r: Vec<String> = reference.iter().map(|(m, s)| format!("{m:.4}±{s:.4}")).collect();
     eprintln!("path tracer: {}", r.join(" "));
-    let cases: [(&str, Box<dyn Fn(u64) -> Image>); 7] = [
+    let cases: Vec<(&str, Box<dyn Fn(u64) -> Image>)> = vec![
         (
             "photon-map disc",
             Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),
@@ -143,6 +143,10 @@ fn measure_every_photon_mode_against_the_path_tracer() {
         (
             "progressive shadow-rays disc",
             Box::new(|s| progressive(&crease, EstimatorKind::Disc, Mode::ShadowRays, s)),
+        ),
+        (
+            "progressive final-gather cube",
+            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::FinalGather, s)),
         ),
         ("sppm", Box::new(|s| sppm(&scene, s))),
     ];
@@ -179,7 +183,7 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
         },
         seeds,
     );
-    let cases: [(&str, Box<dyn Fn(u64) -> Image>); 6] = [
+    let cases: Vec<(&str, Box<dyn Fn(u64) -> Image>)> = vec![
         (
             "photon-map disc",
             Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),
@@ -199,6 +203,14 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
         (
             "progressive shadow-rays disc",
             Box::new(|s| progressive(&crease, EstimatorKind::Disc, Mode::ShadowRays, s)),
+        ),
+        (
+            "progressive final-gather cube",
+            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::FinalGather, s)),
+        ),
+        (
+            "final-gather disc",
+            Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::FinalGather, s)),
         ),
         ("sppm", Box::new(|s| sppm(&scene, s))),
     ];

@@ -144,7 +144,7 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
         &self.options
     }
 
-    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+    fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let l = self.volumes;
         let map_id = l.pilot.maps.map_of(hit.part);
         // Most maps hold no caustic photons: no extent to look up then.
@@ -154,7 +154,7 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
         let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
             return Vec3::ZERO;
         };
-        l.within(tree, hit, map_id, extent * l.scale, &Irradiance, scratch)
+        l.within(tree, hit, map_id, extent * l.scale, weight, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
