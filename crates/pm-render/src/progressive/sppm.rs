@@ -21,6 +21,7 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
+use crate::core::delta::passes_through;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
@@ -292,7 +293,7 @@ impl Pass<'_> {
         let ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
         let mut seen = Vec3::ZERO;
         let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, &mut rng, |hit, _, throughput, _| {
-            if !scene.material(hit).lobes().has_non_delta() {
+            if passes_through(scene.material(hit)) {
                 let le = scene.emission(hit);
                 if le != Vec3::ZERO {
                     seen += throughput * le;
