@@ -10,6 +10,9 @@ use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, Render
 use photon_maps::trace::{CreaseAngle, Partitioned, Partitioner, Scene, scenes};
 
 const SIZE: u32 = 24;
+
+/// A mode's name and how it renders the scene for a seed.
+type Case<'a> = (&'static str, Box<dyn Fn(u64) -> Image + 'a>);
 const BLOCKS: u32 = 4;
 
 fn settings(mode: Mode, seed: u64) -> RenderSettings {
@@ -119,7 +122,7 @@ fn measure_every_photon_mode_against_the_path_tracer() {
     );
     let r: Vec<String> = reference.iter().map(|(m, s)| format!("{m:.4}±{s:.4}")).collect();
     eprintln!("path tracer: {}", r.join(" "));
-    let cases: Vec<(&str, Box<dyn Fn(u64) -> Image>)> = vec![
+    let cases: Vec<Case<'_>> = vec![
         (
             "photon-map disc",
             Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),
@@ -183,7 +186,7 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
         },
         seeds,
     );
-    let cases: Vec<(&str, Box<dyn Fn(u64) -> Image>)> = vec![
+    let cases: Vec<Case<'_>> = vec![
         (
             "photon-map disc",
             Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),

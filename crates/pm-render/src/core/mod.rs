@@ -17,7 +17,7 @@ pub use tiles::{Frame, SampleStreams, Tile, render_tiles};
 
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_trace::{Bsdf, Hit, Ray, RayKind, Rng, Scene};
+use pm_trace::{Hit, Ray, RayKind, Rng, Scene};
 
 /// Longest chain of delta bounces followed to the first vertex where radiance is read.
 pub const MAX_DELTA_BOUNCES: u32 = 16;
@@ -38,7 +38,7 @@ pub struct PathVertex {
     pub bounces: u32,
 }
 
-/// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`] are all delta: mirror,
+/// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`](pm_trace::Bsdf::lobes) are all delta: mirror,
 /// glass; and near-specular glossy ones, [`passes_through`](delta::passes_through)) to its
 /// first hit where radiance
 /// is read, at most [`MAX_DELTA_BOUNCES`] bounces.
