@@ -43,7 +43,7 @@ use report::{
 #[command(version, about)]
 struct Args {
     /// A built-in scene (cornell-box, lit-unlit-rooms, colored-rooms, accordion,
-    /// touching-rooms; the rooms built from solid boxes: solid-rooms-stand, solid-rooms-pierce,
+    /// touching-rooms, glossy-cornell-box; the rooms built from solid boxes: solid-rooms-stand, solid-rooms-pierce,
     /// solid-rooms-gap, solid-rooms-sunk-box, solid-rooms-double-floor, solid-rooms-tee), a scale
     /// scene (split-rooms-N: lit-unlit-rooms with every face split
     /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.

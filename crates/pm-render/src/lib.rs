@@ -90,9 +90,9 @@ pub use cache::{CachePoint, RadianceCache};
 pub use core::{PathVertex, RadianceSource};
 pub use error::RenderError;
 pub use estimator::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
-    GeometryBall, GeometryCube, MapView, SurfacePoint, VolumeMetric, find_nearest, gather_found,
-    gather_within, irradiance_in_volume,
+    BsdfWeight, Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator,
+    GatheredPhoton, GeometryBall, GeometryCube, Irradiance, MapView, PhotonWeight, SurfacePoint,
+    VolumeMetric, find_nearest, gather_found, gather_within, irradiance_in_volume,
 };
 /// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
 pub use glam;

@@ -4,9 +4,10 @@
 
 pub use crate::progressive::{ProgressiveRenderer, ProgressiveSettings};
 pub use crate::{
-    Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator, GatheredPhoton,
-    GeometryBall, GeometryCube, Image, MapView, Mode, PathVertex, RadianceCache, RadianceSource,
-    RenderSettings, RenderStats, Renderer, SurfacePoint, find_nearest, gather_found, gather_within,
+    BsdfWeight, Disc, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, FixedVolumeEstimator,
+    GatheredPhoton, GeometryBall, GeometryCube, Image, Irradiance, MapView, Mode, PathVertex, PhotonWeight,
+    RadianceCache, RadianceSource, RenderSettings, RenderStats, Renderer, SurfacePoint, find_nearest,
+    gather_found, gather_within,
 };
 pub use glam::{Vec3, vec3};
 pub use pm_geom::{Aabb, Ball, HalfEdgeMesh, PolygonSet};

@@ -21,17 +21,18 @@ struct ConeScratch {
 }
 
 impl Estimator for ConeFilter {
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        gather_found(at, map.tree, options, scratch);
+        gather_found(at, map.tree, options, weight, scratch);
         let (_, photons, own) = scratch.split::<ConeScratch>();
         own.queries += 1;
         own.weights.clear();
@@ -182,7 +183,7 @@ fn gather_found_decodes_the_neighbours_and_rejects_photons_from_behind() {
     let extent = find_nearest::<Euclidean>(at, map, &options, &mut scratch).unwrap();
     assert!((extent - 0.01).abs() < 1e-6, "extent {extent}");
     assert_eq!(scratch.neighbours().len(), 3);
-    gather_found(at, &tree, &options, &mut scratch);
+    gather_found(at, &tree, &options, &Irradiance, &mut scratch);
     assert_eq!(scratch.photons().len(), 2, "the photon from behind is dropped");
     for p in scratch.photons() {
         // Watts, with the map's power scale applied (compact powers keep 0.35 %).

@@ -9,17 +9,18 @@ use std::f32::consts::PI;
 struct Epanechnikov;
 
 impl Estimator for Epanechnikov {
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        gather_found(at, map.tree, options, scratch);
+        gather_found(at, map.tree, options, weight, scratch);
         let r2 = r * r;
         let weighted: Vec3 = scratch
             .photons()

@@ -146,6 +146,11 @@ impl Bsdf for Material {
     }
 
     #[inline]
+    fn glossy_roughness(&self) -> Option<f32> {
+        dispatch!(self, b => b.glossy_roughness())
+    }
+
+    #[inline]
     fn diffuse_albedo(&self, at: &ShadingPoint) -> Vec3 {
         dispatch!(self, b => b.diffuse_albedo(at))
     }

@@ -12,12 +12,12 @@
 pub(crate) mod delta;
 pub(crate) mod tiles;
 
-pub use delta::specular_bounce;
+pub use delta::{NEAR_SPECULAR_ROUGHNESS, passes_through, specular_bounce};
 pub use tiles::{Frame, SampleStreams, Tile, render_tiles};
 
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_trace::{Bsdf, Hit, Ray, RayKind, Rng, Scene};
+use pm_trace::{Hit, Ray, RayKind, Rng, Scene};
 
 /// Longest chain of delta bounces followed to the first vertex where radiance is read.
 pub const MAX_DELTA_BOUNCES: u32 = 16;
@@ -38,8 +38,10 @@ pub struct PathVertex {
     pub bounces: u32,
 }
 
-/// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`] are all delta: mirror,
-/// glass) to its first hit with a non-delta lobe, at most [`MAX_DELTA_BOUNCES`] bounces.
+/// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`](pm_trace::Bsdf::lobes) are all delta: mirror,
+/// glass; and near-specular glossy ones, [`passes_through`](delta::passes_through)) to its
+/// first hit where radiance
+/// is read, at most [`MAX_DELTA_BOUNCES`] bounces.
 /// `visit(hit, ray, throughput, bounce)` sees every hit first, the delta ones and the last,
 /// with the throughput that reaches it (so a caller can count emission on the way).
 /// `None` when the path leaves the scene, or a bounce ends it, before a non-delta hit.
@@ -57,7 +59,7 @@ pub fn follow_delta_bounces(
         let hit = scene.intersect(&ray, f32::INFINITY, kind)?;
         distance += hit.t;
         visit(&hit, &ray, throughput, bounces);
-        if scene.material(&hit).lobes().has_non_delta() {
+        if !passes_through(scene.material(&hit)) {
             return Some(PathVertex {
                 hit,
                 ray,
@@ -122,7 +124,7 @@ pub fn camera_radiance<S: RadianceSource + ?Sized>(
     let mut seen = Vec3::ZERO;
     let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, rng, |hit, _, throughput, _| {
         // Emission on a mirror or glass surface on the way (the last vertex's is the source's).
-        if !scene.material(hit).lobes().has_non_delta() {
+        if passes_through(scene.material(hit)) {
             let le = scene.emission(hit);
             if le != Vec3::ZERO {
                 seen += throughput * le;

@@ -1,4 +1,5 @@
-//! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere.
+//! Jensen's disc estimator: `E = Σ Φ_p / (π r²)` over the k nearest photons in a sphere (each
+//! power times the caller's photon weight).
 
 use super::gather::counted_neighbours;
 use super::{Estimator, find_nearest};
@@ -7,6 +8,7 @@ use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::PhotonWeight;
 use glam::Vec3;
 use pm_kdtree::Euclidean;
 use std::f32::consts::PI;
@@ -22,26 +24,31 @@ impl Estimator for Disc {
         "disc".to_owned()
     }
 
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
             return Vec3::ZERO;
         };
-        let power: Vec3 = if options.reject_behind {
-            gather_found(at, map.tree, options, scratch);
-            scratch.photons.iter().map(|p| p.power).sum()
-        } else {
-            // Directions are only needed to reject photons from behind: skip decoding them,
-            // sum powers relative to the map's scale and scale once.
-            let counted = counted_neighbours(&scratch.neighbours, options.leave_out_boundary);
-            let found = scratch.neighbours.as_slice().iter().filter(|n| counted(n));
-            let relative: Vec3 = found.map(|n| map.tree.get(n.index).relative_power()).sum();
-            relative * map.tree.power_scale().watts()
+        let power: Vec3 = match weight.uniform() {
+            // Directions are only needed to reject photons from behind or to weight them:
+            // without either, skip decoding them, sum powers relative to the map's scale and
+            // scale once.
+            Some(uniform) if !options.reject_behind => {
+                let counted = counted_neighbours(&scratch.neighbours, options.leave_out_boundary);
+                let found = scratch.neighbours.as_slice().iter().filter(|n| counted(n));
+                let relative: Vec3 = found.map(|n| map.tree.get(n.index).relative_power()).sum();
+                relative * map.tree.power_scale().watts() * uniform
+            }
+            _ => {
+                gather_found(at, map.tree, options, weight, scratch);
+                scratch.photons.iter().map(|p| p.power).sum()
+            }
         };
         power / (PI * r * r)
     }

@@ -15,6 +15,7 @@ use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::{Irradiance, PhotonWeight};
 use glam::Vec3;
 use pm_kdtree::{Chebyshev, Euclidean, Metric};
 use std::f32::consts::PI;
@@ -36,10 +37,24 @@ pub trait FixedVolumeEstimator: Estimator {
         scratch: &mut EstimatorScratch,
     ) -> Option<f32>;
 
-    /// Irradiance at `at` from *every* photon of `map` within `extent` under this estimator's
-    /// metric (options' kinds and back-face rejection applied; `k` and `max_distance` unused),
-    /// divided by the volume's area: `π extent²` for the disc, the area of the map's polygons
-    /// inside the cube or ball for the geometry estimators.
+    /// The sum of the power of *every* photon of `map` within `extent` of `at` under this
+    /// estimator's metric, each times `weight` of its direction (options' kinds and back-face
+    /// rejection applied; `k` and `max_distance` unused), divided by the volume's area:
+    /// `π extent²` for the disc, the area of the map's polygons inside the cube or ball for
+    /// the geometry estimators. With [`Irradiance`]: the irradiance.
+    fn estimate_within(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        extent: f32,
+        options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3;
+
+    /// Irradiance at `at` in the volume of `extent`: [`FixedVolumeEstimator::estimate_within`]
+    /// with the weight [`Irradiance`].
+    #[inline]
     fn irradiance_within(
         &self,
         at: SurfacePoint,
@@ -47,14 +62,18 @@ pub trait FixedVolumeEstimator: Estimator {
         extent: f32,
         options: &EstimatorOptions,
         scratch: &mut EstimatorScratch,
-    ) -> Vec3;
+    ) -> Vec3 {
+        self.estimate_within(at, map, extent, options, &Irradiance, scratch)
+    }
 }
 
+/// The geometry estimate under metric `M` in the volume of `extent`, powers times `weight`.
 fn geometry_within<M: VolumeMetric>(
     at: SurfacePoint,
     map: MapView<'_>,
     extent: f32,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
     if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
@@ -67,7 +86,7 @@ fn geometry_within<M: VolumeMetric>(
         candidates,
         ..
     } = scratch;
-    collect_within::<M>(at, map.tree, extent, options, photons);
+    collect_within::<M>(at, map.tree, extent, options, weight, photons);
     if photons.is_empty() {
         return Vec3::ZERO;
     }
@@ -88,18 +107,19 @@ impl FixedVolumeEstimator for Disc {
         nearest_or_max::<Euclidean>(at, map, options, scratch)
     }
 
-    fn irradiance_within(
+    fn estimate_within(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         extent: f32,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         if map.tree.is_empty() || extent.is_nan() || extent <= 0.0 {
             return Vec3::ZERO;
         }
-        collect_within::<Euclidean>(at, map.tree, extent, options, &mut scratch.photons);
+        collect_within::<Euclidean>(at, map.tree, extent, options, weight, &mut scratch.photons);
         let power: Vec3 = scratch.photons.iter().map(|p| p.power).sum();
         power / (PI * extent * extent)
     }
@@ -120,15 +140,16 @@ macro_rules! geometry_fixed_volume {
                 nearest_or_max::<$metric>(at, map, options, scratch)
             }
 
-            fn irradiance_within(
+            fn estimate_within(
                 &self,
                 at: SurfacePoint,
                 map: MapView<'_>,
                 extent: f32,
                 options: &EstimatorOptions,
+                weight: &dyn PhotonWeight,
                 scratch: &mut EstimatorScratch,
             ) -> Vec3 {
-                geometry_within::<$metric>(at, map, extent, options, scratch)
+                geometry_within::<$metric>(at, map, extent, options, weight, scratch)
             }
         }
     };
@@ -154,18 +175,23 @@ impl FixedVolumeEstimator for EstimatorKind {
     }
 
     #[inline]
-    fn irradiance_within(
+    fn estimate_within(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         extent: f32,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         match self {
-            EstimatorKind::Disc => Disc.irradiance_within(at, map, extent, options, scratch),
-            EstimatorKind::GeometryCube => GeometryCube.irradiance_within(at, map, extent, options, scratch),
-            EstimatorKind::GeometryBall => GeometryBall.irradiance_within(at, map, extent, options, scratch),
+            EstimatorKind::Disc => Disc.estimate_within(at, map, extent, options, weight, scratch),
+            EstimatorKind::GeometryCube => {
+                GeometryCube.estimate_within(at, map, extent, options, weight, scratch)
+            }
+            EstimatorKind::GeometryBall => {
+                GeometryBall.estimate_within(at, map, extent, options, weight, scratch)
+            }
         }
     }
 }
@@ -181,15 +207,16 @@ impl<E: FixedVolumeEstimator + ?Sized> FixedVolumeEstimator for &E {
         (**self).nearest_extent(at, map, options, scratch)
     }
 
-    fn irradiance_within(
+    fn estimate_within(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         extent: f32,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        (**self).irradiance_within(at, map, extent, options, scratch)
+        (**self).estimate_within(at, map, extent, options, weight, scratch)
     }
 }
 

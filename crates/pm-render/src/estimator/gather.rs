@@ -5,6 +5,7 @@ use super::options::EstimatorOptions;
 use super::photon::GatheredPhoton;
 use super::point::SurfacePoint;
 use super::scratch::EstimatorScratch;
+use super::weight::PhotonWeight;
 use glam::Vec3;
 use pm_kdtree::{PhotonKind, PhotonTree};
 
@@ -20,14 +21,15 @@ impl EstimatorOptions {
 }
 
 /// Decodes the neighbours found by the last [`super::find_nearest`] into
-/// [`EstimatorScratch::photons`] ([`GatheredPhoton::decode`]: powers in watts, squared
-/// distances), keeping those [`EstimatorOptions::accepts`] (the k-nearest query has already
+/// [`EstimatorScratch::photons`] ([`GatheredPhoton::decode`]: powers in watts times `weight`
+/// of their direction, squared distances), keeping those [`EstimatorOptions::accepts`] (the k-nearest query has already
 /// applied the kind filter; this adds back-face rejection when it is on). With
 /// [`EstimatorOptions::leave_out_boundary`] the boundary photon is left out.
 pub fn gather_found(
     at: SurfacePoint,
     tree: &PhotonTree,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     scratch: &mut EstimatorScratch,
 ) {
     let scale = tree.power_scale();
@@ -37,7 +39,7 @@ pub fn gather_found(
         let photon = GatheredPhoton::decode(&tree.get(n.index), scale, at.position);
         // The query has applied the kind filter already.
         if !(options.reject_behind && at.arrives_from_behind(photon.direction)) {
-            scratch.photons.push(photon);
+            scratch.photons.push(photon.weighted(weight));
         }
     }
 }
@@ -45,16 +47,17 @@ pub fn gather_found(
 /// Decodes every photon within `extent` of `at` (under metric `M`: a ball for
 /// [`pm_kdtree::Euclidean`], a cube of half-size `extent` for [`pm_kdtree::Chebyshev`]) that
 /// `options` accepts into the scratch's photons ([`EstimatorScratch::photons`]): the
-/// fixed-volume counterpart of [`gather_found`], for a [`super::FixedVolumeEstimator`] of
-/// your own. Allocation-free once the scratch is warm.
+/// fixed-volume counterpart of [`gather_found`] (powers times `weight` likewise), for a
+/// [`super::FixedVolumeEstimator`] of your own. Allocation-free once the scratch is warm.
 pub fn gather_within<M: pm_kdtree::Metric>(
     at: SurfacePoint,
     tree: &PhotonTree,
     extent: f32,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     scratch: &mut EstimatorScratch,
 ) {
-    collect_within::<M>(at, tree, extent, options, &mut scratch.photons);
+    collect_within::<M>(at, tree, extent, options, weight, &mut scratch.photons);
 }
 
 /// [`gather_within`] into `photons` (for callers that hold other parts of the scratch).
@@ -63,6 +66,7 @@ pub(super) fn collect_within<M: pm_kdtree::Metric>(
     tree: &PhotonTree,
     extent: f32,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     photons: &mut Vec<GatheredPhoton>,
 ) {
     let scale = tree.power_scale();
@@ -70,7 +74,7 @@ pub(super) fn collect_within<M: pm_kdtree::Metric>(
     tree.for_each_within::<M>(at.position, extent, |index, _| {
         let photon = GatheredPhoton::decode(&tree.get(index), scale, at.position);
         if options.accepts(at, photon.kind, photon.direction) {
-            photons.push(photon);
+            photons.push(photon.weighted(weight));
         }
     });
 }

@@ -8,6 +8,7 @@ use crate::estimator::photon::GatheredPhoton;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::PhotonWeight;
 use glam::Vec3;
 use pm_geom::{Aabb, Ball, ClipScratch, GatherVolume, PolygonSet};
 use pm_kdtree::{Chebyshev, Euclidean, Metric};
@@ -50,14 +51,15 @@ impl Estimator for GeometryCube {
         "cube".to_owned()
     }
 
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        geometry_irradiance::<Chebyshev>(at, map, options, scratch)
+        geometry_estimate::<Chebyshev>(at, map, options, weight, scratch)
     }
 }
 
@@ -67,27 +69,30 @@ impl Estimator for GeometryBall {
         "ball".to_owned()
     }
 
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        geometry_irradiance::<Euclidean>(at, map, options, scratch)
+        geometry_estimate::<Euclidean>(at, map, options, weight, scratch)
     }
 }
 
-fn geometry_irradiance<M: VolumeMetric>(
+/// The geometry estimate under metric `M` from the k nearest photons, each power times `weight`.
+fn geometry_estimate<M: VolumeMetric>(
     at: SurfacePoint,
     map: MapView<'_>,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
     let Some(extent) = find_nearest::<M>(at, map, options, scratch) else {
         return Vec3::ZERO;
     };
-    gather_found(at, map.tree, options, scratch);
+    gather_found(at, map.tree, options, weight, scratch);
     let volume = M::volume(at.position, extent);
     let EstimatorScratch {
         clip,
@@ -103,7 +108,7 @@ fn geometry_irradiance<M: VolumeMetric>(
 
 /// The geometry estimate for a given gather `volume` and `photons` (already gathered), over
 /// the polygons of `polygons` that overlap it, seen from a surface with unit normal `normal`:
-/// `E = Σ_p Φ_p · max(0, −n·ω_p) / S_p` with `S_p = Σ_f A_f · max(0, −n_f·ω_p)` (the length
+/// `E = Σ_p Φ_p · max(0, −n·ω_p) / S_p` (`Φ_p` already weighted, [`super::gather_found`]) with `S_p = Σ_f A_f · max(0, −n_f·ω_p)` (the length
 /// of `ω_p` cancels, so photon directions need not be normalised).
 /// The cosine at x uses the enclosed face most aligned with `normal` (x's own face on a
 /// polygon mesh), which keeps curved surfaces seen through polygonal proxies consistent.

@@ -8,6 +8,7 @@ use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::PhotonWeight;
 use glam::Vec3;
 use std::fmt;
 
@@ -54,17 +55,18 @@ impl Estimator for EstimatorKind {
     }
 
     #[inline]
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         match self {
-            EstimatorKind::Disc => Disc.irradiance(at, map, options, scratch),
-            EstimatorKind::GeometryCube => GeometryCube.irradiance(at, map, options, scratch),
-            EstimatorKind::GeometryBall => GeometryBall.irradiance(at, map, options, scratch),
+            EstimatorKind::Disc => Disc.estimate(at, map, options, weight, scratch),
+            EstimatorKind::GeometryCube => GeometryCube.estimate(at, map, options, weight, scratch),
+            EstimatorKind::GeometryBall => GeometryBall.estimate(at, map, options, weight, scratch),
         }
     }
 }

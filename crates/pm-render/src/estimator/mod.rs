@@ -1,14 +1,27 @@
 //! Radiance estimators: the irradiance at a surface point from the photons of one map
-//! (Jensen's disc, and Hey & Purgathofer's geometry-based area in a cube or a ball). The
-//! trait is generic-friendly; [`EstimatorKind`] picks one at run time.
+//! (Jensen's disc, and Hey & Purgathofer's geometry-based area in a cube or a ball), or the
+//! radiance reflected there. The trait is generic-friendly; [`EstimatorKind`] picks one at
+//! run time.
+//!
+//! # What is read where
+//!
+//! Every estimator sums each gathered photon's power times a [`PhotonWeight`] of its
+//! direction, over its own area or kernel: `Σ Φ_p w(ω_p) / A`. With [`Irradiance`] (weight
+//! one) that is the irradiance `E`; with [`BsdfWeight`] (`f(wo, wi_p)`, `wi_p = −ω_p`) it is
+//! the radiance reflected towards `wo`. The renderer reads a surface whose BSDF has a glossy
+//! lobe with the BSDF weight (the whole `f`, its diffuse lobe included); a surface whose
+//! non-delta part is diffuse only as `ρ_d/π · E` with the irradiance weight, which is the same
+//! sum for a Lambertian lobe and keeps its images bit for bit. The radiance cache stays an
+//! irradiance (a diffuse quantity) read at diffuse hits.
 //!
 //! # Writing an estimator: the Epanechnikov kernel
 //!
 //! An estimator of your own uses the building blocks of the built-in ones: [`find_nearest`]
 //! runs the k-nearest query (the options' k, maximum distance and photon kinds) and returns
 //! its radius r; [`gather_found`] decodes the neighbours into [`GatheredPhoton`]s with their
-//! power in watts (the map's power scale applied) and squared distance, dropping photons from
-//! behind when the options ask ([`EstimatorOptions::accepts`]). A distance-weighted kernel is
+//! power in watts (the map's power scale applied) times the caller's [`PhotonWeight`] and
+//! their squared distance, dropping photons from behind when the options ask
+//! ([`EstimatorOptions::accepts`]). A distance-weighted kernel is
 //! then a sum. Epanechnikov's kernel on the disc of radius r, `K(d) = 2/(π r²) · (1 − d²/r²)`,
 //! integrates to one, so on a uniformly lit plane it estimates the irradiance without bias
 //! (the k-th photon, at d = r, weighs nothing; the k − 1 inside average `1 − d²/r² = 1/2`):
@@ -21,17 +34,18 @@
 //! struct Epanechnikov;
 //!
 //! impl Estimator for Epanechnikov {
-//!     fn irradiance(
+//!     fn estimate(
 //!         &self,
 //!         at: SurfacePoint,
 //!         map: MapView<'_>,
 //!         options: &EstimatorOptions,
+//!         weight: &dyn PhotonWeight,
 //!         scratch: &mut EstimatorScratch,
 //!     ) -> Vec3 {
 //!         let Some(r) = find_nearest::<Euclidean>(at, map, options, scratch) else {
 //!             return Vec3::ZERO;
 //!         };
-//!         gather_found(at, map.tree, options, scratch);
+//!         gather_found(at, map.tree, options, weight, scratch);
 //!         let r2 = r * r;
 //!         let weighted: Vec3 = scratch
 //!             .photons()
@@ -78,6 +92,7 @@ pub(crate) mod options;
 pub(crate) mod photon;
 pub(crate) mod point;
 pub(crate) mod scratch;
+pub(crate) mod weight;
 
 pub use disc::Disc;
 pub use fixed::FixedVolumeEstimator;
@@ -88,21 +103,38 @@ pub use options::EstimatorOptions;
 pub use photon::GatheredPhoton;
 pub use point::{MapView, SurfacePoint};
 pub use scratch::EstimatorScratch;
+pub use weight::{BsdfWeight, Irradiance, PhotonWeight};
 
 use glam::Vec3;
 
-/// Estimates irradiance (W/m²) at a surface point from one photon map.
+/// Estimates irradiance (W/m²), or reflected radiance, at a surface point from one photon map.
 ///
-/// Outgoing radiance on a Lambertian surface of albedo ρ is `ρ/π · E`.
+/// Outgoing radiance on a Lambertian surface of albedo ρ is `ρ/π · E`; on any other it is the
+/// estimate with the weight [`BsdfWeight`].
 pub trait Estimator: Send + Sync {
-    /// Irradiance at `at` from `map`, with `options`, using `scratch` for all buffers.
+    /// The sum over the photons of `map` this estimator gathers at `at` of their power times
+    /// `weight` of their direction, over its area or kernel (with [`Irradiance`]: the
+    /// irradiance), with `options`, using `scratch` for all buffers.
+    fn estimate(
+        &self,
+        at: SurfacePoint,
+        map: MapView<'_>,
+        options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3;
+
+    /// Irradiance at `at` from `map`: [`Estimator::estimate`] with the weight [`Irradiance`].
+    #[inline]
     fn irradiance(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
         scratch: &mut EstimatorScratch,
-    ) -> Vec3;
+    ) -> Vec3 {
+        self.estimate(at, map, options, &Irradiance, scratch)
+    }
 
     /// A name that tells this estimator, with its parameters, from every other: part of a
     /// progressive render's shard identity, so shards made with different estimators never
@@ -118,14 +150,15 @@ impl<E: Estimator + ?Sized> Estimator for &E {
         (**self).identity()
     }
 
-    fn irradiance(
+    fn estimate(
         &self,
         at: SurfacePoint,
         map: MapView<'_>,
         options: &EstimatorOptions,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        (**self).irradiance(at, map, options, scratch)
+        (**self).estimate(at, map, options, weight, scratch)
     }
 }
 

@@ -1,5 +1,6 @@
 //! A photon decoded for an estimate: power in watts, direction, kind and squared distance.
 
+use super::weight::PhotonWeight;
 use glam::Vec3;
 use pm_kdtree::{CompactPhoton, PhotonKind, PowerScale};
 
@@ -11,7 +12,8 @@ use pm_kdtree::{CompactPhoton, PhotonKind, PowerScale};
 /// scale or sign convention of its own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GatheredPhoton {
-    /// Power per RGB channel in watts: the map's [`PowerScale`] is applied.
+    /// Power per RGB channel in watts: the map's [`PowerScale`] is applied, and by
+    /// [`super::gather_found`] the estimate's [`super::PhotonWeight`] (one for irradiance).
     pub power: Vec3,
     /// Direction of travel, of any positive length: the estimators use it only in signs of
     /// dot products and in ratios of them, which do not depend on its length. Photons
@@ -32,6 +34,15 @@ impl GatheredPhoton {
             direction: photon.direction_l1(),
             kind: photon.kind(),
             distance_squared: photon.position().distance_squared(at),
+        }
+    }
+
+    /// The photon with its power times `weight` of its direction.
+    #[inline]
+    pub fn weighted(self, weight: &dyn PhotonWeight) -> Self {
+        GatheredPhoton {
+            power: self.power * weight.weight(self.direction),
+            ..self
         }
     }
 }

@@ -71,7 +71,7 @@ use crate::progress::Progress;
 use crate::renderer::in_pool;
 use crate::settings::RenderSettings;
 use crate::source::final_gather::FinalGatherSource;
-use crate::source::photon_map::DirectLight;
+use crate::source::photon_read::DirectLight;
 use glam::Vec3;
 use pass_maps::trace_pass_counted;
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};

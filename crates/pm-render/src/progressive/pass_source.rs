@@ -11,10 +11,11 @@ use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
-use crate::source::direct::direct_irradiance;
+use crate::estimator::weight::{Irradiance, PhotonWeight};
 use crate::source::final_gather::FinalGatherOptions;
 use crate::source::final_gather::GatherReads;
-use crate::source::photon_map::DirectLight;
+use crate::source::photon_read::DirectLight;
+use crate::source::photon_read::photon_radiance;
 use glam::Vec3;
 use pm_kdtree::PhotonTree;
 use pm_trace::{Hit, Rng, Scene};
@@ -35,8 +36,9 @@ pub(super) struct PassVolumes<'a, E> {
 }
 
 impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
-    /// Irradiance at `hit` from the pass's photons of its map, in the pass's volume there.
-    fn irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+    /// The estimate with `weight` at `hit` from the pass's photons of its map, in the pass's
+    /// volume there.
+    fn estimate(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let map_id = self.pilot.maps.map_of(hit.part);
         let Some(extent) = self
             .pilot
@@ -49,18 +51,20 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
             hit,
             map_id,
             extent * self.scale,
+            weight,
             scratch,
         )
     }
 
-    /// Irradiance at `hit` from `tree` (photons of `hit`'s map `map_id`) in the fixed volume
-    /// of `extent` there, on the map's pilot geometry.
+    /// The estimate with `weight` at `hit` from `tree` (photons of `hit`'s map `map_id`) in
+    /// the fixed volume of `extent` there, on the map's pilot geometry.
     fn within(
         &self,
         tree: Option<&PhotonTree>,
         hit: &Hit,
         map_id: u32,
         extent: f32,
+        weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
         let (Some(tree), Some(pilot)) = (tree, self.pilot.maps.maps().get(map_id as usize)) else {
@@ -76,12 +80,13 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
             polygons: pilot.geometry(),
         };
         self.estimator
-            .irradiance_within(at, view, extent, self.options, scratch)
+            .estimate_within(at, view, extent, self.options, weight, scratch)
     }
 }
 
-/// A pass's photon-map read: `ρ/π · E` with `E` the fixed-volume estimate (plus shadow rays,
-/// by [`DirectLight`]).
+/// A pass's photon-map read: `ρ/π · E` with `E` the fixed-volume estimate on a diffuse
+/// surface, the estimate with the BSDF's weight on a glossy one (plus shadow rays, by
+/// [`DirectLight`]).
 pub(super) struct PassPhotonSource<'a, E> {
     pub volumes: &'a PassVolumes<'a, E>,
     pub direct: DirectLight,
@@ -94,12 +99,11 @@ impl<E: FixedVolumeEstimator> RadianceSource for PassPhotonSource<'_, E> {
 
     fn reflected(&self, vertex: &PathVertex, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
         let (scene, hit) = (self.volumes.scene, &vertex.hit);
-        let albedo = scene.albedo_at(hit);
-        let mut e = self.volumes.irradiance(hit, scratch);
-        if self.direct == DirectLight::ShadowRays {
-            e += direct_irradiance(scene, hit, rng);
-        }
-        albedo * FRAC_1_PI * e
+        let albedo = || scene.albedo_at(hit);
+        let wo = -vertex.ray.direction;
+        photon_radiance(scene, hit, wo, albedo, self.direct, rng, |weight| {
+            self.volumes.estimate(hit, weight, scratch)
+        })
     }
 }
 
@@ -120,9 +124,14 @@ impl<E: FixedVolumeEstimator> PassGather<'_, E> {
     /// photons there are then fewer than average (by the cache points that are not there),
     /// while the others are as many as ever.
     fn fresh_irradiance(&self, hit: &Hit, map_id: u32, extent: f32, scratch: &mut EstimatorScratch) -> Vec3 {
-        self.volumes
-            .within(self.cache.photons(map_id), hit, map_id, extent, scratch)
-            * self.cache.set_aside()
+        self.volumes.within(
+            self.cache.photons(map_id),
+            hit,
+            map_id,
+            extent,
+            &Irradiance,
+            scratch,
+        ) * self.cache.set_aside()
     }
 }
 
@@ -135,7 +144,7 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
         &self.options
     }
 
-    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+    fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let l = self.volumes;
         let map_id = l.pilot.maps.map_of(hit.part);
         // Most maps hold no caustic photons: no extent to look up then.
@@ -145,7 +154,7 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
         let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
             return Vec3::ZERO;
         };
-        l.within(tree, hit, map_id, extent * l.scale, scratch)
+        l.within(tree, hit, map_id, extent * l.scale, weight, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {

@@ -6,7 +6,8 @@
 //! point; the pass's photons (one global map, photons of kind direct left out since shadow
 //! rays carry direct light, as pbrt deposits no photon at a path's first hit) within the
 //! pixel's radius r add `Φ_p · albedo/π` (zero for photons from behind the surface, as pbrt's
-//! diffuse BSDF gives; no other normal test). Then with M photons found:
+//! diffuse BSDF gives; no other normal test), or `Φ_p · f(wo, wi_p)` where the BSDF has a
+//! glossy lobe. Then with M photons found:
 //! `N ← N + αM`, `r ← r·√((N + αM)/(N + M))`, `τ ← (τ + Φ)·(r_new/r)²`, and the pixel's
 //! radiance is `L_direct/passes + τ/(passes · π r²)` (photon powers are already divided by
 //! the photons per pass).
@@ -20,16 +21,18 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
+use crate::core::delta::passes_through;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
 use crate::estimator::options::EstimatorOptions;
+use crate::estimator::weight::{BsdfWeight, Irradiance, PhotonWeight};
 use crate::image::Image;
 use crate::mode::Mode;
 use crate::progress::Progress;
 use crate::renderer::in_pool;
 use crate::settings::RenderSettings;
-use crate::source::direct::direct_irradiance;
+use crate::source::direct::{Mis, direct_irradiance, direct_radiance_through};
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
 use pm_trace::{Bsdf, MapAssignment, RayKind, Rng, Scene};
@@ -290,7 +293,7 @@ impl Pass<'_> {
         let ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
         let mut seen = Vec3::ZERO;
         let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, &mut rng, |hit, _, throughput, _| {
-            if !scene.material(hit).lobes().has_non_delta() {
+            if passes_through(scene.material(hit)) {
                 let le = scene.emission(hit);
                 if le != Vec3::ZERO {
                     seen += throughput * le;
@@ -300,13 +303,31 @@ impl Pass<'_> {
         if seen != Vec3::ZERO && seen.is_finite() {
             pixel.direct += seen.as_dvec3();
         }
-        let Some(PathVertex { hit, throughput, .. }) = vertex else {
+        let Some(PathVertex {
+            hit, throughput, ray, ..
+        }) = vertex
+        else {
             return;
         };
         // The visible point: emission and direct light by shadow rays, then the pass's photons
-        // within the pixel's radius.
+        // within the pixel's radius, weighted by the BSDF where it has a glossy lobe (pbrt's
+        // `beta · f(wo, wi)`), read as `albedo/π` times their power where it is diffuse.
+        let material = scene.material(&hit);
+        let wo = -ray.direction;
+        let glossy = material
+            .lobes()
+            .has_glossy()
+            .then(|| BsdfWeight::new(material, scene.shading_point(&hit), wo));
         let albedo = scene.albedo_at(&hit);
-        let direct = scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng);
+        let direct = match &glossy {
+            Some(_) => {
+                let at = scene.shading_point(&hit);
+                let through =
+                    direct_radiance_through(scene, &hit, &at, material, wo, Mis::ShadowRaysOnly, &mut rng);
+                scene.emission(&hit) + through
+            }
+            None => scene.emission(&hit) + albedo * FRAC_1_PI * direct_irradiance(scene, &hit, &mut rng),
+        };
         let direct = throughput * direct;
         if direct.is_finite() {
             pixel.direct += direct.as_dvec3();
@@ -315,19 +336,28 @@ impl Pass<'_> {
         if pixel.radius == 0.0 {
             pixel.radius = initial_radius(tree, hit.position, self.options, neighbours);
         }
+        let weight: &dyn PhotonWeight = match &glossy {
+            Some(w) => w,
+            None => &Irradiance,
+        };
         let (phi, m) = gather(
             tree,
             hit.position,
             scene.shading_normal_at(&hit),
             pixel.radius,
             self.options,
+            weight,
         );
         if m > 0 {
             let m = m as f32;
             let n_new = pixel.n + self.alpha * m;
             let r_new = pixel.radius * (n_new / (pixel.n + m)).sqrt();
             let ratio = (r_new / pixel.radius).powi(2);
-            pixel.tau = (pixel.tau + throughput * albedo * FRAC_1_PI * phi) * ratio;
+            let reflected = match glossy {
+                Some(_) => throughput * phi,
+                None => throughput * albedo * FRAC_1_PI * phi,
+            };
+            pixel.tau = (pixel.tau + reflected) * ratio;
             pixel.n = n_new;
             pixel.radius = r_new;
         }
@@ -346,9 +376,16 @@ fn initial_radius(
     if r > 0.0 { r } else { options.max_distance }
 }
 
-/// Power (watts) and count of the photons within `radius` of `at` arriving from the side
-/// `normal` faces.
-fn gather(tree: &PhotonTree, at: Vec3, normal: Vec3, radius: f32, options: &EstimatorOptions) -> (Vec3, u32) {
+/// Power (watts) times `weight`, and count, of the photons within `radius` of `at` arriving
+/// from the side `normal` faces.
+fn gather(
+    tree: &PhotonTree,
+    at: Vec3,
+    normal: Vec3,
+    radius: f32,
+    options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
+) -> (Vec3, u32) {
     let mut power = Vec3::ZERO;
     let mut count = 0u32;
     tree.for_each_within::<Euclidean>(at, radius, |i, _| {
@@ -357,8 +394,9 @@ fn gather(tree: &PhotonTree, at: Vec3, normal: Vec3, radius: f32, options: &Esti
             return;
         }
         count += 1;
-        if p.direction_l1().dot(normal) < 0.0 {
-            power += p.relative_power();
+        let direction = p.direction_l1();
+        if direction.dot(normal) < 0.0 {
+            power += p.relative_power() * weight.weight(direction);
         }
     });
     (power * tree.power_scale().watts(), count)

@@ -2,8 +2,23 @@
 //! with the gather rays, caustics from caustic photons, and indirect light by the gather rays
 //! into a cache. What the gather reads (k-nearest or a pass's fixed volumes) is a
 //! [`GatherReads`].
+//!
+//! # Glossy surfaces
+//!
+//! At a first hit x whose BSDF has a glossy lobe the gather goes through the BSDF: shadow rays
+//! evaluate `f(wo, wi)` per light (power heuristic against the BSDF's density), the caustic
+//! photons are read with the weight `f(wo, wi_p)`, and the gather rays are sampled from the
+//! BSDF (stratified numbers, each carrying `f cos / pdf`), not from the cosine. The irradiance
+//! cache is a diffuse quantity: it is read only where a gather ray lands on a surface without
+//! a glossy lobe (as `ρ_d/π · E`). A gather ray that lands on a glossy surface y takes one
+//! extra bounce there instead, through y's BSDF (the bounce Jensen's corner rule takes near
+//! x); inside that bounce its rays read the cache wherever they land, so a glossy y seen
+//! from a glossy y' reads only its diffuse lobe.
 
-use super::direct::{bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, mis_enabled};
+use super::direct::{
+    Mis, bsdf_emission_weight, direct_irradiance_mis, direct_irradiance_shaded, direct_radiance_through,
+    mis_enabled,
+};
 use super::photon_map::estimate_at;
 use crate::cache::RadianceCache;
 use crate::core::{PathVertex, RadianceSource, follow_delta_bounces};
@@ -12,10 +27,11 @@ use crate::estimator::Estimator;
 use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::{BsdfWeight, Irradiance, PhotonWeight};
 use glam::{Vec2, Vec3};
 use pm_kdtree::KindMask;
 use pm_trace::sampling::cosine_hemisphere;
-use pm_trace::{Hit, PhotonMaps, Ray, RayKind, Rng, Scene};
+use pm_trace::{Bsdf, Hit, PhotonMaps, Ray, RayKind, Rng, Scene};
 use std::f32::consts::FRAC_1_PI;
 
 /// Parameters of [`crate::mode::Mode::FinalGather`].
@@ -111,8 +127,9 @@ pub trait GatherReads: Sync {
     fn scene(&self) -> &Scene;
     /// The gather's parameters.
     fn options(&self) -> &FinalGatherOptions;
-    /// Irradiance at `hit` from the photons of kind caustic of its map.
-    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3;
+    /// The estimate with `weight` at `hit` from the photons of kind caustic of its map (with
+    /// [`Irradiance`]: their irradiance).
+    fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3;
     /// Outgoing radiance (no emission) of the diffuse `hit` of a gather ray.
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3;
 }
@@ -144,7 +161,7 @@ impl<E: Estimator> GatherReads for CacheReads<'_, E> {
         &self.gather
     }
 
-    fn caustic_irradiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
+    fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let map_id = self.maps.map_of(hit.part);
         let (Some(tree), Some(map)) = (
             self.cache.caustic_tree(map_id),
@@ -160,7 +177,7 @@ impl<E: Estimator> GatherReads for CacheReads<'_, E> {
             tree,
             polygons: map.geometry(),
         };
-        estimate_at(self.scene, self.estimator, view, &options, hit, scratch)
+        estimate_at(self.scene, self.estimator, view, &options, weight, hit, scratch)
     }
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
@@ -227,10 +244,76 @@ fn gather<G: GatherReads>(
     let Some(vertex) = vertex else {
         return emitted;
     };
-    if vertex.distance < corner {
-        return emitted + vertex.throughput * diffuse_bounce(source, &vertex.hit, 1, 0.0, rng, scratch);
+    // The cache is a diffuse quantity: a glossy y takes the extra bounce too (through its
+    // BSDF), as a y close to x does; within that bounce (`corner` 0) y reads the cache.
+    let glossy = corner > 0.0 && scene.material(&vertex.hit).lobes().has_glossy();
+    if vertex.distance < corner || glossy {
+        let wo = -vertex.ray.direction;
+        return emitted + vertex.throughput * bounce(source, &vertex.hit, wo, 1, 0.0, rng, scratch);
     }
     emitted + vertex.throughput * source.cached_radiance(&vertex.hit, scratch)
+}
+
+/// Reflected radiance at a non-delta `hit` towards `wo` (without its emission): a surface
+/// with a glossy lobe by [`glossy_bounce`], any other by [`diffuse_bounce`].
+fn bounce<G: GatherReads>(
+    source: &G,
+    hit: &Hit,
+    wo: Vec3,
+    rays: u32,
+    corner: f32,
+    rng: &mut Rng,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    if source.scene().material(hit).lobes().has_glossy() {
+        glossy_bounce(source, hit, wo, rays, corner, rng, scratch)
+    } else {
+        diffuse_bounce(source, hit, rays, corner, rng, scratch)
+    }
+}
+
+/// Reflected radiance at `hit` towards `wo` through a BSDF with a glossy lobe: direct light
+/// by shadow rays evaluating `f` (MIS-weighted against the BSDF's density), caustics read
+/// with the weight `f(wo, wi_p)`, and `rays` gather rays sampled from the BSDF (stratified
+/// numbers, weight `f cos / pdf`) for the rest.
+fn glossy_bounce<G: GatherReads>(
+    source: &G,
+    hit: &Hit,
+    wo: Vec3,
+    rays: u32,
+    corner: f32,
+    rng: &mut Rng,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
+    let scene = source.scene();
+    let material = scene.material(hit);
+    let at = scene.shading_point(hit);
+    let mis = mis_enabled(scene);
+    let weights = if mis { Mis::Weighted } else { Mis::ShadowRaysOnly };
+    let direct = direct_radiance_through(scene, hit, &at, material, wo, weights, rng);
+    let caustics = source.caustics(hit, &BsdfWeight::new(material, at, wo), scratch);
+    let mut indirect = Vec3::ZERO;
+    let columns = (rays as f32).sqrt().ceil().max(1.0) as u32;
+    let cells = columns * rays.div_ceil(columns);
+    let offset = ((rng.next_f32() * cells as f32) as u32).min(cells - 1);
+    for i in 0..rays {
+        let u = stratified(i, rays, offset, rng);
+        let Some(sample) = material.sample(&at, wo, u, rng.next_f32()) else {
+            continue;
+        };
+        if sample.wi.dot(hit.normal) <= 0.0 {
+            continue;
+        }
+        scratch.gather_rays += 1;
+        let weight = (mis && !sample.lobe.has_delta()).then_some(EmissionWeight {
+            from: hit.position,
+            pdf: sample.pdf,
+            rays: MIS_GATHER_COUNT,
+        });
+        let ray = scene.spawn_ray(hit, sample.wi);
+        indirect += sample.weight * gather(source, ray, corner, weight, rng, scratch);
+    }
+    direct + caustics + indirect / rays as f32
 }
 
 /// Reflected radiance at a diffuse `hit` (without its emission): direct light by shadow rays,
@@ -253,7 +336,7 @@ fn diffuse_bounce<G: GatherReads>(
     } else {
         direct_irradiance_shaded(scene, hit, shading, rng)
     };
-    let e = direct + source.caustic_irradiance(hit, scratch);
+    let e = direct + source.caustics(hit, &Irradiance, scratch);
     let mut indirect = Vec3::ZERO;
     let columns = (rays as f32).sqrt().ceil().max(1.0) as u32;
     let cells = columns * rays.div_ceil(columns);
@@ -299,9 +382,10 @@ impl<G: GatherReads> RadianceSource for FinalGatherSource<G> {
         let scene = self.reads.scene();
         let options = self.reads.options();
         let corner = options.corner_distance_in(&scene.bounds());
-        diffuse_bounce(
+        bounce(
             &self.reads,
             &vertex.hit,
+            -vertex.ray.direction,
             options.gather_rays,
             corner,
             rng,

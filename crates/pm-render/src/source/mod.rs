@@ -8,8 +8,10 @@ pub(crate) mod direct;
 pub(crate) mod final_gather;
 pub(crate) mod path_traced;
 pub(crate) mod photon_map;
+pub(crate) mod photon_read;
 
 pub use direct::direct_irradiance;
 pub use final_gather::{CacheReads, FinalGatherOptions, FinalGatherSource, GatherReads};
 pub use path_traced::PathTraced;
-pub use photon_map::{DirectLight, PhotonMapSource, map_irradiance};
+pub use photon_map::{PhotonMapSource, map_irradiance};
+pub use photon_read::DirectLight;

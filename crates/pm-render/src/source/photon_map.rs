@@ -1,26 +1,16 @@
 //! The photon maps read at the first diffuse hit by a k-nearest estimate: the photon-map
 //! mode (Ball & Stejko's main results) and, with direct light by shadow rays, their Image 1.
 
-use super::direct::direct_irradiance;
+use super::photon_read::{DirectLight, photon_radiance};
 use crate::core::{PathVertex, RadianceSource};
 use crate::estimator::Estimator;
 use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use crate::estimator::weight::{Irradiance, PhotonWeight};
 use glam::Vec3;
 use pm_trace::{Hit, PhotonMaps, Rng, Scene};
-use std::f32::consts::FRAC_1_PI;
-
-/// Where the direct light at a diffuse hit comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DirectLight {
-    /// From the photons of kind direct, like all other light.
-    Photons,
-    /// From one shadow ray per light; the estimator's options must then leave photons of kind
-    /// direct out ([`pm_kdtree::KindMask::NOT_DIRECT`]).
-    ShadowRays,
-}
 
 /// Irradiance at `hit` from the photon map of its part with `estimator` (zero when that map
 /// is missing): the read that every photon-map source shares.
@@ -33,6 +23,21 @@ pub fn map_irradiance<E: Estimator + ?Sized>(
     hit: &Hit,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
+    map_estimate(scene, maps, estimator, options, &Irradiance, hit, scratch)
+}
+
+/// `estimator`'s estimate with `weight` at `hit` (its shading normal, its side) from the
+/// photons and polygons of the hit's own map (zero when that map is missing).
+#[inline]
+pub(crate) fn map_estimate<E: Estimator + ?Sized>(
+    scene: &Scene,
+    maps: &PhotonMaps,
+    estimator: &E,
+    options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
+    hit: &Hit,
+    scratch: &mut EstimatorScratch,
+) -> Vec3 {
     let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
         return Vec3::ZERO;
     };
@@ -40,17 +45,18 @@ pub fn map_irradiance<E: Estimator + ?Sized>(
         tree: map.tree(),
         polygons: map.geometry(),
     };
-    estimate_at(scene, estimator, view, options, hit, scratch)
+    estimate_at(scene, estimator, view, options, weight, hit, scratch)
 }
 
-/// `estimator`'s irradiance at `hit` (its shading normal, its side) from the photons and
-/// polygons of `view`.
+/// `estimator`'s estimate with `weight` at `hit` (its shading normal, its side) from the
+/// photons and polygons of `view`.
 #[inline]
 pub(crate) fn estimate_at<E: Estimator + ?Sized>(
     scene: &Scene,
     estimator: &E,
     view: MapView<'_>,
     options: &EstimatorOptions,
+    weight: &dyn PhotonWeight,
     hit: &Hit,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
@@ -59,11 +65,12 @@ pub(crate) fn estimate_at<E: Estimator + ?Sized>(
         normal: scene.shading_normal_at(hit),
         front_face: hit.front_face,
     };
-    estimator.irradiance(at, view, options, scratch)
+    estimator.estimate(at, view, options, weight, scratch)
 }
 
-/// Radiance `ρ/π · E` at the first diffuse hit, `E` a k-nearest estimate in the hit's own map
-/// (plus shadow rays, by [`DirectLight`]). Textures are averaged over the pixel's footprint
+/// Radiance at the first non-delta hit from a k-nearest estimate in the hit's own map (plus
+/// shadow rays, by [`DirectLight`]): `ρ/π · E` on a diffuse surface, `Σ Φ_p f(wo, wi_p) / A`
+/// on one with a glossy lobe (see [`crate::estimator`]). Textures are averaged over the pixel's footprint
 /// there: its width at the distance travelled, stretched on a tilted surface.
 #[derive(Clone, Copy, Debug)]
 pub struct PhotonMapSource<'a, E> {
@@ -92,12 +99,21 @@ impl<E: Estimator> RadianceSource for PhotonMapSource<'_, E> {
         let (scene, hit) = (self.scene, &vertex.hit);
         // The pixel's footprint: its width at this distance, stretched on a tilted surface
         // (by the square root of 1/cos, between the ellipse's two axes).
-        let cos = (-vertex.ray.direction.dot(hit.normal)).max(1e-3);
-        let albedo = scene.albedo_over(hit, vertex.distance * self.pixel_angle / cos.sqrt());
-        let mut e = map_irradiance(scene, self.maps, self.estimator, self.options, hit, scratch);
-        if self.direct == DirectLight::ShadowRays {
-            e += direct_irradiance(scene, hit, rng);
-        }
-        albedo * FRAC_1_PI * e
+        let albedo = || {
+            let cos = (-vertex.ray.direction.dot(hit.normal)).max(1e-3);
+            scene.albedo_over(hit, vertex.distance * self.pixel_angle / cos.sqrt())
+        };
+        let wo = -vertex.ray.direction;
+        photon_radiance(scene, hit, wo, albedo, self.direct, rng, |weight| {
+            map_estimate(
+                scene,
+                self.maps,
+                self.estimator,
+                self.options,
+                weight,
+                hit,
+                scratch,
+            )
+        })
     }
 }

@@ -373,6 +373,11 @@ impl Bsdf for MetallicRoughness {
         })
     }
 
+    /// The roughness, while the specular (glossy) lobe is present.
+    fn glossy_roughness(&self) -> Option<f32> {
+        self.has_specular().then_some(self.roughness)
+    }
+
     /// An estimate, each channel in `[0, 1]`: the Fresnel-weighted lobes at `wo·H = cos θo`
     /// (see [`MetallicRoughness`]), which ignores the microfacets' shadowing and so overestimates
     /// the true albedo at high roughness; the photon tracer's roulette is unbiased for any

@@ -37,17 +37,22 @@
 //! - [`Bsdf::lobes`] decides the path: a surface with only delta lobes is followed through
 //!   (the render core's delta chain, the photon tracer's specular bounces); a surface with a
 //!   diffuse or glossy lobe stores photons and is where radiance is read.
-//! - [`Bsdf::diffuse_albedo`] is what the photon-map estimators read there: radiance
-//!   `ρ_d/π · E` from the irradiance `E` (so a Lambertian surface renders exactly as before).
-//!   Glossy lobes are not read by the estimators yet; `eval` is what a glossy estimate
-//!   `Σ Φ_p f(wo, wi_p)` will use.
+//!   A surface with no diffuse lobe whose [`Bsdf::glossy_roughness`] is below the render
+//!   core's near-specular threshold is followed through too, by sampling the BSDF.
+//! - Where a surface has a glossy lobe, [`Bsdf::eval`] is what every photon-map estimate
+//!   reads: radiance `Σ Φ_p f(wo, wi_p) / A` with `wi_p` the direction a photon came from
+//!   (the whole `f`, diffuse lobe included); the final gather samples its gather rays from
+//!   [`Bsdf::sample`] there and shadow rays evaluate `f` per light.
+//! - [`Bsdf::diffuse_albedo`] is what the photon-map estimators read where the non-delta part
+//!   is diffuse only: radiance `ρ_d/π · E` from the irradiance `E` (so a Lambertian surface
+//!   renders exactly as before), and what the irradiance cache is multiplied by.
 //! - [`Bsdf::albedo`] (the directional albedo, reflection plus transmission) is the photon
 //!   tracer's Russian roulette probability; the sampled [`BsdfSample::weight`] then carries the
 //!   photon's power, so the roulette is unbiased for any albedo in `(0, 1]` reported.
-//! - The path tracer's next-event estimation reads the diffuse lobe (`diffuse_albedo/π` times
-//!   the light's irradiance, combined by multiple importance sampling with cosine-distributed
-//!   bounces); it is exact for BSDFs whose non-delta part is one Lambertian lobe sampled by
-//!   the cosine, as the built-ins and the example below are.
+//! - The path tracer's next-event estimation evaluates `f` per light sample on a BSDF with a
+//!   glossy lobe, and reads the diffuse lobe (`diffuse_albedo/π` times the light's irradiance,
+//!   combined by multiple importance sampling with cosine-distributed bounces) on one whose
+//!   non-delta part is one Lambertian lobe sampled by the cosine, as the example below is.
 //!
 //! # Example: a renderer author's own BSDF
 //!
@@ -164,6 +169,16 @@ pub trait Bsdf: Send + Sync + std::fmt::Debug {
     /// The directional albedo for light leaving towards `wo`: `∫ f(wo, wi) |cos θi| dwi` plus
     /// the delta lobes' reflectance and transmittance (the photon tracer's Russian roulette).
     fn albedo(&self, at: &ShadingPoint, wo: Vec3) -> Vec3;
+
+    /// The perceptual roughness (glTF's, `α = roughness²`) of this BSDF's sharpest glossy
+    /// lobe, or `None` (the default) without a glossy lobe or where it has no such number.
+    /// The render core follows a camera path through a surface with no diffuse lobe whose
+    /// glossy roughness is below its near-specular threshold (pbrt-v4's rule), sampling the
+    /// BSDF there instead of reading photons; `None` is never near-specular.
+    #[inline]
+    fn glossy_roughness(&self) -> Option<f32> {
+        None
+    }
 
     /// The reflectance `ρ_d` of the diffuse lobe (its `f = ρ_d/π`): what the photon-map
     /// estimators multiply irradiance by, `ρ_d/π · E`. Zero (the default) without a diffuse

@@ -3,6 +3,7 @@
 mod accordion;
 pub mod box_mesh;
 mod cornell;
+pub mod glossy_cornell;
 mod rooms;
 pub mod scale;
 mod solids;
@@ -13,13 +14,15 @@ pub use solids::{SOLID_NAMES, solid_rooms_gap};
 use crate::error::SceneError;
 use crate::scene::Scene;
 
-/// Names of the built-in scenes, in the order of Ball & Stejko's report.
-pub const NAMES: [&str; 5] = [
+/// Names of the built-in scenes: those of Ball & Stejko's report, in its order, then the
+/// glossy Cornell box ([`glossy_cornell`]).
+pub const NAMES: [&str; 6] = [
     "cornell-box",
     "lit-unlit-rooms",
     "colored-rooms",
     "accordion",
     "touching-rooms",
+    "glossy-cornell-box",
 ];
 
 /// Builds the built-in scene `name`: one of the report's [`NAMES`], one of the [`SOLID_NAMES`]
@@ -39,6 +42,7 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
         "colored-rooms" => rooms::colored_rooms(),
         "accordion" => accordion::accordion(),
         "touching-rooms" => rooms::touching_rooms(),
+        "glossy-cornell-box" => glossy_cornell::glossy_cornell_box(),
         _ => solids::solid_rooms(name)
             .or_else(|| build_scale(name))
             .unwrap_or_else(|| {
