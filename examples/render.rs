@@ -192,14 +192,6 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), String> {
-    // The contact split runs on the current rayon pool (the renderers make their own): the
-    // global pool takes the thread count asked for.
-    if args.threads > 0 {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(args.threads)
-            .build_global()
-            .map_err(|e| format!("--threads {}: {e}", args.threads))?;
-    }
     if !args.merge.is_empty() {
         return progressive::merge(args, &args.merge);
     }
@@ -222,6 +214,14 @@ fn run(args: &Args) -> Result<(), String> {
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;
+    // The contact split runs on the current rayon pool (the renderers make their own): the
+    // global pool takes the thread count asked for.
+    if args.threads > 0 {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(args.threads)
+            .build_global()
+            .map_err(|e| format!("--threads {}: {e}", args.threads))?;
+    }
     if args.compare {
         // The 2×2 grid is checked with the settings, not after four renders.
         check_image_size(2 * width, 2 * height).map_err(|e| format!("--compare grid: {e}"))?;
