@@ -184,7 +184,7 @@ impl MetallicRoughness {
     /// and factors one) it is `self`, bit for bit.
     #[inline]
     pub fn at_point(&self, at: &ShadingPoint) -> MetallicRoughness {
-        let unit = |x: f32| x.max(0.0).min(1.0);
+        let unit = |x: f32| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
         MetallicRoughness {
             base_color: self.base_color * at.tint,
             metallic: unit(self.metallic * at.factors.metallic),

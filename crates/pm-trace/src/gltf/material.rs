@@ -109,11 +109,6 @@ pub(super) fn map_material(
 mod tests {
     use super::*;
 
-    fn kind_of(json: &str) -> Material {
-        let m: json::Material = material_from(json);
-        map_material(Some(&m), &GltfOptions::default()).unwrap().kind
-    }
-
     fn material_from(text: &str) -> json::Material {
         json::deserialize::from_str(text).expect("test material parses")
     }
