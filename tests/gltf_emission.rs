@@ -17,7 +17,9 @@ mod gltf_data_uri;
 mod unit_cube_room;
 use gltf_data_uri::{emitter_quad, gltf, png, png_image, room};
 
-const BLACK: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1],"metallicFactor":0}}"#;
+/// A perfect absorber: black, metallic 0 and `KHR_materials_specular`'s factor 0 (without it
+/// Appendix B keeps a dielectric's 4 % Fresnel layer, and the walls would reflect).
+const BLACK: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1],"metallicFactor":0},"extensions":{"KHR_materials_specular":{"specularFactor":0}}}"#;
 
 fn emissive(factor: [f32; 3], strength: f32, texture: bool, double_sided: bool) -> String {
     let texture = if texture {
@@ -26,7 +28,7 @@ fn emissive(factor: [f32; 3], strength: f32, texture: bool, double_sided: bool) 
         ""
     };
     format!(
-        r#"{{"pbrMetallicRoughness":{{"baseColorFactor":[0,0,0,1],"metallicFactor":0}},"emissiveFactor":{factor:?}{texture},"doubleSided":{double_sided},"extensions":{{"KHR_materials_emissive_strength":{{"emissiveStrength":{strength}}}}}}}"#
+        r#"{{"pbrMetallicRoughness":{{"baseColorFactor":[0,0,0,1],"metallicFactor":0}},"emissiveFactor":{factor:?}{texture},"doubleSided":{double_sided},"extensions":{{"KHR_materials_emissive_strength":{{"emissiveStrength":{strength}}},"KHR_materials_specular":{{"specularFactor":0}}}}}}"#
     )
 }
 

@@ -97,7 +97,8 @@ fn room(offset: [f32; 3], colours: Option<&Colours>, material: &str) -> String {
     )
 }
 
-const GREY: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":0}}"#;
+/// Grey Lambertian (`KHR_materials_specular`'s factor 0: no Fresnel layer, albedo = base).
+const GREY: &str = r#"{"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":0},"extensions":{"KHR_materials_specular":{"specularFactor":0}}}"#;
 
 impl Scratch {
     fn load(&self, name: &str, json: &str) -> Result<pm_trace::Scene, GltfError> {

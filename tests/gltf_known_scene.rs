@@ -6,6 +6,7 @@ use std::path::Path;
 
 use glam::Vec3;
 use pm_trace::Material;
+use pm_trace::bsdf::MetallicRoughness;
 use pm_trace::gltf::{GltfCamera, GltfLight, GltfOptions, read_content};
 
 const SCENES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gltf/scenes");
@@ -62,17 +63,17 @@ fn known_scene_maps_transforms_materials_lights_and_camera() {
     assert_eq!(c.meshes[0].triangles, vec![[0, 1, 2]]);
 
     let kinds: Vec<Material> = c.meshes.iter().map(|m| m.material.kind).collect();
-    assert_eq!(
-        kinds[0],
-        Material::Lambertian {
-            albedo: Vec3::new(0.5, 0.25, 0.125)
-        }
-    );
-    assert!(
-        matches!(kinds[1], Material::Mirror { reflectance } if close(reflectance, Vec3::new(0.9, 0.8, 0.7)))
-    );
+    // glTF 2.0 Appendix B, factor for factor: "paint" (metallic 0, roughness 0.8) is a
+    // dielectric, "chrome" (metallic 1, roughness 0.05) a smooth metal, "lamp" (no
+    // pbrMetallicRoughness: the defaults) and mesh 4 (no material) rough white metals.
+    let mr = |base: Vec3, metallic: f32, roughness: f32| {
+        Material::MetallicRoughness(MetallicRoughness::new(base, metallic, roughness).unwrap())
+    };
+    assert_eq!(kinds[0], mr(Vec3::new(0.5, 0.25, 0.125), 0.0, 0.8));
+    assert_eq!(kinds[1], mr(Vec3::new(0.9, 0.8, 0.7), 1.0, 0.05));
     assert_eq!(kinds[2], Material::Glass { ior: 1.33 });
-    assert_eq!(kinds[3], Material::Lambertian { albedo: Vec3::ONE });
+    assert_eq!(kinds[3], mr(Vec3::ONE, 1.0, 1.0));
+    assert_eq!(kinds[4], mr(Vec3::ONE, 1.0, 1.0));
     assert_eq!(c.meshes[3].material.emission, Vec3::new(8.0, 4.0, 2.0));
     assert_eq!(c.meshes[4].material_index, None);
     assert!(c.meshes.iter().take(3).all(|m| m.material.emission == Vec3::ZERO));

@@ -55,9 +55,11 @@ fn transformed_coordinates_read_the_texel_the_closed_form_names() {
         Vec3::new(1.0, 0.0, 0.0),
     ];
     let uvs = corners.map(|c| Vec2::new(c.x, c.z));
+    // Lambertian (specular factor 0): the albedo is the texel itself.
     let material = format!(
         r#"{{"pbrMetallicRoughness":{{"metallicFactor":0,"baseColorTexture":{{"index":0,"texCoord":0,
-            "extensions":{{"KHR_texture_transform":{{"offset":[{},{}],"rotation":{ROTATION},"scale":[{},{}],"texCoord":1}}}}}}}}}}"#,
+            "extensions":{{"KHR_texture_transform":{{"offset":[{},{}],"rotation":{ROTATION},"scale":[{},{}],"texCoord":1}}}}}}}},
+            "extensions":{{"KHR_materials_specular":{{"specularFactor":0}}}}}}"#,
         OFFSET[0], OFFSET[1], SCALE[0], SCALE[1]
     );
     let file = write_quads_gltf(&dir, &[Quad { corners, uvs }], &material, "atlas.png", &[], "");

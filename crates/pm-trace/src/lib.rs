@@ -133,7 +133,7 @@ pub mod texture_transform;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 
-pub use bsdf::{Bsdf, BsdfSample, Lobes, ShadingPoint};
+pub use bsdf::{Bsdf, BsdfSample, Lobes, ShadingPoint, TextureFactors};
 pub use camera::Camera;
 pub use emission::EmissionTexture;
 pub use error::{MapError, MaterialError, PhotonFault, SceneError, TraceError};
@@ -155,10 +155,10 @@ pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
 pub use scene::{
-    Hit, MAX_SCENE_TRIANGLES, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene, SceneBuilder, SceneMesh,
-    VertexAttributes,
+    Hit, MAX_SCENE_TRIANGLES, MetallicRoughnessTexture, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene,
+    SceneBuilder, SceneMesh, VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use sides::Sides;
-pub use texture::{Sampler, Texture, Wrap};
+pub use texture::{Sampler, TexelEncoding, Texture, Wrap};
 pub use texture_transform::TextureTransform;

@@ -1,24 +1,56 @@
-//! Colour textures and their sampling: 8-bit sRGB texels decoded to linear RGB, wrap modes,
-//! bilinear filtering and a box-filtered mip chain for textures seen from afar, as glTF's
-//! base-colour textures need.
+//! Textures and their sampling: 8-bit texels (sRGB-encoded colour or linear data) decoded to
+//! linear values, wrap modes, bilinear filtering and a box-filtered mip chain for textures
+//! seen from afar, as glTF's base-colour and metallic-roughness textures need.
 
 use std::sync::LazyLock;
 
 use glam::{Vec2, Vec3};
 
-/// An RGB image stored as 8-bit sRGB texels (3 bytes a texel), sampled in linear RGB, with
-/// its mip chain: each level half the size of the one before (rounded up), each texel the
-/// mean in linear RGB of the 2×2 texels below it (of those that exist: along the last row or
+/// An RGB image stored as 8-bit texels (3 bytes a texel, sRGB-encoded or linear: its
+/// [`TexelEncoding`]), sampled as linear values, with its mip chain: each level half the size
+/// of the one before (rounded up), each texel the mean in linear values of the 2×2 texels
+/// below it (of those that exist: along the last row or
 /// column of an odd size those texels weigh a little more), down to 1×1. The chain takes a
 /// third more memory than the image.
 #[derive(Clone, PartialEq)]
 pub struct Texture {
     width: u32,
     height: u32,
-    /// Row-major, top row first, `[r, g, b]` sRGB-encoded.
+    /// Row-major, top row first, `[r, g, b]` encoded by `encoding`.
     texels: Vec<[u8; 3]>,
+    /// How the bytes encode values.
+    encoding: TexelEncoding,
     /// Levels 1, 2, … of the mip chain.
     mips: Vec<Level>,
+}
+
+/// How a texture's 8-bit codes encode values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TexelEncoding {
+    /// The sRGB transfer function (colour: glTF's base-colour and emissive textures).
+    #[default]
+    Srgb,
+    /// Linear, `code / 255` (data: glTF's metallic-roughness texture).
+    Linear,
+}
+
+impl TexelEncoding {
+    /// The value of each 8-bit code.
+    #[inline]
+    fn table(self) -> &'static [f32; 256] {
+        match self {
+            TexelEncoding::Srgb => &SRGB_TO_LINEAR,
+            TexelEncoding::Linear => &LINEAR,
+        }
+    }
+
+    /// The code whose value is nearest `value` (clamped to `[0, 1]`).
+    fn encode(self, value: f32) -> u8 {
+        match self {
+            TexelEncoding::Srgb => linear_to_srgb(value),
+            TexelEncoding::Linear => (value.clamp(0.0, 1.0) * 255.0).round() as u8,
+        }
+    }
 }
 
 /// One level of a mip chain.
@@ -35,16 +67,18 @@ struct LevelRef<'a> {
     width: u32,
     height: u32,
     texels: &'a [[u8; 3]],
+    encoding: TexelEncoding,
 }
 
 impl LevelRef<'_> {
     #[inline]
     fn texel(&self, x: u32, y: u32) -> Vec3 {
         let [r, g, b] = self.texels[(y as usize) * self.width as usize + x as usize];
-        Vec3::new(srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b))
+        let table = self.encoding.table();
+        Vec3::new(table[r as usize], table[g as usize], table[b as usize])
     }
 
-    /// The level below this one: 2×2 blocks averaged in linear RGB, re-encoded as sRGB.
+    /// The level below this one: 2×2 blocks averaged in linear values, re-encoded.
     fn halved(&self) -> Level {
         let (width, height) = (self.width.div_ceil(2), self.height.div_ceil(2));
         let mut texels = Vec::with_capacity(width as usize * height as usize);
@@ -63,7 +97,7 @@ impl LevelRef<'_> {
                         n += 1.0;
                     }
                 }
-                texels.push((sum / n).to_array().map(linear_to_srgb));
+                texels.push((sum / n).to_array().map(|v| self.encoding.encode(v)));
             }
         }
         Level {
@@ -92,6 +126,9 @@ static SRGB_TO_LINEAR: LazyLock<[f32; 256]> = LazyLock::new(|| {
     })
 });
 
+/// `code / 255` for every 8-bit code.
+static LINEAR: LazyLock<[f32; 256]> = LazyLock::new(|| std::array::from_fn(|i| i as f32 / 255.0));
+
 /// The linear value of an 8-bit sRGB code.
 pub fn srgb_to_linear(code: u8) -> f32 {
     SRGB_TO_LINEAR[code as usize]
@@ -112,6 +149,17 @@ impl Texture {
     /// A texture from `width × height` sRGB texels, row-major with the top row first; `None`
     /// when the sizes disagree or either is zero.
     pub fn from_srgb8(width: u32, height: u32, texels: Vec<[u8; 3]>) -> Option<Self> {
+        Self::from_texels(width, height, texels, TexelEncoding::Srgb)
+    }
+
+    /// A texture from `width × height` texels encoded by `encoding`, row-major with the top
+    /// row first; `None` when the sizes disagree or either is zero.
+    pub fn from_texels(
+        width: u32,
+        height: u32,
+        texels: Vec<[u8; 3]>,
+        encoding: TexelEncoding,
+    ) -> Option<Self> {
         let count = (width as u64).checked_mul(height as u64)?;
         if count == 0 || count != texels.len() as u64 {
             return None;
@@ -120,6 +168,7 @@ impl Texture {
             width,
             height,
             texels,
+            encoding,
             mips: Vec::new(),
         };
         let mut level = texture.level(0);
@@ -139,6 +188,7 @@ impl Texture {
                 width: self.width,
                 height: self.height,
                 texels: &self.texels,
+                encoding: self.encoding,
             },
             Some(m) => {
                 let l = &self.mips[m];
@@ -146,9 +196,25 @@ impl Texture {
                     width: l.width,
                     height: l.height,
                     texels: &l.texels,
+                    encoding: self.encoding,
                 }
             }
         }
+    }
+
+    /// How the texels encode values.
+    pub fn encoding(&self) -> TexelEncoding {
+        self.encoding
+    }
+
+    /// The same image with its codes read by `encoding` (its mip chain rebuilt); a copy of
+    /// this one when the encoding is already `encoding`.
+    pub fn with_encoding(&self, encoding: TexelEncoding) -> Self {
+        if encoding == self.encoding {
+            return self.clone();
+        }
+        Self::from_texels(self.width, self.height, self.texels.clone(), encoding)
+            .unwrap_or_else(|| self.clone())
     }
 
     /// Levels of the mip chain below the image (0 for a 1×1 texture).
@@ -182,8 +248,9 @@ impl Texture {
     /// The mean linear colour over all texels (what a uniform surface of the same total
     /// reflectance would have).
     pub fn mean(&self) -> Vec3 {
+        let table = self.encoding.table();
         let sum = self.texels.iter().fold(glam::DVec3::ZERO, |acc, &[r, g, b]| {
-            acc + Vec3::new(srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b)).as_dvec3()
+            acc + Vec3::new(table[r as usize], table[g as usize], table[b as usize]).as_dvec3()
         });
         (sum / self.texels.len() as f64).as_vec3()
     }
@@ -361,5 +428,20 @@ mod tests {
         assert_eq!(s.sample(&t, Vec2::new(0.25, 0.5)), Vec3::ZERO);
         assert_eq!(s.sample(&t, Vec2::new(0.75, 0.5)), Vec3::ONE);
         assert!(Texture::from_srgb8(2, 2, vec![[0, 0, 0]]).is_none());
+    }
+
+    #[test]
+    fn linear_texels_read_code_over_255_and_average_linearly() {
+        let texels = vec![[0, 51, 254], [254, 102, 0]];
+        let t = Texture::from_texels(2, 1, texels.clone(), TexelEncoding::Linear).unwrap();
+        assert_eq!(t.texel(0, 0), Vec3::new(0.0, 0.2, 254.0 / 255.0));
+        assert_eq!(t.texel(1, 0), Vec3::new(254.0 / 255.0, 0.4, 0.0));
+        // The 1×1 mip: the mean of the values, re-encoded linearly.
+        let far = Sampler::default().sample_footprint(&t, Vec2::new(0.5, 0.5), 4.0);
+        assert!((far - Vec3::new(127.0, 76.5, 127.0) / 255.0).abs().max_element() <= 0.5 / 255.0);
+        // The same bytes as sRGB read differently; re-reading them linearly is `t`.
+        let srgb = Texture::from_srgb8(2, 1, texels).unwrap();
+        assert_eq!(srgb.texel(0, 0).y, srgb_to_linear(51));
+        assert!(srgb.with_encoding(TexelEncoding::Linear) == t);
     }
 }

@@ -17,7 +17,9 @@ use std::f32::consts::FRAC_1_PI;
 /// # The BRDF (Appendix B, height-correlated Smith visibility)
 ///
 /// With `α = roughness²` (at least [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA)), `H` the half-vector of `wo` and `wi`,
-/// `w = (1 − |wo·H|)⁵`, `base = baseColor · tint` and the [`TrowbridgeReitz`] `D` and `V`:
+/// `w = (1 − |wo·H|)⁵`, `base = baseColor · tint` and the [`TrowbridgeReitz`] `D` and `V`
+/// (`metallic` and `roughness` are the factors times the point's textures:
+/// [`MetallicRoughness::at_point`]):
 ///
 /// ```text
 /// specular_brdf   = V · D
@@ -176,6 +178,21 @@ impl MetallicRoughness {
         self.specular_color
     }
 
+    /// This material at `at`: the base colour times the point's tint, metallic and roughness
+    /// times its [`TextureFactors`](super::shading_point::TextureFactors) (each kept in
+    /// `[0, 1]`, a NaN read as 0). Every [`Bsdf`] method evaluates this; with no texture (tint
+    /// and factors one) it is `self`, bit for bit.
+    #[inline]
+    pub fn at_point(&self, at: &ShadingPoint) -> MetallicRoughness {
+        let unit = |x: f32| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+        MetallicRoughness {
+            base_color: self.base_color * at.tint,
+            metallic: unit(self.metallic * at.factors.metallic),
+            roughness: unit(self.roughness * at.factors.roughness),
+            ..*self
+        }
+    }
+
     /// The microfacet distribution, `α = roughness²` raised to [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA).
     pub fn distribution(&self) -> TrowbridgeReitz {
         TrowbridgeReitz::new(self.roughness * self.roughness)
@@ -318,7 +335,10 @@ impl MetallicRoughness {
 
 impl Bsdf for MetallicRoughness {
     /// Glossy reflection unless `metallic` and `specular` are both 0; diffuse reflection unless
-    /// the surface is a pure metal, black, or its dielectric Fresnel is one everywhere.
+    /// the surface is a pure metal, black, or its dielectric Fresnel is one everywhere. These
+    /// are the factors' lobes: a point's [`TextureFactors`](super::shading_point::TextureFactors)
+    /// can only lower metallic and roughness, so a textured surface may lack the glossy lobe
+    /// at a point (metallic 0 there, specular 0) or gain a diffuse one (metallic below one).
     fn lobes(&self) -> Lobes {
         let glossy = if self.has_specular() {
             Lobes::GLOSSY_REFLECTION
@@ -335,36 +355,39 @@ impl Bsdf for MetallicRoughness {
 
     fn eval(&self, at: &ShadingPoint, wo: Vec3, wi: Vec3) -> Vec3 {
         let frame = Frame::at(at, wo);
-        self.eval_local(self.base_color * at.tint, frame.to_local(wo), frame.to_local(wi))
+        let m = self.at_point(at);
+        m.eval_local(m.base_color, frame.to_local(wo), frame.to_local(wi))
     }
 
     fn pdf(&self, at: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
         let frame = Frame::at(at, wo);
-        self.pdf_local(self.base_color * at.tint, frame.to_local(wo), frame.to_local(wi))
+        let m = self.at_point(at);
+        m.pdf_local(m.base_color, frame.to_local(wo), frame.to_local(wi))
     }
 
     /// The specular lobe when `u_lobe` is below its probability, else the diffuse one; `None`
     /// when `wo` is below the lobe normal or a specular reflection goes below the surface.
     fn sample(&self, at: &ShadingPoint, wo: Vec3, u: Vec2, u_lobe: f32) -> Option<BsdfSample> {
         let frame = Frame::at(at, wo);
-        let base = self.base_color * at.tint;
+        let m = self.at_point(at);
+        let base = m.base_color;
         let lo = frame.to_local(wo);
         if lo.z <= 0.0 {
             return None;
         }
-        let p = self.specular_probability(base, lo.z);
+        let p = m.specular_probability(base, lo.z);
         let (li, lobe) = if u_lobe < p {
-            let h = self.distribution().sample_visible_normal(lo, u);
+            let h = m.distribution().sample_visible_normal(lo, u);
             (2.0 * lo.dot(h) * h - lo, Lobes::GLOSSY_REFLECTION)
         } else {
             let li = cosine_hemisphere_in_frame(Vec3::X, Vec3::Y, Vec3::Z, u);
             (li, Lobes::DIFFUSE_REFLECTION)
         };
-        let pdf = self.pdf_local(base, lo, li);
+        let pdf = m.pdf_local(base, lo, li);
         if li.z <= 0.0 || pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
-        let weight = self.eval_local(base, lo, li) * li.z / pdf;
+        let weight = m.eval_local(base, lo, li) * li.z / pdf;
         weight.is_finite().then(|| BsdfSample {
             wi: frame.to_world(li),
             weight,
@@ -388,8 +411,8 @@ impl Bsdf for MetallicRoughness {
         if cos_o <= 0.0 {
             return Vec3::ZERO;
         }
-        let base = self.base_color * at.tint;
-        let (specular, diffuse) = self.lobe_albedos(base, cos_o);
+        let m = self.at_point(at);
+        let (specular, diffuse) = m.lobe_albedos(m.base_color, cos_o);
         (specular + diffuse).min(Vec3::ONE)
     }
 
@@ -397,6 +420,7 @@ impl Bsdf for MetallicRoughness {
     /// base`: the Lambertian part the estimators read as `ρ_d/π · E` (its `1 − max F` falls
     /// towards grazing angles, which this ignores).
     fn diffuse_albedo(&self, at: &ShadingPoint) -> Vec3 {
-        (1.0 - self.metallic) * (1.0 - self.dielectric_f0().max_element()) * self.base_color * at.tint
+        let m = self.at_point(at);
+        (1.0 - m.metallic) * (1.0 - m.dielectric_f0().max_element()) * m.base_color
     }
 }

@@ -6,7 +6,8 @@
 //!
 //! - **World space, with the normals at hand.** Every method takes a [`ShadingPoint`]: the
 //!   unit geometric normal, the unit shading normal (interpolated vertex normals, on the
-//!   geometric normal's side), whether the front was hit, the texture tint and the position.
+//!   geometric normal's side), whether the front was hit, the texture tint, the material's
+//!   textured factors ([`TextureFactors`]) and the position.
 //!   Directions are world-space unit vectors. World space, not a local frame, because the
 //!   renderer keeps two normals apart: a bounce is made about the shading normal, but the
 //!   geometric normal decides sides (a mirror or glass bounce falls back to it near a coarse
@@ -111,7 +112,7 @@ pub use lobes::Lobes;
 pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{MIN_ALPHA, TrowbridgeReitz};
 pub use mirror::Mirror;
-pub use shading_point::ShadingPoint;
+pub use shading_point::{ShadingPoint, TextureFactors};
 
 use crate::rng::Rng;
 use glam::{Vec2, Vec3};

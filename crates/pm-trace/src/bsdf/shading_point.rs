@@ -1,5 +1,6 @@
-//! The surface point a BSDF is evaluated at: its position, geometric and shading normals, side
-//! and texture tint, all a world-space BSDF needs from the hit (`Scene::shading_point` makes it).
+//! The surface point a BSDF is evaluated at: its position, geometric and shading normals, side,
+//! texture tint and textured material factors, all a world-space BSDF needs from the hit
+//! (`Scene::shading_point` makes it).
 
 use glam::Vec3;
 
@@ -18,6 +19,28 @@ pub struct ShadingPoint {
     /// The base-colour texture and vertex colours at the point (one where the mesh has none):
     /// the built-ins multiply their reflectance by it.
     pub tint: Vec3,
+    /// The material's parameter textures at the point (all one where the mesh has none):
+    /// [`crate::bsdf::MetallicRoughness`] multiplies its factors by them.
+    pub factors: TextureFactors,
+}
+
+/// What a material's parameter textures say at a point, as factors of the material's own
+/// parameters (glTF's `metallicRoughnessTexture`: blue channel × `metallicFactor`, green ×
+/// `roughnessFactor`). Each in `[0, 1]`; [`TextureFactors::ONE`] leaves the material as it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureFactors {
+    /// Multiplies the metalness.
+    pub metallic: f32,
+    /// Multiplies the perceptual roughness.
+    pub roughness: f32,
+}
+
+impl TextureFactors {
+    /// No texture: every factor one.
+    pub const ONE: TextureFactors = TextureFactors {
+        metallic: 1.0,
+        roughness: 1.0,
+    };
 }
 
 impl ShadingPoint {
@@ -31,6 +54,7 @@ impl ShadingPoint {
             shading: normal,
             front_face: true,
             tint: Vec3::ONE,
+            factors: TextureFactors::ONE,
         }
     }
 }

@@ -16,10 +16,12 @@ use super::compact::{gather, keep_referenced};
 use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
 use super::material::{GltfMaterial, map_material};
+use super::metallic_roughness::metallic_roughness_texture;
 use super::options::GltfOptions;
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use crate::emission::EmissionTexture;
-use crate::texture::{Sampler, Texture};
+use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
+use crate::texture::{Sampler, TexelEncoding, Texture};
 
 /// A triangle primitive in its mesh's space, only the vertices its triangles use.
 #[derive(Debug)]
@@ -34,6 +36,7 @@ pub(super) struct LocalPrimitive {
     pub(super) normals: Option<Vec<Vec3>>,
     pub(super) base_color_texture: Option<(Arc<Texture>, Sampler)>,
     pub(super) emission_texture: Option<EmissionTexture>,
+    pub(super) metallic_roughness_texture: Option<MetallicRoughnessTexture>,
 }
 
 /// A texture with the sampler that reads it.
@@ -74,6 +77,8 @@ pub(super) fn decode_primitive(
     let (base_color_texture, uvs) =
         base_color_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
     let emission = emission_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
+    let metallic_roughness =
+        metallic_roughness_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
     let colors = vertex_colors(reader, prim)?;
     let normals = vertex_normals(reader, prim)?;
     let n = positions.len();
@@ -86,6 +91,10 @@ pub(super) fn decode_primitive(
             (
                 "emissive texture coordinates",
                 emission.as_ref().map(|e| e.uvs.len()),
+            ),
+            (
+                "metallic-roughness texture coordinates",
+                metallic_roughness.as_ref().map(|t| t.uvs.len()),
             ),
             ("colours", colors.as_ref().map(Vec::len)),
             ("normals", normals.as_ref().map(Vec::len)),
@@ -106,6 +115,10 @@ pub(super) fn decode_primitive(
         emission_texture: emission.map(|e| EmissionTexture {
             uvs: gather(&e.uvs, &kept),
             ..e
+        }),
+        metallic_roughness_texture: metallic_roughness.map(|t| MetallicRoughnessTexture {
+            uvs: gather(&t.uvs, &kept),
+            ..t
         }),
     })))
 }
@@ -170,7 +183,7 @@ fn check_attribute_lengths(
     file: &Path,
     at: (usize, usize),
     n: usize,
-    lengths: [(&str, Option<usize>); 4],
+    lengths: [(&str, Option<usize>); 5],
 ) -> Result<(), GltfError> {
     for (what, len) in lengths {
         if let Some(len) = len.filter(|&len| len != n) {
@@ -199,7 +212,13 @@ fn base_color_texture(
     let Some(reference) = material.base_color_texture else {
         return Ok((None, None));
     };
-    let loaded = cached_texture(sources, textures, reference.index, scene_bytes)?;
+    let loaded = cached_texture(
+        sources,
+        textures,
+        reference.index,
+        TexelEncoding::Srgb,
+        scene_bytes,
+    )?;
     let uvs = reference.read_uvs(sources.reader, prim)?;
     if uvs.is_some() {
         return Ok((Some(loaded), uvs));

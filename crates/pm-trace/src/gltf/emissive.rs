@@ -15,14 +15,15 @@ use super::image::{load_image, texture_source};
 use super::material::GltfMaterial;
 use super::options::GltfOptions;
 use crate::emission::EmissionTexture;
-use crate::texture::{Sampler, Texture};
+use crate::texture::{Sampler, TexelEncoding, Texture};
 
-/// Decoded images by glTF image index (each decoded once however many textures name it)
-/// and the textures made of them, by texture index.
+/// Decoded images by glTF image index and encoding (each decoded once however many textures
+/// name it, and once more only if one material reads it as colour and another as data) and
+/// the textures made of them, by texture index and encoding.
 #[derive(Default)]
 pub(super) struct TextureCache {
-    images: HashMap<usize, Arc<Texture>>,
-    textures: HashMap<usize, (Arc<Texture>, Sampler)>,
+    images: HashMap<(usize, TexelEncoding), Arc<Texture>>,
+    textures: HashMap<(usize, TexelEncoding), (Arc<Texture>, Sampler)>,
 }
 
 /// Where textures come from: the file, its JSON, its buffers and the loader's limits.
@@ -34,38 +35,46 @@ pub(super) struct TextureSources<'a> {
     pub(super) options: &'a GltfOptions,
 }
 
-/// Texture `texture` from the cache, else its image from the image cache, else decoded (a
-/// broken, missing or too large image is [`GltfError::Image`]; the decode is checked against
-/// what `scene_bytes` leaves of [`GltfOptions::max_scene_bytes`] from the image's header
-/// before it starts) and its bytes added to `scene_bytes`.
+/// Texture `texture` read with `encoding` (sRGB for colour, linear for data) from the cache,
+/// else its image from the image cache, else decoded (a broken, missing or too large image is
+/// [`GltfError::Image`]; the decode is checked against what `scene_bytes` leaves of
+/// [`GltfOptions::max_scene_bytes`] from the image's header before it starts) and its bytes
+/// added to `scene_bytes`.
 pub(super) fn cached_texture(
     sources: &TextureSources<'_>,
     cache: &mut TextureCache,
     texture: usize,
+    encoding: TexelEncoding,
     scene_bytes: &mut u64,
 ) -> Result<(Arc<Texture>, Sampler), GltfError> {
-    if let Some(t) = cache.textures.get(&texture) {
+    if let Some(t) = cache.textures.get(&(texture, encoding)) {
         return Ok(t.clone());
     }
     let (image, sampler) = texture_source(sources.file, sources.root, texture)?;
-    let decoded = match cache.images.get(&image) {
+    let decoded = match cache.images.get(&(image, encoding)) {
         Some(decoded) => decoded.clone(),
         None => {
             let budget = sources.options.max_scene_bytes.saturating_sub(*scene_bytes);
-            let decoded = Arc::new(load_image(
+            let srgb = load_image(
                 sources.file,
                 sources.root,
                 sources.buffers,
                 image,
                 sources.options,
                 budget,
-            )?);
+            )?;
+            let decoded = Arc::new(match encoding {
+                TexelEncoding::Srgb => srgb,
+                TexelEncoding::Linear => srgb.with_encoding(TexelEncoding::Linear),
+            });
             *scene_bytes = scene_bytes.saturating_add(decoded.heap_bytes() as u64);
-            cache.images.insert(image, decoded.clone());
+            cache.images.insert((image, encoding), decoded.clone());
             decoded
         }
     };
-    cache.textures.insert(texture, (decoded.clone(), sampler));
+    cache
+        .textures
+        .insert((texture, encoding), (decoded.clone(), sampler));
     Ok((decoded, sampler))
 }
 
@@ -101,7 +110,7 @@ pub(super) fn emission_texture(
         ));
         return Ok(None);
     };
-    let (texture, sampler) = cached_texture(sources, cache, texture, scene_bytes)?;
+    let (texture, sampler) = cached_texture(sources, cache, texture, TexelEncoding::Srgb, scene_bytes)?;
     Ok(Some(EmissionTexture {
         uvs,
         texture,

@@ -1,23 +1,30 @@
-//! glTF materials to the renderer's three materials plus emission; the mapping is documented
-//! on [`GltfMaterial`] and in the module docs of [`crate::gltf`].
+//! glTF materials to the renderer's materials plus emission and texture references; the
+//! mapping is documented on [`GltfMaterial`] and in the module docs of [`crate::gltf`].
 
 use glam::Vec3;
 use gltf::json;
 
 use super::options::GltfOptions;
+use super::scattering::{default_scattering, scattering};
 use super::texture_ref::TextureRef;
 use crate::material::Material;
 
 /// A glTF material as this loader reads it.
 ///
-/// - `KHR_materials_transmission` with `transmissionFactor ≥ 0.5` → [`Material::Glass`]
-///   with `KHR_materials_ior` (default 1.5; values below 1 also give 1.5);
-/// - else `metallicFactor ≥ 0.9` and `roughnessFactor ≤ 0.1` → [`Material::Mirror`] with
-///   the base colour as reflectance;
-/// - else [`Material::Lambertian`] with the base colour factor as albedo.
+/// `kind` follows glTF 2.0's Appendix B (see the module docs of [`crate::gltf`] for the table):
 ///
-/// The base-colour and emissive textures are read (with `KHR_texture_transform`). `emission`
-/// is `emissiveFactor × emissiveStrength ×`
+/// - `(1 − metallicFactor) · KHR_materials_transmission`'s `transmissionFactor ≥ 0.5` →
+///   [`Material::Glass`] with `KHR_materials_ior` (default 1.5; values below 1 also give 1.5):
+///   smooth, colourless, whatever its roughness (an approximation);
+/// - else `metallicFactor` 0 and `KHR_materials_specular`'s `specularFactor` 0 (how a file says
+///   "pure Lambertian") → [`Material::Lambertian`] with the base colour factor as albedo;
+/// - else [`Material::MetallicRoughness`] with the base colour, metallic and roughness factors,
+///   `KHR_materials_ior` and `KHR_materials_specular`'s factor and colour — at every roughness
+///   (0 is GGX at [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA), not a mirror) and metalness. glTF's
+///   default material (none named) is white, metallic 1, roughness 1: a rough white metal.
+///
+/// The base-colour, metallic-roughness and emissive textures are read (with
+/// `KHR_texture_transform`). `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`LightUnits::emission_factor`](super::LightUnits::emission_factor) `×`
 /// [`GltfOptions::emission_scale`], a radiance in W/(m²·sr), which the emissive texture (if
 /// any) multiplies at each point.
@@ -28,8 +35,13 @@ pub struct GltfMaterial {
     /// Emitted radiance in W/(m²·sr); zero for a surface that does not glow.
     pub emission: Vec3,
     /// The base-colour texture, its `TEXCOORD` set and `KHR_texture_transform`, if the
-    /// material has one; its texels multiply the base colour factor.
+    /// material has one; its texels multiply the base colour factor (of every kind but glass).
     pub base_color_texture: Option<TextureRef>,
+    /// The metallic-roughness texture, if the material has one and `kind` is
+    /// [`Material::MetallicRoughness`] (for the other kinds it would change nothing); its
+    /// blue channel multiplies the metallic factor and its green channel the roughness factor
+    /// at each point, read as linear values.
+    pub metallic_roughness_texture: Option<TextureRef>,
     /// The emissive texture, its `TEXCOORD` set and `KHR_texture_transform`, if the material
     /// has one; its texels multiply `emission`.
     pub emissive_texture: Option<TextureRef>,
@@ -37,23 +49,6 @@ pub struct GltfMaterial {
     /// ([`crate::Sides::Double`]); when clear, camera rays pass through its back
     /// ([`crate::Sides::Single`]).
     pub double_sided: bool,
-}
-
-/// Mirror threshold on `metallicFactor`.
-const MIRROR_MIN_METALLIC: f32 = 0.9;
-/// Mirror threshold on `roughnessFactor`.
-const MIRROR_MAX_ROUGHNESS: f32 = 0.1;
-/// Glass threshold on `transmissionFactor`.
-const GLASS_MIN_TRANSMISSION: f32 = 0.5;
-/// `KHR_materials_ior`'s default.
-const DEFAULT_IOR: f32 = 1.5;
-
-fn finite_or(x: f32, default: f32) -> f32 {
-    if x.is_finite() { x } else { default }
-}
-
-fn clamp01(v: Vec3) -> Vec3 {
-    Vec3::new(finite_or(v.x, 0.0), finite_or(v.y, 0.0), finite_or(v.z, 0.0)).clamp(Vec3::ZERO, Vec3::ONE)
 }
 
 /// Maps a glTF material (or the spec's default material for `None`).
@@ -64,28 +59,16 @@ pub(super) fn map_material(
     let Some(m) = material else {
         // The glTF default material: white base colour, metallic 1, roughness 1.
         return Ok(GltfMaterial {
-            kind: Material::Lambertian { albedo: Vec3::ONE },
+            kind: default_scattering(),
             emission: Vec3::ZERO,
             base_color_texture: None,
+            metallic_roughness_texture: None,
             emissive_texture: None,
             double_sided: false,
         });
     };
     let pbr = &m.pbr_metallic_roughness;
-    let [r, g, b, _] = pbr.base_color_factor.0;
-    let base = clamp01(Vec3::new(r, g, b));
-    let metallic = finite_or(pbr.metallic_factor.0, 1.0);
-    let roughness = finite_or(pbr.roughness_factor.0, 1.0);
     let ext = m.extensions.as_ref();
-    let transmission = ext
-        .and_then(|e| e.transmission.as_ref())
-        .map_or(0.0, |t| finite_or(t.transmission_factor.0, 0.0));
-    let ior = ext.and_then(|e| e.ior.as_ref()).map_or(DEFAULT_IOR, |i| i.ior.0);
-    let ior = if ior.is_finite() && ior >= 1.0 {
-        ior
-    } else {
-        DEFAULT_IOR
-    };
     let strength = ext
         .and_then(|e| e.emissive_strength.as_ref())
         .map_or(1.0, |s| s.emissive_strength.0);
@@ -107,16 +90,15 @@ pub(super) fn map_material(
             "emission {emission} (emissive factor {factor} × strength {strength} × the options' scale) must be finite and not negative"
         ));
     }
-    let kind = if transmission >= GLASS_MIN_TRANSMISSION {
-        Material::Glass { ior }
-    } else if metallic >= MIRROR_MIN_METALLIC && roughness <= MIRROR_MAX_ROUGHNESS {
-        Material::Mirror { reflectance: base }
-    } else {
-        Material::Lambertian { albedo: base }
+    let kind = scattering(m).map_err(|e| e.to_string())?;
+    let metallic_roughness_texture = match kind {
+        Material::MetallicRoughness(_) => pbr.metallic_roughness_texture.as_ref().map(TextureRef::from_info),
+        _ => None,
     };
     Ok(GltfMaterial {
         kind,
         emission,
+        metallic_roughness_texture,
         base_color_texture: pbr.base_color_texture.as_ref().map(TextureRef::from_info),
         emissive_texture: m.emissive_texture.as_ref().map(TextureRef::from_info),
         double_sided: m.double_sided,
@@ -127,34 +109,26 @@ pub(super) fn map_material(
 mod tests {
     use super::*;
 
-    fn kind_of(json: &str) -> Material {
-        let m: json::Material = material_from(json);
-        map_material(Some(&m), &GltfOptions::default()).unwrap().kind
-    }
-
     fn material_from(text: &str) -> json::Material {
         json::deserialize::from_str(text).expect("test material parses")
     }
 
     #[test]
-    fn thresholds_split_mirror_glass_and_diffuse() {
-        let pbr = |m: f32, r: f32| {
-            format!(r#"{{"pbrMetallicRoughness":{{"metallicFactor":{m},"roughnessFactor":{r}}}}}"#)
+    fn metallic_roughness_texture_is_kept_only_where_it_changes_something() {
+        let texture = r#""metallicRoughnessTexture":{"index":3,"texCoord":1}"#;
+        let mapped = |extra: &str| {
+            let m = material_from(&format!(
+                r#"{{"pbrMetallicRoughness":{{"metallicFactor":0,{texture}}}{extra}}}"#
+            ));
+            map_material(Some(&m), &GltfOptions::default()).unwrap()
         };
-        assert!(matches!(kind_of(&pbr(0.9, 0.1)), Material::Mirror { .. }));
-        assert!(matches!(kind_of(&pbr(0.89, 0.1)), Material::Lambertian { .. }));
-        assert!(matches!(kind_of(&pbr(1.0, 0.11)), Material::Lambertian { .. }));
-        // The glTF defaults are metallic 1, roughness 1: diffuse, white.
-        assert_eq!(kind_of("{}"), Material::Lambertian { albedo: Vec3::ONE });
-        let glass = |t: f32, ior: &str| {
-            format!(r#"{{"extensions":{{"KHR_materials_transmission":{{"transmissionFactor":{t}}}{ior}}}}}"#)
-        };
-        assert_eq!(kind_of(&glass(0.5, "")), Material::Glass { ior: 1.5 });
-        assert_eq!(
-            kind_of(&glass(1.0, r#","KHR_materials_ior":{"ior":2.4}"#)),
-            Material::Glass { ior: 2.4 }
-        );
-        assert!(matches!(kind_of(&glass(0.49, "")), Material::Lambertian { .. }));
+        let reference = mapped("").metallic_roughness_texture.unwrap();
+        assert_eq!((reference.index, reference.tex_coord), (3, 1));
+        assert!(matches!(mapped("").kind, Material::MetallicRoughness(_)));
+        // Metallic 0 and specular 0: Lambertian whatever the texture says (factor × texel = 0).
+        let lambertian = mapped(r#","extensions":{"KHR_materials_specular":{"specularFactor":0}}"#);
+        assert_eq!(lambertian.kind, Material::Lambertian { albedo: Vec3::ONE });
+        assert_eq!(lambertian.metallic_roughness_texture, None);
     }
 
     #[test]
@@ -170,7 +144,7 @@ mod tests {
             map_material(Some(&m), &options).unwrap().emission,
             Vec3::new(2.0, 1.0, 0.0)
         );
-        // Without the extension the strength is 1; colours above 1 are clamped for albedo.
+        // Without the extension the strength is 1; colours above 1 are clamped.
         let m = material_from(
             r#"{"emissiveFactor":[0.25,0.25,0.25],"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,1],"metallicFactor":0}}"#,
         );
@@ -178,9 +152,10 @@ mod tests {
         assert_eq!(mapped.emission, Vec3::splat(0.25));
         assert_eq!(
             mapped.kind,
-            Material::Lambertian {
-                albedo: Vec3::new(1.0, 0.5, 0.0)
-            }
+            Material::MetallicRoughness(
+                crate::bsdf::metallic_roughness::MetallicRoughness::new(Vec3::new(1.0, 0.5, 0.0), 0.0, 1.0)
+                    .unwrap()
+            )
         );
     }
 

@@ -7,6 +7,7 @@ use glam::{Vec2, Vec3};
 
 use super::material::GltfMaterial;
 use crate::emission::EmissionTexture;
+use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
 use crate::texture::{Sampler, Texture};
 
 /// One mesh primitive placed in the world.
@@ -43,4 +44,9 @@ pub struct GltfMesh {
     /// when the material has one and a non-zero emission factor); it multiplies
     /// [`GltfMaterial::emission`].
     pub emission_texture: Option<EmissionTexture>,
+    /// The decoded metallic-roughness texture (linear texels) with its own texture
+    /// coordinates per vertex (read only when the material is
+    /// [`Material::MetallicRoughness`](crate::material::Material::MetallicRoughness) and has one); it
+    /// multiplies the material's metallic (blue) and roughness (green) factors at each point.
+    pub metallic_roughness_texture: Option<MetallicRoughnessTexture>,
 }

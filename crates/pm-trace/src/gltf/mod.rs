@@ -10,12 +10,13 @@
 //! `file:` and every other scheme, escapes such as `..%2F`, invalid escapes such as `%FF`,
 //! and devices such as `/dev/zero` are refused with a [`GltfError`] naming the file and the
 //! buffer. A GLB container's length fields are checked against the file before parsing.
-//! Images are read only for base-colour and emissive textures that a placed mesh's material
-//! uses (an emissive one only under a non-zero `emissiveFactor`), through
+//! Images are read only for base-colour, metallic-roughness and emissive textures that a placed
+//! mesh's material uses (an emissive one only under a non-zero `emissiveFactor`, a
+//! metallic-roughness one only for a metallic-roughness material), through
 //! the same resolver (buffer views, `data:` URIs, files in the folder), and decoded only as
 //! PNG or JPEG (`zune-jpeg`), refused from the header when larger than
 //! [`GltfOptions::max_texture_pixels`]; each is decoded once however many materials share
-//! it. Memory is bounded: no accessor may describe
+//! it (twice if one reads it as colour and another as data). Memory is bounded: no accessor may describe
 //! more bytes than the file's buffers hold, each buffer file is read once and all buffers
 //! together hold at most [`GltfOptions::max_file_bytes`], and the instanced scene may hold at
 //! most [`GltfOptions::max_triangles`] triangles and take at most
@@ -37,22 +38,44 @@
 //!   Triangle lists, strips and fans are read, each primitive becoming one scene mesh;
 //!   points and lines are skipped and counted ([`GltfContent::skipped_non_triangle`]).
 //!   Non-finite positions and out-of-range indices are errors.
-//! - **Materials** ([`GltfMaterial`]): `KHR_materials_transmission` ≥ 0.5 → glass
-//!   (`KHR_materials_ior`, default 1.5); metallic ≥ 0.9 and roughness ≤ 0.1 → mirror with
-//!   the base colour as reflectance; otherwise Lambertian with the base colour factor as
-//!   albedo. The base-colour texture (sRGB decoded to linear, at the material's
-//!   `TEXCOORD_n`, with its sampler's wrap modes, bilinear, and `KHR_texture_transform`'s
-//!   offset, rotation, scale and `texCoord` applied to the coordinates: [`TextureRef`]) and
-//!   `COLOR_0` multiply that colour at each hit ([`Scene::albedo_at`]); the emissive texture
-//!   is read for emission (below, with `KHR_texture_transform` too); other textures (normal
-//!   maps, metallic-roughness, occlusion) are ignored. Each texture keeps a box-filtered mip
-//!   chain: the photon-map and shadow-ray modes average it over the camera pixel's footprint
-//!   ([`Scene::albedo_over`]), so a texture seen from afar does not alias; photon tracing,
-//!   the path tracer and the progressive modes look textures up at points (their many
-//!   samples average them). `NORMAL` gives smooth shading normals
-//!   ([`Scene::shading_normal_at`]), used for the cosine terms and for mirror and glass
-//!   bounces. A texture naming a missing image that no material uses is a warning in
+//! - **Materials** ([`GltfMaterial`]), glTF 2.0's Appendix B factor for factor:
+//!
+//!   | the file says | the renderer's material |
+//!   |---|---|
+//!   | `(1 − metallicFactor) × KHR_materials_transmission ≥ 0.5` | [`Material::Glass`](crate::material::Material::Glass) with `KHR_materials_ior` (1.5 without it or below 1): smooth and colourless whatever its roughness, base colour and transmission below one — an approximation (no rough or partly transmitting dielectric yet) |
+//!   | `metallicFactor` 0 and `KHR_materials_specular`'s `specularFactor` 0 | [`Material::Lambertian`](crate::material::Material::Lambertian) of the base colour (Appendix B is then exactly `baseColor/π`; renders bit-identically to a hand-made Lambertian) |
+//!   | anything else, glTF's default material (white, metallic 1, roughness 1: a rough white metal) included | [`Material::MetallicRoughness`](crate::material::Material::MetallicRoughness): `baseColorFactor`, `metallicFactor`, `roughnessFactor`, `KHR_materials_ior` (0 allowed, as the extension says) and `KHR_materials_specular`'s `specularFactor` and `specularColorFactor` |
+//!
+//!   No threshold turns a metal into a mirror or a rough surface into Lambert. At roughness 0
+//!   the material stays GGX at [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA) (a 0.06° lobe, sampled):
+//!   [`Material::Mirror`](crate::material::Material::Mirror)'s constant reflectance is not the
+//!   limit of Appendix B (which keeps Schlick's Fresnel, brighter towards grazing), and a
+//!   roughness texture may vary it per point; the render core decides how to follow very sharp
+//!   lobes. Out-of-range factors are clamped as viewers do (colours and metallic, roughness,
+//!   transmission and specular to `[0, 1]`, the specular colour to non-negative).
+//!
+//!   Textures (PNG or JPEG, at the material's `TEXCOORD_n`, with its sampler's wrap modes,
+//!   bilinear, and `KHR_texture_transform`'s offset, rotation, scale and `texCoord` applied to
+//!   the coordinates: [`TextureRef`]): the base-colour texture (sRGB decoded to linear) and
+//!   `COLOR_0` multiply the base colour at each hit ([`Scene::albedo_at`], and
+//!   [`ShadingPoint::tint`](crate::bsdf::ShadingPoint::tint) for every BSDF); the
+//!   `metallicRoughnessTexture` (linear values: blue multiplies `metallicFactor`, green
+//!   `roughnessFactor`) reaches [`MetallicRoughness`](crate::bsdf::MetallicRoughness) through
+//!   [`ShadingPoint::factors`](crate::bsdf::ShadingPoint::factors) at each hit; the emissive
+//!   texture is read for emission (below). **Not read yet**: `KHR_materials_specular`'s
+//!   `specularTexture` and `specularColorTexture`, `normalTexture` (normal maps), the
+//!   occlusion texture and `KHR_materials_transmission`'s texture. Each texture keeps a
+//!   box-filtered mip chain: the photon-map and shadow-ray modes average it over the camera
+//!   pixel's footprint ([`Scene::albedo_over`]), so a texture seen from afar does not alias;
+//!   photon tracing, the path tracer and the progressive modes look textures up at points
+//!   (their many samples average them). `NORMAL` gives smooth shading normals
+//!   ([`Scene::shading_normal_at`]), used for the cosine terms, the glossy lobes and mirror
+//!   and glass bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
+//!
+//!   The photon-map estimators read a metallic-roughness surface's diffuse lobe only
+//!   ([`Bsdf::diffuse_albedo`](crate::bsdf::Bsdf::diffuse_albedo)) until glossy photon
+//!   estimates land; the path tracer renders the whole BSDF.
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`LightUnits::emission_factor`] `×` [`GltfOptions::emission_scale`] is the surface's
 //!   radiance in W/(m²·sr), times the `emissiveTexture` (sRGB decoded to linear, at its own
@@ -147,11 +170,13 @@ mod image;
 mod light;
 mod material;
 mod mesh;
+mod metallic_roughness;
 mod node_transform;
 mod options;
 mod origin;
 mod place;
 mod primitive;
+mod scattering;
 mod source;
 mod texture_ref;
 mod units;

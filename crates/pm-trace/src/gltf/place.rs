@@ -79,6 +79,7 @@ impl LocalPrimitive {
             normals,
             base_color_texture: self.base_color_texture.clone(),
             emission_texture: self.emission_texture.clone(),
+            metallic_roughness_texture: self.metallic_roughness_texture.clone(),
         })
     }
 }

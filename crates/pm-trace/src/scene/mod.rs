@@ -5,18 +5,20 @@ mod assemble;
 pub(crate) mod builder;
 mod checks;
 mod mesh_input;
+pub(crate) mod metallic_roughness_texture;
 pub mod offset;
 mod queries;
 pub(crate) mod shading;
 
 pub use builder::SceneBuilder;
 pub use mesh_input::MAX_SCENE_TRIANGLES;
+pub use metallic_roughness_texture::MetallicRoughnessTexture;
 pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
 
 use crate::bsdf::Bsdf;
-use crate::bsdf::shading_point::ShadingPoint;
+use crate::bsdf::shading_point::{ShadingPoint, TextureFactors};
 use crate::bvh::SceneBvh;
 use crate::camera::Camera;
 use crate::error::SceneError;
@@ -247,17 +249,36 @@ impl Scene {
     /// The tint at `hit`, `None` where the mesh has no texture or vertex colours.
     #[inline]
     fn tint(&self, hit: &Hit, footprint: f32) -> Option<Vec3> {
+        let (shading, face) = self.mesh_shading(hit)?;
+        Some(shading.colour_at(face, hit.position, footprint))
+    }
+
+    /// The metallic-roughness texture's factors at `hit` averaged over `footprint` metres
+    /// (see [`Scene::albedo_over`]); [`TextureFactors::ONE`] where the mesh has no such
+    /// texture.
+    #[inline]
+    pub fn factors_over(&self, hit: &Hit, footprint: f32) -> TextureFactors {
+        self.mesh_shading(hit)
+            .and_then(|(shading, face)| shading.factors_at(face, hit.position, footprint))
+            .unwrap_or(TextureFactors::ONE)
+    }
+
+    /// The vertex attributes of `hit`'s mesh and the source triangle hit, `None` for an
+    /// analytic part or a mesh without attributes.
+    #[inline]
+    fn mesh_shading(&self, hit: &Hit) -> Option<(&MeshShading, usize)> {
         if !self.has_shading || hit.part.0 >= self.mesh_part_count {
             return None;
         }
         let mesh = &self.meshes[self.meshes.partition_point(|m| m.first_part <= hit.part.0) - 1];
         let shading = mesh.shading.as_ref()?;
         let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
-        Some(shading.colour_at(face, hit.position, footprint))
+        Some((shading, face))
     }
 
     /// Where `hit`'s surface scatters ([`crate::bsdf::Bsdf`]'s argument): the shading normal
-    /// ([`Scene::shading_normal_at`]) and the tint at the point ([`Scene::tint_over`]).
+    /// ([`Scene::shading_normal_at`]), the tint at the point ([`Scene::tint_over`]) and the
+    /// material's textured factors there ([`Scene::factors_over`]).
     #[inline]
     pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
         self.shading_point_about(hit, self.shading_normal_at(hit), 0.0)
@@ -265,7 +286,7 @@ impl Scene {
 
     /// [`Scene::shading_point`] shaded about the unit normal `shading` (on the geometric
     /// normal's side; the photon tracer scatters diffusely about the geometric normal) with
-    /// the tint averaged over `footprint` metres.
+    /// the tint and factors averaged over `footprint` metres.
     #[inline]
     pub fn shading_point_about(&self, hit: &Hit, shading: Vec3, footprint: f32) -> ShadingPoint {
         ShadingPoint {
@@ -274,6 +295,7 @@ impl Scene {
             shading,
             front_face: hit.front_face,
             tint: self.tint_over(hit, footprint),
+            factors: self.factors_over(hit, footprint),
         }
     }
 

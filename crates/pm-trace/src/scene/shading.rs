@@ -6,6 +6,8 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+use super::metallic_roughness_texture::{MetallicRoughnessTexture, texels_across};
+use crate::bsdf::shading_point::TextureFactors;
 use crate::emission::EmissionTexture;
 use crate::texture::{Sampler, Texture};
 
@@ -29,6 +31,10 @@ pub struct VertexAttributes {
     /// ([`crate::Scene::emission`] reads it at hits; a [`crate::TexturedAreaLight`] over the
     /// same triangles, texture and factor makes the matching light).
     pub emission_texture: Option<EmissionTexture>,
+    /// A texture multiplying a [`crate::bsdf::MetallicRoughness`] surface's metalness (blue)
+    /// and roughness (green) at each point, with its own texture coordinates (glTF's
+    /// `metallicRoughnessTexture`); read into [`crate::ShadingPoint::factors`].
+    pub metallic_roughness_texture: Option<MetallicRoughnessTexture>,
 }
 
 /// A mesh's attributes and the triangles (by source face) to interpolate them over. The
@@ -79,6 +85,13 @@ impl MeshShading {
             "emission texture coordinates",
             self.attributes.emission_texture.as_ref().map(|e| e.uvs.len()),
         )?;
+        check(
+            "metallic-roughness texture coordinates",
+            self.attributes
+                .metallic_roughness_texture
+                .as_ref()
+                .map(|t| t.uvs.len()),
+        )?;
         if let Some(bad) = self.triangles.iter().flatten().find(|&&i| i as usize >= n) {
             return Err(format!("corner {bad} out of range for {n} vertices"));
         }
@@ -112,6 +125,23 @@ impl MeshShading {
                 .emission_texture
                 .as_ref()
                 .map_or(0, |e| e.uvs.capacity() * size_of::<Vec2>())
+            + self
+                .attributes
+                .metallic_roughness_texture
+                .as_ref()
+                .map_or(0, |t| t.uvs.capacity() * size_of::<Vec2>())
+    }
+
+    /// The metallic-roughness texture's factors at point `p` of source triangle `face`,
+    /// averaged over `footprint` metres (0: a point lookup), or `None` when the mesh has no
+    /// such texture.
+    #[inline]
+    pub(crate) fn factors_at(&self, face: usize, p: Vec3, footprint: f32) -> Option<TextureFactors> {
+        let texture = self.attributes.metallic_roughness_texture.as_ref()?;
+        let &corners = self.triangles.get(face)?;
+        let positions = corners.map(|i| self.positions[i as usize]);
+        let [a, b, c] = positions;
+        Some(texture.factors_at(corners, positions, barycentrics(a, b, c, p), footprint))
     }
 
     /// True when the mesh has an emission texture.
@@ -171,13 +201,8 @@ impl MeshShading {
             let [ta, tb, tc] = corners.map(|i| uvs[i as usize]);
             let uv = ta * w.x + tb * w.y + tc * w.z;
             colour *= if footprint > 0.0 {
-                // Texture units per metre on this triangle (the square root of the ratio of
-                // its areas in texture and in space), times the texels per texture unit.
-                let uv_area = (tb - ta).perp_dot(tc - ta).abs();
-                let area = (b - a).cross(c - a).length();
-                let per_metre =
-                    (uv_area / area).sqrt() * (texture.width() as f32 * texture.height() as f32).sqrt();
-                sampler.sample_footprint(texture, uv, footprint * per_metre)
+                let texels = texels_across(texture, [a, b, c], [ta, tb, tc], footprint);
+                sampler.sample_footprint(texture, uv, texels)
             } else {
                 sampler.sample(texture, uv)
             };
