@@ -4,7 +4,7 @@ a Blender 3.6 OBJ) into a self-contained .gltf for checks of the contact split o
 modelled interior (issue 33).
 
 Every material becomes a double-sided Lambertian one (baseColorFactor = Kd, metallic 0,
-roughness 1), one mesh primitive per material. Vertices stay as the OBJ gives them: every
+roughness 1, KHR_materials_specular factor 0), one mesh primitive per material. Vertices stay as the OBJ gives them: every
 face corner its own vertex (unwelded), no normals, no texture coordinates (flat shading, as
 the Mitsuba reference renders it). Two KHR_lights_punctual point lamps hang under the
 ceiling and a perspective camera looks at the countertops.
@@ -170,7 +170,9 @@ def build_gltf(by_material, kd, lamp_candela, aspect, eye, target):
                           "count": len(corners), "type": "VEC3", "min": lo, "max": hi})
         r, g, b = kd.get(name, (0.8, 0.8, 0.8))
         materials.append({"name": name, "doubleSided": True, "pbrMetallicRoughness": {
-            "baseColorFactor": [r, g, b, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+            "baseColorFactor": [r, g, b, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+            # Pure Lambertian: without this, glTF's Appendix B keeps a 4 % Fresnel layer.
+            "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
         meshes_prims.append({"attributes": {"POSITION": len(accessors) - 1},
                              "material": len(materials) - 1, "mode": 4})
     nodes = [{"name": "kitchen", "mesh": 0}]
@@ -184,7 +186,7 @@ def build_gltf(by_material, kd, lamp_candela, aspect, eye, target):
                   "rotation": look_at_quaternion(eye, target)})
     return {
         "asset": {"version": "2.0", "generator": "photon-maps scripts/kitchen-gltf.py"},
-        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_specular"],
         "extensions": {"KHR_lights_punctual": {"lights": lights}},
         "scene": 0,
         "scenes": [{"nodes": list(range(len(nodes)))}],

@@ -132,6 +132,14 @@ def build_scene(path, width, height, punctual_factor, max_depth, workdir):
                     idx = np.arange(len(p), dtype=np.uint32).reshape(-1, 3)
                 mat = gltf["materials"][prim["material"]] if "material" in prim else {}
                 rgb = mat.get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3]
+                specular = mat.get("extensions", {}).get("KHR_materials_specular", {})
+                if mat.get("pbrMetallicRoughness", {}).get("metallicFactor", 1.0) != 0 \
+                        or specular.get("specularFactor", 1.0) != 0:
+                    # The renderer reads such a material by glTF's Appendix B (a Fresnel layer
+                    # over the diffuse base); this reference renders it diffuse only.
+                    sys.exit(f"material {mat.get('name', prim.get('material'))!r} is not pure "
+                             "Lambertian (metallic 0 and KHR_materials_specular factor 0): "
+                             "this reference renders diffuse surfaces only")
                 ply = os.path.join(workdir, f"mesh{len(shapes)}.ply")
                 write_ply(ply, p.astype(np.float32), idx)
                 shapes.append((ply, rgb))
