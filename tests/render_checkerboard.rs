@@ -51,9 +51,12 @@ fn mean_albedo() -> DVec3 {
     DVec3::from(FACTOR) * 0.5 * (lin(WHITE) + lin(BLACK))
 }
 
+/// Lambertian in glTF's terms (metallic 0, specular factor 0): the albedo is the texel times the
+/// factor, with no Fresnel layer.
 fn material() -> String {
     format!(
-        r#"{{"pbrMetallicRoughness":{{"baseColorFactor":[{},{},{},1],"metallicFactor":0,"baseColorTexture":{{"index":0}}}}}}"#,
+        r#"{{"pbrMetallicRoughness":{{"baseColorFactor":[{},{},{},1],"metallicFactor":0,"baseColorTexture":{{"index":0}}}},
+            "extensions":{{"KHR_materials_specular":{{"specularFactor":0}}}}}}"#,
         FACTOR[0], FACTOR[1], FACTOR[2]
     )
 }
