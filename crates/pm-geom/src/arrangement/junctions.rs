@@ -42,46 +42,47 @@ pub(super) fn resolve_t_junctions(
         pad,
     };
     for wave in pieces.chunks_mut(WAVE_PIECES) {
+        // Each piece grows in place; the fold then counts the growth in order (an error
+        // discards every piece, so pieces grown past the one that failed do not matter).
         let grown: Vec<Grown> = wave
-            .par_iter()
+            .par_iter_mut()
             .map(|piece| {
                 let mut found = Vec::new();
                 near.along_edges(piece, POINT_CAP, &mut found);
-                if found.is_empty() {
-                    Grown::Unchanged
-                } else if found.len() > POINT_CAP {
-                    Grown::Crowded
-                } else {
-                    let mut grown = piece.clone();
-                    insert_points_on_edges(&mut grown, &found, tolerance);
-                    Grown::To(grown)
+                if found.len() > POINT_CAP {
+                    return Grown::Crowded;
                 }
+                let before = piece.len();
+                if !found.is_empty() {
+                    insert_points_on_edges(piece, &found, tolerance);
+                }
+                Grown::By(piece.len() - before)
             })
             .collect();
         for (piece, grown) in wave.iter_mut().zip(grown) {
-            let before = piece.len();
-            match grown {
-                Grown::Unchanged => continue,
-                Grown::To(grown) => *piece = grown,
+            let added = match grown {
+                Grown::By(0) => continue,
+                Grown::By(added) => added,
                 Grown::Crowded => {
+                    let before = piece.len();
                     let mut found = Vec::new();
                     near.along_edges(piece, usize::MAX, &mut found);
                     insert_points_on_edges(piece, &found, tolerance);
+                    piece.len() - before
                 }
-            }
-            budget.check(budget.pieces, budget.vertices + piece.len() - before)?;
-            budget.vertices += piece.len() - before;
+            };
+            budget.check(budget.pieces, budget.vertices + added)?;
+            budget.vertices += added;
         }
     }
     Ok(())
 }
 
-/// What the workers made of one piece.
+/// What the workers did to one piece.
 enum Grown {
-    /// No cut vertex lies near its edges.
-    Unchanged,
-    /// The piece with the cut vertices on its edges inserted.
-    To(Vec<Vec3>),
+    /// The cut vertices near its edges inserted: this many vertices more (0 when none was
+    /// near, or none lay on an edge).
+    By(usize),
     /// More than [`POINT_CAP`] cut vertices near its edges: left to the folding thread.
     Crowded,
 }
