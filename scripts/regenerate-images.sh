@@ -31,6 +31,8 @@ render --mode photon-map --scene solid-rooms-pierce --maps contact --size 400x20
     --out "$out/solid-rooms-contact.exr"
 render --mode photon-map --scene examples/scenes/textured-room/textured-room.gltf --size 300x300 \
     --photons 1000000 --out "$out/textured-room.exr"
+# glTF metallic-roughness: gold blocks at roughness 0.2 and 0.5 on a glossy dielectric floor.
+render --scene glossy-cornell-box --size 300x300 --out "$out/glossy-cornell-box.exr"
 gltf="$corpus/cornell/007Renderer/cornell_box.gltf"
 if [ -f "$gltf" ]; then
     render --mode photon-map --scene "$gltf" --size 300x300 --out "$out/gltf-cornell-box.exr"
