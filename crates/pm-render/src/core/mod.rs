@@ -39,7 +39,7 @@ pub struct PathVertex {
 }
 
 /// Follows `ray` through delta bounces (surfaces whose [`Bsdf::lobes`](pm_trace::Bsdf::lobes) are all delta: mirror,
-/// glass; and near-specular glossy ones, [`passes_through`](delta::passes_through)) to its
+/// glass; and near-specular glossy ones, [`passes_through`]) to its
 /// first hit where radiance
 /// is read, at most [`MAX_DELTA_BOUNCES`] bounces.
 /// `visit(hit, ray, throughput, bounce)` sees every hit first, the delta ones and the last,
