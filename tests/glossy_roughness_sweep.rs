@@ -1,10 +1,11 @@
-//! How the photon read of a glossy surface (`Σ Φ f(wo, wi) / A`) fares as the lobe narrows: a
-//! box whose floor is rough metal, the floor's image region against the path tracer, at
-//! roughnesses from the near-specular threshold up. A measurement (ignored): it prints, for
-//! each roughness, the floor's relative error and its standard error over seeds, and the
-//! per-seed spread, for shadow-rays mode with the cube estimator (one-shot) and for the
-//! progressive mode. Below [`NEAR_SPECULAR_ROUGHNESS`] the camera path samples through the
-//! surface instead (unbiased, but one bounce more per sample).
+//! How a glossy surface reads as its lobe narrows: a box whose floor is rough metal, the
+//! floor's image region against the path tracer at roughness 0.1 to 0.5. A measurement
+//! (ignored): it prints, for each roughness, the floor's relative error and its standard error
+//! over seeds, for shadow-rays mode with the cube estimator (one shot) and for the progressive
+//! mode. Below [`NEAR_SPECULAR_ROUGHNESS`] the camera path samples through the surface (a BSDF
+//! bounce, then photons at the next vertex); above it the photons are read there (`Σ Φ f`). To
+//! see both reads at one roughness, change that constant: the numbers in its documentation
+//! came from builds with 0.1 and 0.35.
 //!
 //! `cargo test --release --test glossy_roughness_sweep -- --ignored --nocapture`
 
