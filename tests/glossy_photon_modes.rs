@@ -103,6 +103,27 @@ fn compare(name: &str, modes: &[(f64, f64)], reference: &[(f64, f64)]) -> (f64, 
     (worst, rel)
 }
 
+/// Every photon mode the tests compare, with the estimators they read through: one-shot
+/// photon-map, shadow-rays and final gather, progressive, and SPPM.
+fn every_mode<'a>(crease: &'a Partitioned, scene: &'a Scene) -> Vec<Case<'a>> {
+    use EstimatorKind::{Disc, GeometryBall, GeometryCube};
+    let one = |name, kind, mode| -> Case<'a> { (name, Box::new(move |s| one_shot(crease, kind, mode, s))) };
+    let passes =
+        |name, kind, mode| -> Case<'a> { (name, Box::new(move |s| progressive(crease, kind, mode, s))) };
+    vec![
+        one("photon-map disc", Disc, Mode::PhotonMap),
+        one("photon-map cube", GeometryCube, Mode::PhotonMap),
+        one("shadow-rays cube", GeometryCube, Mode::ShadowRays),
+        one("shadow-rays ball", GeometryBall, Mode::ShadowRays),
+        one("final-gather cube", GeometryCube, Mode::FinalGather),
+        one("final-gather disc", Disc, Mode::FinalGather),
+        passes("progressive cube", GeometryCube, Mode::PhotonMap),
+        passes("progressive shadow-rays disc", Disc, Mode::ShadowRays),
+        passes("progressive final-gather cube", GeometryCube, Mode::FinalGather),
+        ("sppm", Box::new(move |s| sppm(scene, s))),
+    ]
+}
+
 #[test]
 #[ignore = "measurement: prints each mode's block errors against the path tracer"]
 fn measure_every_photon_mode_against_the_path_tracer() {
@@ -122,37 +143,7 @@ fn measure_every_photon_mode_against_the_path_tracer() {
     );
     let r: Vec<String> = reference.iter().map(|(m, s)| format!("{m:.4}±{s:.4}")).collect();
     eprintln!("path tracer: {}", r.join(" "));
-    let cases: Vec<Case<'_>> = vec![
-        (
-            "photon-map disc",
-            Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),
-        ),
-        (
-            "photon-map cube",
-            Box::new(|s| one_shot(&crease, EstimatorKind::GeometryCube, Mode::PhotonMap, s)),
-        ),
-        (
-            "shadow-rays cube",
-            Box::new(|s| one_shot(&crease, EstimatorKind::GeometryCube, Mode::ShadowRays, s)),
-        ),
-        (
-            "final-gather cube",
-            Box::new(|s| one_shot(&crease, EstimatorKind::GeometryCube, Mode::FinalGather, s)),
-        ),
-        (
-            "progressive cube",
-            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::PhotonMap, s)),
-        ),
-        (
-            "progressive shadow-rays disc",
-            Box::new(|s| progressive(&crease, EstimatorKind::Disc, Mode::ShadowRays, s)),
-        ),
-        (
-            "progressive final-gather cube",
-            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::FinalGather, s)),
-        ),
-        ("sppm", Box::new(|s| sppm(&scene, s))),
-    ];
+    let cases = every_mode(&crease, &scene);
     for (name, render) in cases {
         let t = std::time::Instant::now();
         let blocks = over_seeds(render, seeds);
@@ -165,7 +156,9 @@ fn measure_every_photon_mode_against_the_path_tracer() {
 /// |relative error| over the 16 blocks was 0.018 to 0.055 (the disc's own darkening at edges
 /// the largest), against 0.10 to 0.13 with the glossy lobe read as `ρ_d/π · E`; the short
 /// metal block's block (row 2, column 1) was within 0.09 of the path tracer in every mode,
-/// against 0.65 to 0.68 too dark before.
+/// against 0.65 to 0.68 too dark before. Since the short block (roughness 0.2) is sampled
+/// through by camera paths (the near-specular threshold 0.25), this test's 3 seeds read it
+/// within 0.13 (mean |relative error| 0.024 to 0.049 over the 10 modes).
 const MEAN_REL: f64 = 0.075;
 const SHORT_BLOCK_REL: f64 = 0.15;
 const SHORT_BLOCK: usize = 9;
@@ -186,37 +179,7 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
         },
         seeds,
     );
-    let cases: Vec<Case<'_>> = vec![
-        (
-            "photon-map disc",
-            Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::PhotonMap, s)),
-        ),
-        (
-            "photon-map cube",
-            Box::new(|s| one_shot(&crease, EstimatorKind::GeometryCube, Mode::PhotonMap, s)),
-        ),
-        (
-            "shadow-rays ball",
-            Box::new(|s| one_shot(&crease, EstimatorKind::GeometryBall, Mode::ShadowRays, s)),
-        ),
-        (
-            "progressive cube",
-            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::PhotonMap, s)),
-        ),
-        (
-            "progressive shadow-rays disc",
-            Box::new(|s| progressive(&crease, EstimatorKind::Disc, Mode::ShadowRays, s)),
-        ),
-        (
-            "progressive final-gather cube",
-            Box::new(|s| progressive(&crease, EstimatorKind::GeometryCube, Mode::FinalGather, s)),
-        ),
-        (
-            "final-gather disc",
-            Box::new(|s| one_shot(&crease, EstimatorKind::Disc, Mode::FinalGather, s)),
-        ),
-        ("sppm", Box::new(|s| sppm(&scene, s))),
-    ];
+    let cases = every_mode(&crease, &scene);
     for (name, render) in cases {
         let blocks = over_seeds(render, seeds);
         let (_, rel) = compare(name, &blocks, &reference);

@@ -2,6 +2,7 @@
 //! partners than a wave holds), many cuts and T-junctions, and the bounds' errors.
 
 use super::*;
+use crate::polygon_area;
 use glam::vec3;
 
 fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -66,11 +67,33 @@ fn one_thread_and_four_give_the_same_pieces() {
         let four = on_threads(4, || split_polygons_at_intersections(&faces, &solids, &options));
         assert_eq!(one, four);
     }
+    // Against the input itself: every face is cut (the walls pierce the floor and each other)
+    // and its pieces keep its area.
+    let faces = crossed_floor(600);
     let crossed = on_threads(4, || {
-        split_polygons_at_intersections(&crossed_floor(600), &vec![None; 601], &options)
+        split_polygons_at_intersections(&faces, &vec![None; 601], &options)
     })
     .expect("within the bounds");
     assert!(crossed.counts.piercing > 600, "{:?}", crossed.counts);
+    assert!(
+        crossed.polygons.len() > 2 * faces.len(),
+        "{} pieces",
+        crossed.polygons.len()
+    );
+    for (source, face) in faces.iter().enumerate() {
+        let pieces: f32 = crossed
+            .polygons
+            .iter()
+            .zip(&crossed.source)
+            .filter(|(_, s)| **s == source)
+            .map(|(p, _)| polygon_area(p))
+            .sum();
+        let area = polygon_area(face);
+        assert!(
+            (pieces - area).abs() <= 1e-4 * area,
+            "face {source}: {pieces} against {area}"
+        );
+    }
 }
 
 #[test]

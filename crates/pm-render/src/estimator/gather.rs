@@ -33,13 +33,14 @@ pub fn gather_found(
     scratch: &mut EstimatorScratch,
 ) {
     let scale = tree.power_scale();
+    let uniform = weight.uniform();
     scratch.photons.clear();
     let counted = counted_neighbours(&scratch.neighbours, options.leave_out_boundary);
     for n in scratch.neighbours.as_slice().iter().filter(|n| counted(n)) {
         let photon = GatheredPhoton::decode(&tree.get(n.index), scale, at.position);
         // The query has applied the kind filter already.
         if !(options.reject_behind && at.arrives_from_behind(photon.direction)) {
-            scratch.photons.push(photon.weighted(weight));
+            scratch.photons.push(photon.weighted(weight, uniform));
         }
     }
 }
@@ -70,11 +71,12 @@ pub(super) fn collect_within<M: pm_kdtree::Metric>(
     photons: &mut Vec<GatheredPhoton>,
 ) {
     let scale = tree.power_scale();
+    let uniform = weight.uniform();
     photons.clear();
     tree.for_each_within::<M>(at.position, extent, |index, _| {
         let photon = GatheredPhoton::decode(&tree.get(index), scale, at.position);
         if options.accepts(at, photon.kind, photon.direction) {
-            photons.push(photon.weighted(weight));
+            photons.push(photon.weighted(weight, uniform));
         }
     });
 }

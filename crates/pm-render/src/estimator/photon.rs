@@ -37,11 +37,17 @@ impl GatheredPhoton {
         }
     }
 
-    /// The photon with its power times `weight` of its direction.
+    /// The photon with its power times `weight` of its direction: `uniform` (the weight's
+    /// [`PhotonWeight::uniform`], read once per estimate by the caller) when there is one, so
+    /// that an irradiance read makes no call per photon.
     #[inline]
-    pub fn weighted(self, weight: &dyn PhotonWeight) -> Self {
+    pub fn weighted(self, weight: &dyn PhotonWeight, uniform: Option<Vec3>) -> Self {
+        let w = match uniform {
+            Some(w) => w,
+            None => weight.weight(self.direction),
+        };
         GatheredPhoton {
-            power: self.power * weight.weight(self.direction),
+            power: self.power * w,
             ..self
         }
     }
