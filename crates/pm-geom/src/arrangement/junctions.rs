@@ -46,15 +46,14 @@ pub(super) fn resolve_t_junctions(
         // discards every piece, so pieces grown past the one that failed do not matter).
         let grown: Vec<Grown> = wave
             .par_iter_mut()
-            .map(|piece| {
-                let mut found = Vec::new();
-                near.along_edges(piece, POINT_CAP, &mut found);
+            .map_init(Vec::new, |found, piece| {
+                near.along_edges(piece, POINT_CAP, found);
                 if found.len() > POINT_CAP {
                     return Grown::Crowded;
                 }
                 let before = piece.len();
                 if !found.is_empty() {
-                    insert_points_on_edges(piece, &found, tolerance);
+                    insert_points_on_edges(piece, found, tolerance);
                 }
                 Grown::By(piece.len() - before)
             })

@@ -60,7 +60,7 @@ pub(super) fn find_meetings(
     for wave in (0..candidates.live.len()).collect::<Vec<_>>().chunks(WAVE_FACES) {
         let met: Vec<FaceMeetings> = wave
             .par_iter()
-            .map_init(PairScratch::default, |scratch, &n| {
+            .map_init(FaceScratch::default, |scratch, &n| {
                 candidates.meet_partners(n, faces, tolerance, gap, scratch)
             })
             .collect();
@@ -126,14 +126,17 @@ impl CandidatePairs {
         faces: &[Option<Face>],
         tolerance: f32,
         gap: f32,
-        scratch: &mut PairScratch,
+        scratch: &mut FaceScratch,
     ) -> FaceMeetings {
-        let mut partners = Vec::new();
-        self.partners(n, PARTNER_CAP, &mut partners);
+        let FaceScratch {
+            partners,
+            pair,
+            outcome,
+        } = scratch;
+        self.partners(n, PARTNER_CAP, partners);
         if partners.len() > PARTNER_CAP {
             return FaceMeetings::Crowded;
         }
-        let mut outcome = PairOutcome::default();
         let mut met = Met {
             candidates: partners.len(),
             ..Met::default()
@@ -143,7 +146,7 @@ impl CandidatePairs {
             let b = faces[self.live[m as usize].0]
                 .as_ref()
                 .expect("live faces are faces");
-            meet(a, b, tolerance, gap, scratch, &mut outcome);
+            meet(a, b, tolerance, gap, pair, outcome);
             if let Some(meeting) = outcome.meeting {
                 met.pairs.push(MetPair {
                     position,
@@ -159,6 +162,15 @@ impl CandidatePairs {
         }
         FaceMeetings::Met(met)
     }
+}
+
+/// A worker's buffers, reused from face to face: the candidate partners, and the pair test's
+/// own.
+#[derive(Default)]
+struct FaceScratch {
+    partners: Vec<u32>,
+    pair: PairScratch,
+    outcome: PairOutcome,
 }
 
 /// What the worker threads found for one face.
