@@ -59,13 +59,17 @@ fn crossed_floor(n: usize) -> Vec<Vec<Vec3>> {
 }
 
 #[test]
-fn one_thread_and_four_give_the_same_pieces() {
+fn one_thread_four_and_sixty_four_give_the_same_pieces() {
     let options = ArrangementOptions::new(1e-5, 1e-5);
     for faces in [crossed_floor(600), tilted_stack(4_300)] {
         let solids = vec![None; faces.len()];
         let one = on_threads(1, || split_polygons_at_intersections(&faces, &solids, &options));
-        let four = on_threads(4, || split_polygons_at_intersections(&faces, &solids, &options));
-        assert_eq!(one, four);
+        for threads in [4, 64] {
+            let many = on_threads(threads, || {
+                split_polygons_at_intersections(&faces, &solids, &options)
+            });
+            assert_eq!(one, many, "{threads} threads");
+        }
     }
     // Against the input itself: every face is cut (the walls pierce the floor and each other)
     // and its pieces keep its area.
@@ -97,7 +101,7 @@ fn one_thread_and_four_give_the_same_pieces() {
 }
 
 #[test]
-fn one_thread_and_four_fail_on_the_same_bound() {
+fn one_thread_and_sixty_four_fail_on_the_same_bound() {
     let faces = tilted_stack(4_300);
     let solids = vec![None; faces.len()];
     let crossed = crossed_floor(600);
@@ -135,8 +139,8 @@ fn one_thread_and_four_fail_on_the_same_bound() {
         ),
     ] {
         let one = on_threads(1, || split_polygons_at_intersections(faces, solids, &options));
-        let four = on_threads(4, || split_polygons_at_intersections(faces, solids, &options));
+        let many = on_threads(64, || split_polygons_at_intersections(faces, solids, &options));
         assert_eq!(one, Err(expected.clone()));
-        assert_eq!(four, Err(expected));
+        assert_eq!(many, Err(expected));
     }
 }
