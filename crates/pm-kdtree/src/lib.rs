@@ -82,6 +82,7 @@ pub mod photon;
 mod power_code;
 pub mod query;
 pub mod tree;
+pub mod tree_arrays;
 
 pub use error::BuildError;
 /// The glam version this crate's API uses (`Vec3`), so users need not pin it by hand.
@@ -90,3 +91,4 @@ pub use metric::{Chebyshev, Euclidean, Metric};
 pub use photon::{CompactPhoton, KindMask, Photon, PhotonKind, PowerScale};
 pub use query::{Neighbour, Neighbours};
 pub use tree::{InvariantError, LEAF_CAPACITY, MAX_COORDINATE, PhotonTree};
+pub use tree_arrays::{OwnedTreeArrays, TreeArrays};

@@ -112,10 +112,7 @@ impl PhotonTree {
     /// Builds from photons already encoded (and position-checked) relative to `scale`.
     fn build_compact(mut photons: Vec<CompactPhoton>, scale: PowerScale, below_range: u64) -> Self {
         let n = photons.len();
-        let mut depth = 0;
-        while (n >> depth) + usize::from(n & ((1 << depth) - 1) != 0) > LEAF_CAPACITY {
-            depth += 1;
-        }
+        let depth = depth_for(n);
         let inner = 1usize << depth;
         let mut splits = vec![0.0; inner];
         let mut axes = vec![0u8; inner];
@@ -266,6 +263,16 @@ impl PhotonTree {
         self.validate_node(2 * node, lo, mid, level + 1)?;
         self.validate_node(2 * node + 1, mid, hi, level + 1)
     }
+}
+
+/// Levels of inner nodes for `n` photons: the fewest that leave at most [`LEAF_CAPACITY`]
+/// photons a leaf.
+pub(crate) fn depth_for(n: usize) -> u32 {
+    let mut depth = 0;
+    while (n >> depth) + usize::from(n & ((1 << depth) - 1) != 0) > LEAF_CAPACITY {
+        depth += 1;
+    }
+    depth
 }
 
 /// Checks positions, picks the power scale and encodes: (photons, scale, channels below range).

@@ -56,6 +56,9 @@ pub enum RenderError {
     /// The path tracer, which reads no photon maps, was given some.
     #[error("the {0} mode reads no photon maps: pass None")]
     UnreadMaps(crate::mode::Mode),
+    /// An irradiance cache given to a mode other than the final gather, which alone reads one.
+    #[error("the {0} mode reads no irradiance cache (only final-gather does): pass none")]
+    UnreadCache(crate::mode::Mode),
     /// Zero photons for a mode that reads photon maps.
     #[error("photons must be at least 1")]
     ZeroPhotons,

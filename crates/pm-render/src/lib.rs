@@ -72,6 +72,7 @@
 //!   `docs/results.md`.
 
 pub mod cache;
+pub mod cache_file;
 pub mod core;
 pub mod error;
 pub mod estimator;
@@ -99,7 +100,7 @@ pub use glam;
 pub use image::Image;
 pub use mode::Mode;
 pub use progress::Progress;
-pub use renderer::{Rendered, Renderer};
+pub use renderer::{PhotonCache, Rendered, Renderer};
 pub use settings::RenderSettings;
 pub use source::FinalGatherOptions;
 pub use stats::RenderStats;

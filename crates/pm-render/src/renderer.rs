@@ -31,6 +31,39 @@ pub struct Rendered {
     pub stats: RenderStats,
 }
 
+/// What a render reads from photons, built once and reusable for any camera: the photon maps,
+/// for the final gather its irradiance cache, and the figures of the trace that made them
+/// ([`Renderer::build_photon_cache`]; saved and loaded by [`crate::cache_file`]).
+#[derive(Clone, Debug)]
+pub struct PhotonCache {
+    /// The photon maps.
+    pub maps: PhotonMaps,
+    /// The final gather's irradiance cache (without its estimating photons), `None` in the
+    /// other modes.
+    pub radiance: Option<RadianceCache>,
+    /// Photon paths emitted ([`pm_trace::TraceStats::emitted`]).
+    pub photons_emitted: u64,
+    /// [`pm_trace::TraceStats::near_light_fraction`] of the trace.
+    pub near_light_fraction: f64,
+}
+
+impl PhotonCache {
+    /// Puts the cache's figures into `stats`: photon counts, maps, their occupancy against
+    /// `k`, and the irradiance cache's points and bytes (no timings).
+    pub fn record_figures(&self, k: usize, stats: &mut RenderStats) {
+        stats.photons_emitted = self.photons_emitted;
+        stats.photons_stored = self.maps.maps().iter().map(|m| m.tree().len() as u64).sum();
+        stats.near_light_fraction = self.near_light_fraction;
+        stats.map_count = self.maps.len() as u32;
+        stats.photon_channels_below_range = self.maps.channels_below_range();
+        stats.occupancy = self.maps.occupancy(k);
+        if let Some(cache) = &self.radiance {
+            stats.cache_points = cache.len() as u64;
+            stats.cache_bytes = cache.memory_bytes() as u64;
+        }
+    }
+}
+
 /// Renders scenes with one estimator and one set of settings.
 ///
 /// ```no_run
@@ -59,6 +92,11 @@ impl<E: Estimator> Renderer<E> {
         &self.settings
     }
 
+    /// The estimator.
+    pub fn estimator(&self) -> &E {
+        &self.estimator
+    }
+
     /// Traces photons into the maps `partitioned` assigns (skipped for path tracing), builds
     /// the maps (and for the final gather its cache) and renders its scene, on
     /// `settings.threads` workers.
@@ -83,9 +121,56 @@ impl<E: Estimator> Renderer<E> {
                 Some(assignment) => Some(self.build_maps(scene, assignment, progress, &mut stats)?),
                 None => None,
             };
-            let image = self.render_mode(scene, maps.as_ref(), progress, &mut stats)?;
+            let image = self.render_mode(scene, maps.as_ref(), None, progress, &mut stats)?;
             Ok(Rendered { image, stats })
         })?
+    }
+
+    /// What a render of `partitioned` in this renderer's mode reads from photons: the maps
+    /// ([`Renderer::build_maps`]) and, for [`Mode::FinalGather`], the irradiance cache
+    /// ([`Renderer::build_cache`]), timed into `stats`, on `settings.threads` workers. The
+    /// path tracer, which reads no photons, is refused ([`RenderError::UnreadMaps`]).
+    pub fn build_photon_cache(
+        &self,
+        partitioned: &Partitioned,
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<PhotonCache, RenderError> {
+        self.settings.validate()?;
+        let mode = self.settings.mode;
+        if !mode.uses_photons() {
+            return Err(RenderError::UnreadMaps(mode));
+        }
+        let scene = partitioned.scene();
+        self.in_pool(|| {
+            let maps = self.build_maps(scene, partitioned.assignment(), progress, stats)?;
+            let radiance = match mode {
+                Mode::FinalGather => Some(self.build_cache(scene, &maps, progress, stats)?),
+                _ => None,
+            };
+            Ok(PhotonCache {
+                maps,
+                radiance,
+                photons_emitted: stats.photons_emitted,
+                near_light_fraction: stats.near_light_fraction,
+            })
+        })?
+    }
+
+    /// Renders the image of this renderer's mode from a [`PhotonCache`] built before (by
+    /// [`Renderer::build_photon_cache`], or loaded from a file), timing the render into
+    /// `stats`, on `settings.threads` workers: no photon is traced and, when the cache holds
+    /// an irradiance cache, none is built; the image is the bits a render that built them
+    /// gives. A final gather from a cache without an irradiance cache builds one; an
+    /// irradiance cache given to another mode is refused ([`RenderError::UnreadCache`]).
+    pub fn render_from_cache(
+        &self,
+        scene: &Scene,
+        cache: &PhotonCache,
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<Image, RenderError> {
+        self.in_pool(|| self.render_mode(scene, Some(&cache.maps), cache.radiance.as_ref(), progress, stats))?
     }
 
     /// The photon maps for `scene` under `assignment` (the "trace" and "build" phases),
@@ -167,20 +252,25 @@ impl<E: Estimator> Renderer<E> {
         maps: Option<&PhotonMaps>,
         progress: &dyn Progress,
     ) -> Result<Image, RenderError> {
-        self.render_mode(scene, maps, progress, &mut RenderStats::default())
+        self.render_mode(scene, maps, None, progress, &mut RenderStats::default())
     }
 
-    /// The image of the mode: the mode chooses the radiance source, the core renders it.
-    /// Timings of the precompute and render phases go into `stats`.
+    /// The image of the mode: the mode chooses the radiance source, the core renders it; the
+    /// final gather reads `cache` or, when none is given, builds one. Timings of the
+    /// precompute and render phases go into `stats`.
     fn render_mode(
         &self,
         scene: &Scene,
         maps: Option<&PhotonMaps>,
+        cache: Option<&RadianceCache>,
         progress: &dyn Progress,
         stats: &mut RenderStats,
     ) -> Result<Image, RenderError> {
         self.settings.validate()?;
         let mode = self.settings.mode;
+        if cache.is_some() && mode != Mode::FinalGather {
+            return Err(RenderError::UnreadCache(mode));
+        }
         let maps = match (maps, mode.uses_photons()) {
             (Some(maps), true) => {
                 let (maps_parts, scene_parts) = (maps.assignment().part_count(), scene.part_count());
@@ -217,14 +307,28 @@ impl<E: Estimator> Renderer<E> {
                 self.render_counted(&source, progress, stats)
             }
             (Mode::FinalGather, Some(maps)) => {
-                let cache = self.build_cache(scene, maps, progress, stats)?;
+                let built;
+                let cache = match cache {
+                    Some(cache) if cache.map_count() == maps.len() => cache,
+                    Some(cache) => {
+                        return Err(RenderError::BadFinalGather(format!(
+                            "an irradiance cache of {} maps for photon maps of {}",
+                            cache.map_count(),
+                            maps.len()
+                        )));
+                    }
+                    None => {
+                        built = self.build_cache(scene, maps, progress, stats)?;
+                        &built
+                    }
+                };
                 let source = FinalGatherSource {
                     reads: CacheReads {
                         scene,
                         maps,
                         estimator: &self.estimator,
                         options: &options,
-                        cache: &cache,
+                        cache,
                         gather: self.settings.final_gather,
                     },
                 };

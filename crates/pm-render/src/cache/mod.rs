@@ -8,11 +8,13 @@ use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
-use pm_kdtree::{KindMask, Photon, PhotonKind, PhotonTree};
+use caustics::caustic_trees;
+use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};
 use rayon::prelude::*;
 use std::f32::consts::FRAC_1_PI;
 
+mod caustics;
 pub(crate) mod points;
 
 pub use points::{IrradiancePoint, IrradiancePoints, NORMAL_AGREEMENT};
@@ -179,9 +181,7 @@ impl RadianceCache {
         if !(max_distance > 0.0 && max_distance.is_finite()) {
             return Err(RenderError::BadMaxDistance(max_distance));
         }
-        let map_of_part: Vec<u32> = (0..assignment.part_count() as u32)
-            .map(|p| assignment.map_of(pm_trace::PartId(p)))
-            .collect();
+        let map_of_part = map_of_parts(assignment);
         let set_aside = f64::from(every) / f64::from(every - 1);
         let splits = trees
             .iter()
@@ -206,24 +206,51 @@ impl RadianceCache {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let photons = splits.into_iter().map(|(_, others)| others).collect();
-        let caustics = trees
-            .iter()
-            .map(|tree| {
-                let scale = tree.power_scale();
-                let photons: Vec<Photon> = tree
-                    .iter()
-                    .filter(|p| p.kind() == PhotonKind::Caustic)
-                    .map(|p| p.decode(scale))
-                    .collect();
-                PhotonTree::build(photons).map_err(|e| RenderError::BadFinalGather(e.to_string()))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let caustics = caustic_trees(trees)?;
         Ok(RadianceCache {
             points: cache,
             map_of_part,
             caustics,
             photons,
             set_aside: set_aside as f32,
+            max_distance,
+        })
+    }
+
+    /// The cache of `points` (one per map of `maps`, as a cache of `maps` built with one
+    /// cache point in `every` and a lookup distance of `max_distance` held them, e.g. read
+    /// back from a cache file), without [`RadianceCache::photons`]: its caustic trees are
+    /// made from `maps` as [`RadianceCache::build_with`] makes them, so the cache is the one
+    /// built, bit for bit. Refused: a point count per map that differs from the maps', an
+    /// `every` below 2, a distance not positive and finite.
+    pub fn from_points(
+        points: Vec<IrradiancePoints>,
+        maps: &PhotonMaps,
+        every: u32,
+        max_distance: f32,
+    ) -> Result<Self, RenderError> {
+        if every < 2 {
+            return Err(RenderError::BadFinalGather(format!(
+                "cache points every {every} photons: expected 2 or more"
+            )));
+        }
+        if !(max_distance > 0.0 && max_distance.is_finite()) {
+            return Err(RenderError::BadMaxDistance(max_distance));
+        }
+        if points.len() != maps.len() {
+            return Err(RenderError::BadFinalGather(format!(
+                "cache points for {} maps, but there are {} maps",
+                points.len(),
+                maps.len()
+            )));
+        }
+        let trees: Vec<&PhotonTree> = maps.maps().iter().map(|m| m.tree()).collect();
+        Ok(RadianceCache {
+            points,
+            map_of_part: map_of_parts(maps.assignment()),
+            caustics: caustic_trees(&trees)?,
+            photons: Vec::new(),
+            set_aside: (f64::from(every) / f64::from(every - 1)) as f32,
             max_distance,
         })
     }
@@ -314,6 +341,11 @@ impl RadianceCache {
         self.points.get(map as usize)
     }
 
+    /// Photon maps the cache covers.
+    pub fn map_count(&self) -> usize {
+        self.points.len()
+    }
+
     /// Cache points over all maps.
     pub fn len(&self) -> usize {
         self.points.iter().map(IrradiancePoints::len).sum()
@@ -335,6 +367,13 @@ impl RadianceCache {
             + self.photons.iter().map(PhotonTree::memory_bytes).sum::<usize>()
             + size_of::<Self>()
     }
+}
+
+/// The map of each part of `assignment`, indexed by part.
+fn map_of_parts(assignment: &MapAssignment) -> Vec<u32> {
+    (0..assignment.part_count() as u32)
+        .map(|p| assignment.map_of(pm_trace::PartId(p)))
+        .collect()
 }
 
 /// The cache points of map `m`: the photons of `tree` at `indices`, each on the surface it

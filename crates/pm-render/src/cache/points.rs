@@ -69,6 +69,36 @@ impl IrradiancePoints {
         })
     }
 
+    /// The points as they are held: the index (positions in its order) and the normals and
+    /// irradiances in the index's order. With [`IrradiancePoints::from_indexed`] they give
+    /// these points back, bit for bit.
+    pub fn indexed(&self) -> (&PhotonTree, &[Vec3], &[Vec3]) {
+        (&self.index, &self.normals, &self.irradiance)
+    }
+
+    /// Points as [`IrradiancePoints::indexed`] gave them: `index` a tree over their positions,
+    /// `normals` and `irradiance` in its order. Refused (naming the point): lengths that
+    /// differ, a normal that is not finite (irradiances are kept as they are).
+    pub fn from_indexed(index: PhotonTree, normals: Vec<Vec3>, irradiance: Vec<Vec3>) -> Result<Self, RenderError> {
+        let bad = |what: String| Err(RenderError::BadFinalGather(format!("irradiance points: {what}")));
+        if normals.len() != index.len() || irradiance.len() != index.len() {
+            return bad(format!(
+                "{} positions, {} normals, {} irradiances",
+                index.len(),
+                normals.len(),
+                irradiance.len()
+            ));
+        }
+        if let Some(i) = normals.iter().position(|n| !n.is_finite()) {
+            return bad(format!("point {i} has a normal that is not finite"));
+        }
+        Ok(IrradiancePoints {
+            index,
+            normals,
+            irradiance,
+        })
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.index.len()

@@ -54,6 +54,7 @@ impl PhotonMap {
 pub struct PhotonMaps {
     maps: Vec<PhotonMap>,
     assignment: MapAssignment,
+    geometry_kind: MapGeometry,
 }
 
 impl PhotonMaps {
@@ -85,17 +86,55 @@ impl PhotonMaps {
             }
             .into());
         }
+        let trees = photons
+            .into_par_iter()
+            .enumerate()
+            // Encodes relative to the map's brightest channel and drops the full-precision photons.
+            .map(|(m, photons)| PhotonTree::build(photons).map_err(|source| MapError::Tree { map: m as u32, source }))
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::from_trees(scene, assignment, trees, geometry)
+    }
+
+    /// The maps of photon trees built before (`trees[m]` for map `m` of `assignment`, e.g.
+    /// read back from a cache file), each with its polygons from `scene` as `geometry` says:
+    /// the same maps, bit for bit, as [`PhotonMaps::build_with`] made with those trees.
+    /// Refused when the scene's part count or the map count differs from the assignment's.
+    pub fn from_trees(
+        scene: &Scene,
+        assignment: &MapAssignment,
+        trees: Vec<PhotonTree>,
+        geometry: MapGeometry,
+    ) -> Result<Self, MapError> {
+        if assignment.part_count() != scene.part_count() {
+            return Err(TraceError::AssignmentMismatch {
+                assigned: assignment.part_count(),
+                parts: scene.part_count(),
+            }
+            .into());
+        }
+        if trees.len() != assignment.map_count() as usize {
+            return Err(TraceError::AssignmentMismatch {
+                assigned: trees.len(),
+                parts: assignment.map_count() as usize,
+            }
+            .into());
+        }
         let parts = assignment.parts_per_map();
-        let maps = photons
+        let maps = trees
             .into_par_iter()
             .zip(parts.par_iter())
-            .enumerate()
-            .map(|(m, (photons, parts))| build_map(scene, m as u32, photons, parts, geometry))
-            .collect::<Result<Vec<_>, _>>()?;
+            .map(|(tree, parts)| build_map(scene, tree, parts, geometry))
+            .collect();
         Ok(PhotonMaps {
             maps,
             assignment: assignment.clone(),
+            geometry_kind: geometry,
         })
+    }
+
+    /// How each map stores its polygons.
+    pub fn geometry_kind(&self) -> MapGeometry {
+        self.geometry_kind
     }
 
     /// The map of `part`.
@@ -177,15 +216,7 @@ impl PhotonMaps {
     }
 }
 
-fn build_map(
-    scene: &Scene,
-    map: u32,
-    photons: Vec<pm_kdtree::Photon>,
-    parts: &[PartId],
-    kind: MapGeometry,
-) -> Result<PhotonMap, MapError> {
-    // Encodes relative to the map's brightest channel and drops the full-precision photons.
-    let tree = PhotonTree::build(photons).map_err(|source| MapError::Tree { map, source })?;
+fn build_map(scene: &Scene, tree: PhotonTree, parts: &[PartId], kind: MapGeometry) -> PhotonMap {
     let mut geometry = PolygonSet::new();
     let bounds = match kind {
         MapGeometry::PerFace => {
@@ -214,9 +245,9 @@ fn build_map(
         }
     };
     geometry.build_index();
-    Ok(PhotonMap {
+    PhotonMap {
         tree,
         geometry,
         bounds,
-    })
+    }
 }
