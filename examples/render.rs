@@ -14,6 +14,8 @@ use std::process::ExitCode;
 
 #[path = "render/applies.rs"]
 mod applies;
+#[path = "render/cache.rs"]
+mod cache;
 #[path = "render/choices.rs"]
 mod choices;
 #[path = "render/compare.rs"]
@@ -135,6 +137,15 @@ struct Args {
     /// obvhs kitchen (7.9 m) makes 134,420 maps at 0.002, 30,197 at 0.0001.
     #[arg(long)]
     contact_gap: Option<f32>,
+    /// Single-pass modes that read photons: save the photon maps (and the final gather's
+    /// irradiance cache) to this file, for later runs' --load-cache.
+    #[arg(long, conflicts_with = "load_cache")]
+    save_cache: Option<PathBuf>,
+    /// Single-pass modes that read photons: render from the photon maps (and irradiance cache)
+    /// in this file instead of tracing and building them; refused when it was made for
+    /// another scene or other settings (the camera, size and samples may differ).
+    #[arg(long)]
+    load_cache: Option<PathBuf>,
 }
 
 impl Args {
@@ -237,8 +248,15 @@ fn run(args: &Args) -> Result<(), String> {
     let base = args.out.clone().unwrap_or_else(|| default_out(&scene_name));
     // Fail on an unwritable or clashing output before spending time on the scene or render.
     let dependencies = scene_dependencies(&args.scene);
-    let inputs = scene_inputs(&args.scene, &dependencies);
+    let mut inputs = scene_inputs(&args.scene, &dependencies);
+    inputs.extend(args.load_cache.as_deref().map(|path| files::NamedFile {
+        option: "--load-cache",
+        path,
+    }));
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
+    if let Some(path) = &args.save_cache {
+        files::check_cache_output(path, &base, args.stats_json.as_deref(), &inputs)?;
+    }
     let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
     let origin_offset = scene.origin_offset().to_array();
 
@@ -277,9 +295,14 @@ fn run(args: &Args) -> Result<(), String> {
             .partition(scene.take().ok_or("no scene")?)
             .map_err(|e| e.to_string())?;
         let bar = TileBar::new(variant.label);
-        let out = Renderer::new(variant.estimator, settings)
-            .render(&partitioned, &bar)
-            .map_err(|e| e.to_string())?;
+        let renderer = Renderer::new(variant.estimator, settings);
+        let (out, cache_use) = match (&args.save_cache, &args.load_cache) {
+            (None, None) => (renderer.render(&partitioned, &bar).map_err(|e| e.to_string())?, None),
+            _ => {
+                let (out, used) = cache::render_with_cache_file(args, &renderer, &partitioned, &bar)?;
+                (out, Some(used))
+            }
+        };
         let contacts = (
             contacts_summary(partitioned.record()),
             contacts_json(partitioned.record()),
@@ -296,6 +319,7 @@ fn run(args: &Args) -> Result<(), String> {
             mean,
             contacts,
             origin_offset,
+            cache: cache_use,
         };
         say(&summary(&record));
         records.push(record);
@@ -351,6 +375,9 @@ pub fn default_out(scene_name: &str) -> PathBuf {
 /// Refuses what `--compare` cannot honour: it chooses the maps and estimator of each panel
 /// itself, and its panels differ only in how they read photon maps.
 fn refuse_compare_conflicts(args: &Args) -> Result<(), String> {
+    if args.save_cache.is_some() || args.load_cache.is_some() {
+        return Err("--compare renders four variants with four sets of maps; --save-cache and --load-cache hold one: drop them".into());
+    }
     if args.maps.is_some() || args.estimator.is_some() {
         return Err(
             "--compare renders its four variants with their own maps and estimator; drop --maps and --estimator"

@@ -37,6 +37,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("spp", Run::Single(_)) => true,
         ("spp", Run::Passes(m)) => m == Progressive,
         ("passes" | "time", run) => matches!(run, Run::Passes(_)),
+        ("save_cache" | "load_cache", run) => matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather)),
         ("first_pass" | "direct", run) => run == Run::Passes(Progressive),
         ("light_units", _) => gltf,
         // gather.rs refines progressive: there they need --gather-rays.
@@ -55,6 +56,9 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
         "passes" | "time" => "--mode progressive and --mode sppm",
+        "save_cache" | "load_cache" => {
+            "the single-pass modes that read photons (photon-map, shadow-rays, final-gather; each progressive pass traces its own)"
+        }
         "first_pass" | "direct" => "--mode progressive",
         "light_units" => "glTF scenes (built-in scenes are in watts already)",
         _ => "other modes",
@@ -62,7 +66,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 19] = [
+const OPTIONS: [(&str, &str); 21] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -82,6 +86,8 @@ const OPTIONS: [(&str, &str); 19] = [
     ("cache_every", "--cache-every"),
     ("corner_distance", "--corner-distance"),
     ("contact_gap", "--contact-gap"),
+    ("save_cache", "--save-cache"),
+    ("load_cache", "--load-cache"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

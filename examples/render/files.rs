@@ -209,3 +209,33 @@ pub fn scene_inputs<'a>(scene: &'a str, dependencies: &'a [PathBuf]) -> Vec<Name
     });
     scene_input(scene).into_iter().chain(files).collect()
 }
+
+/// `--save-cache`'s file, checked with the run's other outputs: writable, not one of them and
+/// not an input ([`check_outputs`]).
+pub fn check_cache_output(
+    cache: &Path,
+    base: &Path,
+    stats_json: Option<&Path>,
+    inputs: &[NamedFile<'_>],
+) -> Result<(), String> {
+    let (exr, png) = (base.with_extension("exr"), base.with_extension("png"));
+    let mut outputs = vec![
+        NamedFile {
+            option: "--out's EXR",
+            path: &exr,
+        },
+        NamedFile {
+            option: "--out's PNG",
+            path: &png,
+        },
+    ];
+    outputs.extend(stats_json.map(|path| NamedFile {
+        option: "--stats-json",
+        path,
+    }));
+    outputs.push(NamedFile {
+        option: "--save-cache",
+        path: cache,
+    });
+    check_outputs(&outputs, inputs)
+}

@@ -17,6 +17,8 @@ pub struct Record<'a> {
     pub contacts: (String, String),
     /// The world point the scene was re-centred on (`Scene::origin_offset`), metres.
     pub origin_offset: [f64; 3],
+    /// What `--save-cache` / `--load-cache` did, if given.
+    pub cache: Option<super::cache::CacheUse>,
 }
 
 /// The re-centring offset for the summary: empty for a scene that was not moved.
@@ -115,8 +117,17 @@ pub fn summary(r: &Record<'_>) -> String {
         ),
         _ => String::new(),
     };
+    // A loaded cache traced and built nothing: say so, and how long the file took.
+    let cache = match &r.cache {
+        Some(c) if c.what == "loaded" => format!(
+            ", photons and cache loaded from the cache file in {:.3} s (no tracing or building)",
+            c.seconds
+        ),
+        Some(c) => format!(", cache file {} in {:.3} s", c.what, c.seconds),
+        None => String::new(),
+    };
     format!(
-        "{} [{}]: {lighting}{}{}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}{}{cache}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.contacts.0,
@@ -206,6 +217,14 @@ pub fn json_object(r: &Record<'_>) -> String {
             s.cache_points,
             s.cache_bytes,
             json_number(s.gather_rays_per_second()),
+        );
+    }
+    if let Some(c) = &r.cache {
+        let _ = write!(
+            o,
+            "\"cache\": {}, \"cache_file_seconds\": {}, ",
+            json_string(c.what),
+            json_number(c.seconds)
         );
     }
     let _ = write!(
