@@ -297,7 +297,10 @@ fn run(args: &Args) -> Result<(), String> {
         let bar = TileBar::new(variant.label);
         let renderer = Renderer::new(variant.estimator, settings);
         let (out, cache_use) = match (&args.save_cache, &args.load_cache) {
-            (None, None) => (renderer.render(&partitioned, &bar).map_err(|e| e.to_string())?, None),
+            (None, None) => (
+                renderer.render(&partitioned, &bar).map_err(|e| e.to_string())?,
+                None,
+            ),
             _ => {
                 let (out, used) = cache::render_with_cache_file(args, &renderer, &partitioned, &bar)?;
                 (out, Some(used))

@@ -32,7 +32,14 @@ fn glass_box_with(power: f32, radius: f32) -> Scene {
         Vec3::new(-1.0, 2.0, 1.0),
     ];
     // Inward-facing quads.
-    let faces = [[0u32, 1, 2, 3], [5, 4, 7, 6], [4, 0, 3, 7], [1, 5, 6, 2], [4, 5, 1, 0], [3, 2, 6, 7]];
+    let faces = [
+        [0u32, 1, 2, 3],
+        [5, 4, 7, 6],
+        [4, 0, 3, 7],
+        [1, 5, 6, 2],
+        [4, 5, 1, 0],
+        [3, 2, 6, 7],
+    ];
     Scene::builder()
         .mesh(&p, &faces, Surface::diffuse(Vec3::new(0.7, 0.6, 0.5)))
         .sphere(Vec3::new(0.0, 0.5, 0.0), radius, Surface::glass(1.5))
@@ -58,7 +65,11 @@ fn settings(mode: Mode) -> RenderSettings {
 }
 
 fn bits(image: &Image) -> Vec<u32> {
-    image.pixels().iter().flat_map(|p| p.to_array().map(f32::to_bits)).collect()
+    image
+        .pixels()
+        .iter()
+        .flat_map(|p| p.to_array().map(f32::to_bits))
+        .collect()
 }
 
 /// The bytes of the cache `renderer` builds for `partitioned`, and the image it renders.
@@ -113,23 +124,37 @@ fn cache_for_another_scene_or_other_settings_is_refused_by_name() {
     let partitioned = CreaseAngle::default().partition(glass_box()).unwrap();
     let renderer = Renderer::new(EstimatorKind::GeometryCube, settings(Mode::FinalGather));
     let (bytes, _) = saved(&renderer, &partitioned);
-    let refused = |renderer: &Renderer<EstimatorKind>, partitioned: &Partitioned| {
-        match load_cache(&bytes[..], renderer, partitioned) {
-            Err(CacheFileError::IdentityMismatch { key, file, run }) => (key, file, run),
-            other => panic!("expected an identity mismatch, got {other:?}"),
-        }
+    let refused = |renderer: &Renderer<EstimatorKind>, partitioned: &Partitioned| match load_cache(
+        &bytes[..],
+        renderer,
+        partitioned,
+    ) {
+        Err(CacheFileError::IdentityMismatch { key, file, run }) => (key, file, run),
+        other => panic!("expected an identity mismatch, got {other:?}"),
     };
     let with = |f: &dyn Fn(&mut RenderSettings)| {
         let mut s = settings(Mode::FinalGather);
         f(&mut s);
         Renderer::new(EstimatorKind::GeometryCube, s)
     };
-    assert_eq!(refused(&with(&|s| s.photons = 20_001), &partitioned), ("photons".into(), "20000".into(), "20001".into()));
+    assert_eq!(
+        refused(&with(&|s| s.photons = 20_001), &partitioned),
+        ("photons".into(), "20000".into(), "20001".into())
+    );
     assert_eq!(refused(&with(&|s| s.seed = 6), &partitioned).0, "seed");
     assert_eq!(refused(&with(&|s| s.k = 50), &partitioned).0, "k");
-    assert_eq!(refused(&with(&|s| s.final_gather.cache_every = 8), &partitioned).0, "cache_every");
-    assert_eq!(refused(&with(&|s| s.max_distance = Some(0.3)), &partitioned).0, "max_distance");
-    assert_eq!(refused(&with(&|s| s.mode = Mode::PhotonMap), &partitioned).0, "radiance_cache");
+    assert_eq!(
+        refused(&with(&|s| s.final_gather.cache_every = 8), &partitioned).0,
+        "cache_every"
+    );
+    assert_eq!(
+        refused(&with(&|s| s.max_distance = Some(0.3)), &partitioned).0,
+        "max_distance"
+    );
+    assert_eq!(
+        refused(&with(&|s| s.mode = Mode::PhotonMap), &partitioned).0,
+        "radiance_cache"
+    );
     let disc = Renderer::new(EstimatorKind::Disc, settings(Mode::FinalGather));
     assert_eq!(refused(&disc, &partitioned).0, "estimator");
     // The camera, size and samples are not part of it: one cache renders any view.
@@ -143,12 +168,18 @@ fn cache_for_another_scene_or_other_settings_is_refused_by_name() {
     let moved = CreaseAngle::default().partition(moved).unwrap();
     assert!(load_cache(&bytes[..], &other_view, &moved).is_ok());
     // Another scene: another partition, other geometry, another light.
-    let cornell = CreaseAngle::default().partition(scenes::build("cornell-box").unwrap()).unwrap();
+    let cornell = CreaseAngle::default()
+        .partition(scenes::build("cornell-box").unwrap())
+        .unwrap();
     let key = refused(&renderer, &cornell).0;
     assert!(["parts", "maps", "assignment"].contains(&key.as_str()), "{key}");
-    let relit = CreaseAngle::default().partition(glass_box_with(61.0, 0.35)).unwrap();
+    let relit = CreaseAngle::default()
+        .partition(glass_box_with(61.0, 0.35))
+        .unwrap();
     assert_eq!(refused(&renderer, &relit).0, "lights");
-    let reshaped = CreaseAngle::default().partition(glass_box_with(60.0, 0.36)).unwrap();
+    let reshaped = CreaseAngle::default()
+        .partition(glass_box_with(60.0, 0.36))
+        .unwrap();
     assert_eq!(refused(&renderer, &reshaped).0, "geometry");
 }
 
@@ -235,7 +266,9 @@ fn mutated_cache_files_are_refused_without_panic_or_unbounded_allocation() {
     for case in 0..3_000 {
         let mutated = mutate(&bytes, &mut rng);
         let base = tracking_allocator::reset_peak();
-        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| load_cache(&mutated[..], &renderer, &partitioned)));
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            load_cache(&mutated[..], &renderer, &partitioned)
+        }));
         let peak = tracking_allocator::peak() - base;
         let result = result.unwrap_or_else(|_| panic!("case {case}: load panicked"));
         assert!(

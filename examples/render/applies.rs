@@ -37,7 +37,9 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("spp", Run::Single(_)) => true,
         ("spp", Run::Passes(m)) => m == Progressive,
         ("passes" | "time", run) => matches!(run, Run::Passes(_)),
-        ("save_cache" | "load_cache", run) => matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather)),
+        ("save_cache" | "load_cache", run) => {
+            matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather))
+        }
         ("first_pass" | "direct", run) => run == Run::Passes(Progressive),
         ("light_units", _) => gltf,
         // gather.rs refines progressive: there they need --gather-rays.

@@ -48,11 +48,27 @@ pub fn render_with_cache_file(
             save_cache_file(path, renderer, partitioned, &cache)
                 .map_err(|e| format!("--save-cache {}: {e}", path.display()))?;
             // Only the write is the file's time; tracing and building are timed apart.
-            return render_from(renderer, partitioned, &cache, progress, stats, "saved", saving.elapsed());
+            return render_from(
+                renderer,
+                partitioned,
+                &cache,
+                progress,
+                stats,
+                "saved",
+                saving.elapsed(),
+            );
         }
         (None, None) => return Err("no cache file named".into()),
     };
-    render_from(renderer, partitioned, &cache, progress, stats, what, start.elapsed())
+    render_from(
+        renderer,
+        partitioned,
+        &cache,
+        progress,
+        stats,
+        what,
+        start.elapsed(),
+    )
 }
 
 fn render_from(

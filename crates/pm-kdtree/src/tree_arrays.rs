@@ -98,7 +98,9 @@ impl PhotonTree {
         for i in 0..n {
             let p = [arrays.xs[i], arrays.ys[i], arrays.zs[i]];
             if !p.iter().all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE) {
-                return whole(format!("photon {i} at {p:?}: not finite or beyond {MAX_COORDINATE}"));
+                return whole(format!(
+                    "photon {i} at {p:?}: not finite or beyond {MAX_COORDINATE}"
+                ));
             }
             for axis in 0..3 {
                 bounds[0][axis] = bounds[0][axis].min(p[axis]);

@@ -79,7 +79,11 @@ impl IrradiancePoints {
     /// Points as [`IrradiancePoints::indexed`] gave them: `index` a tree over their positions,
     /// `normals` and `irradiance` in its order. Refused (naming the point): lengths that
     /// differ, a normal that is not finite (irradiances are kept as they are).
-    pub fn from_indexed(index: PhotonTree, normals: Vec<Vec3>, irradiance: Vec<Vec3>) -> Result<Self, RenderError> {
+    pub fn from_indexed(
+        index: PhotonTree,
+        normals: Vec<Vec3>,
+        irradiance: Vec<Vec3>,
+    ) -> Result<Self, RenderError> {
         let bad = |what: String| Err(RenderError::BadFinalGather(format!("irradiance points: {what}")));
         if normals.len() != index.len() || irradiance.len() != index.len() {
             return bad(format!(

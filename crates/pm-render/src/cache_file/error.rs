@@ -16,7 +16,9 @@ pub enum CacheFileError {
         message: String,
     },
     /// The first 8 bytes are not the cache file's magic number.
-    #[error("not a photon cache file: its first bytes are {found:02x?}, not the magic number {expected:02x?}")]
+    #[error(
+        "not a photon cache file: its first bytes are {found:02x?}, not the magic number {expected:02x?}"
+    )]
     NotACacheFile {
         /// The bytes found.
         found: Vec<u8>,
@@ -24,7 +26,9 @@ pub enum CacheFileError {
         expected: [u8; 8],
     },
     /// A format version this build does not read.
-    #[error("cache file format version {found}: this build reads version {supported} only (re-save the cache)")]
+    #[error(
+        "cache file format version {found}: this build reads version {supported} only (re-save the cache)"
+    )]
     UnsupportedVersion {
         /// The file's version.
         found: u32,
@@ -33,7 +37,9 @@ pub enum CacheFileError {
     },
     /// The file ends before a field, or a count or length asks for more bytes than remain
     /// (checked before anything is allocated for it).
-    #[error("{section} at byte {offset}: {field} needs {needed} bytes but only {remaining} remain (truncated or corrupt file)")]
+    #[error(
+        "{section} at byte {offset}: {field} needs {needed} bytes but only {remaining} remain (truncated or corrupt file)"
+    )]
     Truncated {
         /// The section read.
         section: &'static str,
@@ -61,7 +67,9 @@ pub enum CacheFileError {
         limit: u64,
     },
     /// The payload's checksum does not match the one stored.
-    #[error("payload checksum {computed:016x} differs from the {stored:016x} stored in the header (corrupt file)")]
+    #[error(
+        "payload checksum {computed:016x} differs from the {stored:016x} stored in the header (corrupt file)"
+    )]
     ChecksumMismatch {
         /// Stored in the header.
         stored: u64,
@@ -89,7 +97,9 @@ pub enum CacheFileError {
     },
     /// The cache was made for another scene or other settings: the first identity entry that
     /// differs.
-    #[error("the cache file was made with {key}={file}, this run has {key}={run}: refused (it would render another image)")]
+    #[error(
+        "the cache file was made with {key}={file}, this run has {key}={run}: refused (it would render another image)"
+    )]
     IdentityMismatch {
         /// The entry (`photons`, `seed`, `k`, `geometry`, `lights`, …).
         key: String,

@@ -88,7 +88,10 @@ impl CacheIdentity {
 
     /// The value of `key`, if any.
     pub fn get(&self, key: &str) -> Option<&str> {
-        self.entries.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+        self.entries
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
     }
 
     /// `Ok` when `file` (a cache file's identity) has this run's entries, and no others;

@@ -89,8 +89,12 @@ pub fn save_cache<E: Estimator>(
     };
     writer.write_all(&MAGIC).map_err(io)?;
     writer.write_all(&FORMAT_VERSION.to_le_bytes()).map_err(io)?;
-    writer.write_all(&(payload.len() as u64).to_le_bytes()).map_err(io)?;
-    writer.write_all(&payload_checksum(&payload).to_le_bytes()).map_err(io)?;
+    writer
+        .write_all(&(payload.len() as u64).to_le_bytes())
+        .map_err(io)?;
+    writer
+        .write_all(&payload_checksum(&payload).to_le_bytes())
+        .map_err(io)?;
     writer.write_all(&payload).map_err(io)?;
     writer.flush().map_err(io)
 }
@@ -140,10 +144,16 @@ pub fn load_cache<E: Estimator>(
     let radiance = match fields.u8("radiance cache flag")? {
         0 => None,
         1 => Some(read_radiance(&mut fields, renderer, partitioned, &maps)?),
-        flag => return Err(fields.invalid(offset, "radiance cache flag", format!("{flag}, expected 0 or 1"))),
+        flag => {
+            return Err(fields.invalid(offset, "radiance cache flag", format!("{flag}, expected 0 or 1")));
+        }
     };
     if radiance.is_some() != (identity.get("radiance_cache") == Some("yes")) {
-        return Err(fields.invalid(offset, "radiance cache flag", "disagrees with the identity".into()));
+        return Err(fields.invalid(
+            offset,
+            "radiance cache flag",
+            "disagrees with the identity".into(),
+        ));
     }
     if fields.remaining() > 0 {
         return Err(CacheFileError::TrailingBytes {
@@ -182,7 +192,11 @@ fn read_payload(reader: &mut impl Read) -> Result<Vec<u8>, CacheFileError> {
         message: e.to_string(),
     };
     let mut header = Vec::with_capacity(HEADER_BYTES);
-    reader.by_ref().take(HEADER_BYTES as u64).read_to_end(&mut header).map_err(io)?;
+    reader
+        .by_ref()
+        .take(HEADER_BYTES as u64)
+        .read_to_end(&mut header)
+        .map_err(io)?;
     if header.len() < MAGIC.len() || header[..8] != MAGIC {
         return Err(CacheFileError::NotACacheFile {
             found: header[..header.len().min(8)].to_vec(),
@@ -237,7 +251,11 @@ fn read_maps(fields: &mut Fields<'_>, partitioned: &Partitioned) -> Result<Photo
     let count = fields.u32("map count")?;
     let expected = partitioned.assignment().map_count();
     if count != expected {
-        return Err(fields.invalid(offset, "map count", format!("{count}, but the partition has {expected} maps")));
+        return Err(fields.invalid(
+            offset,
+            "map count",
+            format!("{count}, but the partition has {expected} maps"),
+        ));
     }
     // A tree takes at least 20 bytes before its photons.
     fields.check_room("maps", u64::from(count), 20)?;

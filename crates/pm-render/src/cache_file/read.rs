@@ -109,7 +109,13 @@ impl<'a> Fields<'a> {
         String::from_utf8(bytes.to_vec()).map_err(|e| self.invalid(offset, field, e.to_string()))
     }
 
-    pub(crate) fn too_large(&self, offset: u64, field: &'static str, value: u64, limit: u64) -> CacheFileError {
+    pub(crate) fn too_large(
+        &self,
+        offset: u64,
+        field: &'static str,
+        value: u64,
+        limit: u64,
+    ) -> CacheFileError {
         CacheFileError::TooLarge {
             section: self.section,
             offset,
@@ -148,7 +154,12 @@ impl<'a> Fields<'a> {
     }
 
     /// Refuses `count` items of at least `size` bytes each when fewer bytes remain.
-    pub(crate) fn check_room(&self, field: &'static str, count: u64, size: u64) -> Result<(), CacheFileError> {
+    pub(crate) fn check_room(
+        &self,
+        field: &'static str,
+        count: u64,
+        size: u64,
+    ) -> Result<(), CacheFileError> {
         let needed = count.saturating_mul(size);
         if needed > self.remaining() as u64 {
             return Err(CacheFileError::Truncated {
@@ -169,7 +180,8 @@ impl<'a> Fields<'a> {
         let n = self.u64("photon count")?;
         // 20 bytes a photon, checked before the count is used for anything else.
         self.check_room("photons", n, 20)?;
-        let n_usize = usize::try_from(n).map_err(|_| self.too_large(offset, "photon count", n, usize::MAX as u64))?;
+        let n_usize =
+            usize::try_from(n).map_err(|_| self.too_large(offset, "photon count", n, usize::MAX as u64))?;
         let scale_watts = self.f32("power scale")?;
         let below_range = self.u64("channels below range")?;
         let xs = self.f32s("x coordinates", n)?;

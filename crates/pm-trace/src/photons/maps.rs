@@ -90,7 +90,12 @@ impl PhotonMaps {
             .into_par_iter()
             .enumerate()
             // Encodes relative to the map's brightest channel and drops the full-precision photons.
-            .map(|(m, photons)| PhotonTree::build(photons).map_err(|source| MapError::Tree { map: m as u32, source }))
+            .map(|(m, photons)| {
+                PhotonTree::build(photons).map_err(|source| MapError::Tree {
+                    map: m as u32,
+                    source,
+                })
+            })
             .collect::<Result<Vec<_>, _>>()?;
         Self::from_trees(scene, assignment, trees, geometry)
     }
