@@ -1,7 +1,7 @@
 //! A photon tree's arrays laid bare and a tree rebuilt from them, checked: what a cache file
 //! writes and reads back, so that a tree loaded is the bits of the tree saved.
 
-use crate::photon::PowerScale;
+use crate::power_code::PowerScale;
 use crate::tree::{InvariantError, MAX_COORDINATE, PhotonTree, depth_for};
 
 /// The arrays of a [`PhotonTree`], borrowed ([`PhotonTree::arrays`]). The bounds and the depth
