@@ -81,13 +81,16 @@ fn triangle_test_error(polygon: &[Vec3], ray: &Ray, t: f32) -> f32 {
 #[derive(Clone, Copy, Debug)]
 enum Shadows {
     Checked,
-    /// Not compared, where known disagreements remain (issue 33): on the sliver panel a shadow
-    /// ray from the plate's top is now and then blocked in the split scene only (1 in 3000 rays
-    /// in some drawn cases: a sliver piece's neighbour within the offset, cause not yet
-    /// established); on the kitchen 2 shadow rays in 200,000 are blocked as given and not after
-    /// the split, from hits within 0.1 mm of another surface. Before hit points were moved onto
-    /// their triangle's plane the piercing boxes had one too (now passing). Before the pinch fix
-    /// the kitchen's camera rays disagreed 29 times in 386,000.
+    /// Not compared, where known disagreements remain (issue 33): on the kitchen 2 shadow rays
+    /// in 200,000 are blocked as given and not after the split, from hits within 0.1 mm of
+    /// another surface. (The sliver panel's are compared now that a shadow ray skips its own
+    /// triangle: one ray in 3,000, from the plate's sliver top, was shadowed by that sliver in
+    /// the scene as given. Its drawn cases pass; at 1,000 cases one more disagreement shows,
+    /// `near = 1e-5, depth = 0.01, seed = 442`, from a piece of the slab beside the panel to a
+    /// point inside the slab, blocked in the split only, where a neighbouring piece's plane
+    /// lies within the offset. Before hit points were moved onto their triangle's plane the
+    /// piercing boxes had one too; before the pinch fix the kitchen's camera rays disagreed 29
+    /// times in 386,000.)
     Unchecked,
 }
 
@@ -363,7 +366,7 @@ proptest! {
     ) {
         let plate = (Vec3::new(-0.99, 0.0, 0.5), Vec3::new(0.99, 0.0484, 0.5 + depth));
         let panel = (Vec3::new(-0.99 + near, 0.0, 0.3), Vec3::new(-0.99 + near + 0.02, 0.6, 0.6));
-        assert_split_keeps_visibility(boxes(&[SLAB, plate, panel], corners), seed, Shadows::Unchecked)?;
+        assert_split_keeps_visibility(boxes(&[SLAB, plate, panel], corners), seed, Shadows::Checked)?;
     }
 }
 

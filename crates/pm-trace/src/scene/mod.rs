@@ -19,7 +19,7 @@ pub use shading::VertexAttributes;
 
 use crate::bsdf::Bsdf;
 use crate::bsdf::shading_point::{ShadingPoint, TextureFactors};
-use crate::bvh::SceneBvh;
+use crate::bvh::{HitPrimitive, SceneBvh};
 use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::light::Light;
@@ -58,6 +58,8 @@ pub struct Hit {
     surface: u32,
     /// A bound on the distance of `position` from the true surface point (rounding).
     error: f32,
+    /// The primitive hit (rays leaving a triangle skip it: [`Scene::occluded_from`]).
+    primitive: HitPrimitive,
 }
 
 impl Hit {

@@ -3,8 +3,8 @@
 
 use super::offset::{interpolated_point_error, offset_point, point_error};
 use super::{Hit, RayKind, Scene};
-use crate::bvh::HitPrimitive;
 use crate::bvh::closest::Crossing;
+use crate::bvh::{HitPrimitive, Leaving};
 use crate::part::PartSurface;
 use crate::ray::Ray;
 use glam::Vec3;
@@ -111,6 +111,7 @@ impl Scene {
             part,
             surface,
             error,
+            primitive: index,
         }
     }
 
@@ -133,7 +134,9 @@ impl Scene {
 
     /// True when a surface lies between the surface point `hit` and `to`: the shadow ray
     /// starts off `hit`'s surface as [`Scene::spawn_ray`]'s do, and surfaces within the
-    /// rounding error of `to` do not count (it may lie on a light's surface).
+    /// rounding error of `to` do not count (it may lie on a light's surface). The triangle
+    /// `hit` lies on is not tested: a ray leaving its plane cannot meet it, and the triangle
+    /// test's own rounding, large on a sliver, would now and then say it does.
     #[inline]
     pub fn occluded_from(&self, hit: &Hit, to: Vec3) -> bool {
         let side = if (to - hit.position).dot(hit.normal) >= 0.0 {
@@ -152,7 +155,11 @@ impl Scene {
             origin: from,
             direction: d / dist,
         };
-        self.bvh.any_hit(&ray, 0.0, dist - error)
+        let leaving = match hit.primitive {
+            HitPrimitive::Triangle(i) => Leaving::Triangle(i),
+            HitPrimitive::Shape(_) => Leaving::Nothing,
+        };
+        self.bvh.any_hit_leaving(&ray, 0.0, dist - error, leaving)
     }
 
     /// A ray leaving `hit` along unit `direction`, its origin pushed off the surface to the
