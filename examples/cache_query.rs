@@ -199,10 +199,9 @@ fn report_means(own: &Image, builtin: &Image) {
 
 /// Writes `image` as PNG or EXR by the extension of `path`, creating `target/` for the default.
 fn write(image: &Image, path: &Path) -> Result<(), String> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.exists()) {
-        if dir == Path::new("target") {
-            std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
-        }
+    // Only the default folder is created: a folder the user names must exist.
+    if path.parent() == Some(Path::new("target")) {
+        std::fs::create_dir_all("target").map_err(|e| e.to_string())?;
     }
     let ext = path
         .extension()
