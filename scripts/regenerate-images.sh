@@ -39,6 +39,8 @@ if [ -f "$gltf" ]; then
 else
     echo "no glTF corpus at $corpus: gltf-cornell-box.png not rendered" >&2
 fi
+# The photon cache's debug view (docs/cache.md): distance to the answering cache point.
+cargo run --quiet --release --example cache_query -- --view radii --size 160x160 --out "$out/cache-radii.png"
 mkdir -p "$dest"
 cp "$out"/*.png "$dest"/
 echo "wrote $(ls "$out"/*.png | wc -l) pictures to $dest"

@@ -12,7 +12,14 @@ mod tracked;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-const EXAMPLES: [&str; 5] = ["render", "results", "scale", "convergence", "floor_band"];
+const EXAMPLES: [&str; 6] = [
+    "render",
+    "results",
+    "scale",
+    "convergence",
+    "floor_band",
+    "cache_query",
+];
 
 #[test]
 fn every_example_answers_help_at_once_and_writes_nothing() {

@@ -87,7 +87,7 @@ pub mod settings;
 pub mod source;
 pub mod stats;
 
-pub use cache::{CachePoint, RadianceCache};
+pub use cache::{CachePoint, CacheQuery, CachedRadiance, QueryMap, RadianceCache};
 pub use core::{PathVertex, RadianceSource};
 pub use error::RenderError;
 pub use estimator::{

@@ -5,33 +5,21 @@ use crate::error::RenderError;
 use crate::estimator::Estimator;
 use crate::estimator::options::EstimatorOptions;
 use crate::estimator::point::MapView;
-use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
+use build::{cache_points, split_cache_points};
 use caustics::caustic_trees;
 use glam::Vec3;
 use pm_kdtree::{KindMask, PhotonTree};
-use pm_trace::{Hit, MapAssignment, PhotonMaps, Ray, RayKind, Scene};
-use rayon::prelude::*;
-use std::f32::consts::FRAC_1_PI;
+use pm_trace::{Hit, MapAssignment, PhotonMaps, Scene};
 
+mod build;
 mod caustics;
 pub(crate) mod points;
+pub(crate) mod query;
 
-pub use points::{IrradiancePoint, IrradiancePoints, NORMAL_AGREEMENT};
-
-/// Where [`RadianceCache::build_with`] asks for an irradiance estimate, and from what.
-#[derive(Clone, Copy, Debug)]
-pub struct CachePoint<'a> {
-    /// The photon map (index into the trees given).
-    pub map: usize,
-    /// The cache point: a photon's position, with the normal and side of the surface it
-    /// landed on.
-    pub at: SurfacePoint,
-    /// The map's photons that are not cache points, to estimate from. The estimate is
-    /// scaled up by the cache for the photons set aside; estimating from these alone keeps it
-    /// independent of where the cache points are (see [`RadianceCache`]).
-    pub photons: &'a PhotonTree,
-}
+pub use build::CachePoint;
+pub use points::{CANDIDATES, IrradiancePoint, IrradiancePoints, NORMAL_AGREEMENT};
+pub use query::{CacheQuery, CachedRadiance, QueryMap};
 
 /// Irradiance precomputed at photon positions, per photon map: the radiance cache of a final
 /// gather.
@@ -316,17 +304,56 @@ impl RadianceCache {
         self.map_of_part.get(part.0 as usize).copied()
     }
 
-    /// Outgoing radiance `ρ/π · E` (W/(m²·sr)) of a diffuse `hit`, with `E` from
-    /// [`RadianceCache::irradiance`] in the hit part's own map and `ρ` the albedo at the hit;
-    /// zero where the cache has no point. Emission is not included.
+    /// Outgoing radiance `ρ/π · E` (W/(m²·sr)) of a diffuse `hit`: the answer of
+    /// [`RadianceCache::radiance_at`] to [`CacheQuery::at_hit`] (the hit part's own map, the
+    /// albedo at the hit); zero where the cache has no point. Emission is not included.
     pub fn radiance(&self, scene: &Scene, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
-        let Some(&map) = self.map_of_part.get(hit.part.0 as usize) else {
-            return Vec3::ZERO;
-        };
-        match self.irradiance(hit.position, hit.normal, map, scratch) {
-            Some(e) => scene.albedo_at(hit) * FRAC_1_PI * e,
-            None => Vec3::ZERO,
+        self.radiance_at(&CacheQuery::at_hit(scene, hit), scratch)
+            .map_or(Vec3::ZERO, |answer| answer.radiance)
+    }
+
+    /// The cache read at a surface point a renderer with its own ray tracer found: the
+    /// nearest cache point of the query's map within the lookup distance whose normal agrees
+    /// with the query's (cosine at least [`NORMAL_AGREEMENT`]; when the nearest does not
+    /// agree, the nearest that does among the [`CANDIDATES`] nearest), its irradiance `E`
+    /// and `ρ/π · E` with the query's albedo — exactly what the built-in final gather reads
+    /// at a gather ray's diffuse hit ([`RadianceCache::radiance`] is this call).
+    ///
+    /// `None` where no cache point agrees (no photon reached that part of the map, or the
+    /// query is on the other side of a sheet), and for a map or part the cache does not
+    /// have, a position that is not finite, or a normal that is zero or not finite. Never
+    /// panics; allocation-free once `scratch` is warm (one scratch per thread).
+    ///
+    /// ```
+    /// # use pm_render::{CacheQuery, QueryMap, RadianceCache, EstimatorScratch};
+    /// # use pm_render::glam::Vec3;
+    /// # fn f(cache: &RadianceCache) {
+    /// let mut scratch = EstimatorScratch::new();
+    /// let query = CacheQuery { position: Vec3::new(0.1, 0.0, 0.2), normal: Vec3::Y, map: QueryMap::Map(0), albedo: Vec3::splat(0.5) };
+    /// if let Some(answer) = cache.radiance_at(&query, &mut scratch) {
+    ///     println!("L = {} from the point at {}", answer.radiance, answer.point.position);
+    /// }
+    /// # }
+    /// ```
+    pub fn radiance_at(&self, query: &CacheQuery, scratch: &mut EstimatorScratch) -> Option<CachedRadiance> {
+        let map = query.map.resolve(&self.map_of_part)?;
+        let normal = query.unit_normal()?;
+        if !query.position.is_finite() {
+            return None;
         }
+        let point = self.points.get(map as usize)?.nearest_agreeing_point(
+            query.position,
+            normal,
+            self.max_distance,
+            &mut scratch.neighbours,
+        )?;
+        Some(CachedRadiance::new(query.albedo, map, point))
+    }
+
+    /// The distance within which [`RadianceCache::radiance_at`] looks for a cache point
+    /// (metres): the estimator's maximum distance the cache was built with.
+    pub fn max_distance(&self) -> f32 {
+        self.max_distance
     }
 
     /// The photons of kind caustic of photon map `map` alone, as a tree of their own (Jensen's
@@ -374,90 +401,4 @@ fn map_of_parts(assignment: &MapAssignment) -> Vec<u32> {
     (0..assignment.part_count() as u32)
         .map(|p| assignment.map_of(pm_trace::PartId(p)))
         .collect()
-}
-
-/// The cache points of map `m`: the photons of `tree` at `indices`, each on the surface it
-/// landed on (found by a short cast back along its travel; a photon whose surface is not in
-/// map `m` is skipped) with `irradiance` estimated there from `others`, times `set_aside`.
-#[allow(clippy::too_many_arguments)]
-fn cache_points<F>(
-    scene: &Scene,
-    map_of_part: &[u32],
-    m: usize,
-    tree: &PhotonTree,
-    indices: &[u32],
-    others: &PhotonTree,
-    set_aside: f64,
-    irradiance: &F,
-) -> Vec<IrradiancePoint>
-where
-    F: Fn(CachePoint<'_>, &mut EstimatorScratch) -> Vec3 + Sync,
-{
-    // The cast that finds a photon's surface starts this far before it.
-    let back = 4.0 * scene.epsilon();
-    indices
-        .par_iter()
-        .map_init(EstimatorScratch::new, |scratch, &i| {
-            let photon = tree.get(i);
-            let position = photon.position();
-            let direction = photon.direction();
-            let ray = Ray {
-                origin: position - direction * back,
-                direction,
-            };
-            let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
-            if map_of_part.get(hit.part.0 as usize) != Some(&(m as u32)) {
-                return None;
-            }
-            let at = SurfacePoint {
-                position,
-                normal: scene.shading_normal_at(&hit),
-                front_face: hit.front_face,
-            };
-            let point = CachePoint {
-                map: m,
-                at,
-                photons: others,
-            };
-            Some(IrradiancePoint {
-                position,
-                normal: hit.normal,
-                irradiance: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
-            })
-        })
-        .flatten()
-        .collect()
-}
-
-/// Splits `tree` into its cache points (the indices of the photons whose hash falls in the
-/// lowest 1/`every` of its range: each photon independently, as far as a hash goes, so that
-/// the two sets are independent thinnings of the photons) and a tree of the others.
-///
-/// The hash is of the photon's position as well as its index: by the index alone, the same
-/// tree slots would be set aside in every tree of a size, whatever its photons, a share that
-/// misses 1/`every` by a few tenths of a percent the same way in every pass.
-fn split_cache_points(tree: &PhotonTree, every: u32) -> Result<(Vec<u32>, PhotonTree), RenderError> {
-    let threshold = u64::MAX / u64::from(every);
-    let scale = tree.power_scale();
-    let mut points = Vec::with_capacity(tree.len() / every as usize + 1);
-    let mut others = Vec::with_capacity(tree.len());
-    for (i, photon) in tree.iter().enumerate() {
-        let [x, y, z] = photon.position().to_array().map(|c| u64::from(c.to_bits()));
-        let hash = mix(mix(mix(i as u64 ^ x) ^ (y << 32 | z)));
-        if hash <= threshold {
-            points.push(i as u32);
-        } else {
-            others.push(photon.decode(scale));
-        }
-    }
-    let others = PhotonTree::build(others).map_err(|e| RenderError::BadFinalGather(e.to_string()))?;
-    Ok((points, others))
-}
-
-/// SplitMix64's finaliser: a well-mixed 64-bit hash of `x`.
-fn mix(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
 }

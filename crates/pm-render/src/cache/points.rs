@@ -5,8 +5,9 @@ use crate::error::RenderError;
 use glam::Vec3;
 use pm_kdtree::{Euclidean, KindMask, Neighbours, Photon, PhotonKind, PhotonTree};
 
-/// Candidates examined per lookup for one whose normal agrees with the query's.
-const CANDIDATES: usize = 8;
+/// Candidates examined per lookup for one whose normal agrees with the query's: the nearest
+/// this many points within the lookup distance.
+pub const CANDIDATES: usize = 8;
 
 /// The smallest cosine between a cache point's normal and the query's for the point to answer
 /// (about 25°): the nearest point on the other side of a thin sheet, or across a sharp fold of
@@ -136,6 +137,21 @@ impl IrradiancePoints {
         radius: f32,
         neighbours: &mut Neighbours,
     ) -> Option<Vec3> {
+        self.nearest_agreeing_point(position, normal, radius, neighbours)
+            .map(|p| p.irradiance)
+    }
+
+    /// The point [`IrradiancePoints::nearest_agreeing`] answers with: the nearest within
+    /// `radius` of `position`, or when its normal does not agree with `normal` the nearest
+    /// that agrees among the [`CANDIDATES`] nearest; `None` when none of them agrees (a
+    /// position that is not finite finds none). Allocation-free once `neighbours` is warm.
+    pub fn nearest_agreeing_point(
+        &self,
+        position: Vec3,
+        normal: Vec3,
+        radius: f32,
+        neighbours: &mut Neighbours,
+    ) -> Option<IrradiancePoint> {
         if self.index.is_empty() {
             return None;
         }
@@ -145,7 +161,7 @@ impl IrradiancePoints {
             .nearest_k::<Euclidean>(position, 1, radius, KindMask::ALL, neighbours);
         match neighbours.as_slice().first().map(|n| n.index) {
             None => return None,
-            Some(slot) if agrees(slot) => return Some(self.irradiance[slot as usize]),
+            Some(slot) if agrees(slot) => return Some(self.point(slot)),
             Some(_) => {}
         }
         self.index
@@ -156,7 +172,7 @@ impl IrradiancePoints {
             .iter()
             .map(|n| n.index)
             .find(|&slot| agrees(slot))
-            .map(|slot| self.irradiance[slot as usize])
+            .map(|slot| self.point(slot))
     }
 
     /// Bytes held: the index's and the two fields'.
