@@ -9,7 +9,7 @@ mod tracking_allocator;
 use photon_maps::render::cache_file::{
     CacheFileError, HEADER_BYTES, load_cache, payload_checksum, save_cache,
 };
-use photon_maps::render::glam::Vec3;
+use photon_maps::render::glam::{Vec2, Vec3};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, RenderStats, Renderer};
 use photon_maps::trace::{Camera, CreaseAngle, Partitioned, Partitioner, PointLight, Scene, Surface, scenes};
 
@@ -181,6 +181,58 @@ fn cache_for_another_scene_or_other_settings_is_refused_by_name() {
         .partition(glass_box_with(60.0, 0.36))
         .unwrap();
     assert_eq!(refused(&renderer, &reshaped).0, "geometry");
+    // The same geometry with a texture: refused for the untextured box, and for the same
+    // texture with one texel changed.
+    let textured = |texel: u8| {
+        let partitioned = CreaseAngle::default().partition(textured_floor(texel)).unwrap();
+        let renderer = Renderer::new(EstimatorKind::GeometryCube, settings(Mode::PhotonMap));
+        (renderer, partitioned)
+    };
+    let (renderer, partitioned) = textured(200);
+    let (bytes, _) = saved(&renderer, &partitioned);
+    assert!(load_cache(&bytes[..], &renderer, &partitioned).is_ok());
+    let (other_renderer, retextured) = textured(201);
+    match load_cache(&bytes[..], &other_renderer, &retextured) {
+        Err(CacheFileError::IdentityMismatch { key, .. }) => assert_eq!(key, "appearance"),
+        other => panic!("expected an appearance mismatch, got {other:?}"),
+    }
+}
+
+/// A lit square floor with a 2×2 base-colour texture whose first texel is `texel` (grey).
+fn textured_floor(texel: u8) -> Scene {
+    use photon_maps::trace::{Sampler, Texture, VertexAttributes};
+    use std::sync::Arc;
+    let p = [
+        Vec3::new(-1.0, 0.0, -1.0),
+        Vec3::new(1.0, 0.0, -1.0),
+        Vec3::new(1.0, 0.0, 1.0),
+        Vec3::new(-1.0, 0.0, 1.0),
+    ];
+    let texels = vec![[texel; 3], [90; 3], [90; 3], [160; 3]];
+    let attributes = VertexAttributes {
+        uvs: Some(vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+        ]),
+        base_color_texture: Some((
+            Arc::new(Texture::from_srgb8(2, 2, texels).unwrap()),
+            Sampler::default(),
+        )),
+        ..VertexAttributes::default()
+    };
+    Scene::builder()
+        .attributed_mesh(
+            &p,
+            &[[0, 2, 1], [0, 3, 2]],
+            Surface::diffuse(Vec3::splat(0.8)),
+            attributes,
+        )
+        .light(PointLight::new(Vec3::new(0.0, 1.0, 0.0), Vec3::splat(20.0)))
+        .camera(Camera::new(Vec3::new(0.0, 1.5, 0.5), Vec3::NEG_Y, Vec3::Z, 1.2))
+        .build()
+        .unwrap()
 }
 
 /// A small generator (SplitMix64), seeded: the mutations are the same every run.

@@ -222,6 +222,12 @@ impl Texture {
         self.mips.len()
     }
 
+    /// The texels of the full-resolution level, row-major with the top row first, as
+    /// [`Texture::encoding`] encodes them.
+    pub fn texels(&self) -> &[[u8; 3]] {
+        &self.texels
+    }
+
     /// Width in texels.
     pub fn width(&self) -> u32 {
         self.width

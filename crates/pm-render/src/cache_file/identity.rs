@@ -22,8 +22,9 @@ use pm_trace::{PartId, Partitioned, Scene};
 /// material, emission, visibility, sides, every number's exact value), `lights` (a hash of
 /// each light's parameters as its `Debug` text prints them, which holds every parameter of
 /// the built-in lights in exact decimal; a textured light's texels only as far as its `Debug`
-/// shows them) and `map_geometry`. Not covered: textures and per-vertex attributes (UVs,
-/// shading normals) of meshes, and a custom BSDF's parameters beyond what its `Debug` prints.
+/// shows them), `appearance` (a hash of every mesh's vertex attributes and textures, texel
+/// for texel: [`Scene::feed_appearance`]) and `map_geometry`. Not covered: a custom BSDF's
+/// parameters beyond what its `Debug` prints.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct CacheIdentity {
     entries: Vec<(String, String)>,
@@ -46,6 +47,10 @@ impl CacheIdentity {
         entries.extend([
             ("geometry".to_owned(), format!("{:016x}", geometry_hash(scene))),
             ("surfaces".to_owned(), format!("{:016x}", surfaces_hash(scene))),
+            (
+                "appearance".to_owned(),
+                format!("{:016x}", appearance_hash(scene)),
+            ),
             ("lights".to_owned(), format!("{:016x}", lights_hash(scene))),
             ("map_geometry".to_owned(), "merged".to_owned()),
             ("photons".to_owned(), s.photons.to_string()),
@@ -155,6 +160,14 @@ fn surfaces_hash(scene: &Scene) -> u64 {
         };
         hash.write_u64(text_hash);
     }
+    hash.finish()
+}
+
+/// Every mesh's vertex attributes and textures ([`Scene::feed_appearance`]): a texel or a
+/// texture coordinate changes where photons land and what they carry.
+fn appearance_hash(scene: &Scene) -> u64 {
+    let mut hash = Hash64::new();
+    scene.feed_appearance(&mut |bytes| hash.write(bytes));
     hash.finish()
 }
 

@@ -1,6 +1,7 @@
 //! The scene: meshes and analytic shapes split into parts, their surfaces, the lights, the
 //! camera and the BVH; built with [`SceneBuilder`] and queried by rays.
 
+mod appearance;
 mod assemble;
 pub(crate) mod builder;
 mod checks;

@@ -71,6 +71,11 @@ impl MeshShading {
         })
     }
 
+    /// The corners, the triangles over them and the attributes, as given.
+    pub(crate) fn parts(&self) -> (&[Vec3], &[[u32; 3]], &VertexAttributes) {
+        (&self.positions, &self.triangles, &self.attributes)
+    }
+
     /// Checks every attribute has one entry per vertex and every corner is a vertex.
     pub(crate) fn validate(&self) -> Result<(), String> {
         let n = self.positions.len();
