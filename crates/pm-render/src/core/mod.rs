@@ -12,7 +12,8 @@
 pub(crate) mod delta;
 pub(crate) mod tiles;
 
-pub use delta::{NEAR_SPECULAR_ROUGHNESS, passes_through, specular_bounce};
+pub use delta::specular_bounce;
+pub use pm_trace::bsdf::near_specular::{NEAR_SPECULAR_ROUGHNESS, passes_through};
 pub use tiles::{Frame, SampleStreams, Tile, render_tiles};
 
 use crate::estimator::scratch::EstimatorScratch;

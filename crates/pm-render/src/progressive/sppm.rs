@@ -21,7 +21,7 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
-use crate::core::delta::passes_through;
+use pm_trace::bsdf::near_specular::passes_through;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;

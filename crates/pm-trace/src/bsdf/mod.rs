@@ -103,6 +103,7 @@ pub(crate) mod lobes;
 pub(crate) mod metallic_roughness;
 pub(crate) mod microfacet;
 pub(crate) mod mirror;
+pub mod near_specular;
 pub mod scatter;
 pub(crate) mod shading_point;
 
@@ -112,6 +113,7 @@ pub use lobes::Lobes;
 pub use metallic_roughness::MetallicRoughness;
 pub use microfacet::{MIN_ALPHA, TrowbridgeReitz};
 pub use mirror::Mirror;
+pub use near_specular::{NEAR_SPECULAR_ROUGHNESS, passes_through};
 pub use shading_point::{ShadingPoint, TextureFactors};
 
 use crate::rng::Rng;
