@@ -21,7 +21,6 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
-use pm_trace::bsdf::near_specular::passes_through;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
@@ -35,6 +34,7 @@ use crate::settings::RenderSettings;
 use crate::source::direct::{Mis, direct_irradiance, direct_radiance_through};
 use glam::{DVec3, Vec3};
 use pm_kdtree::{Euclidean, KindMask, Neighbours, PhotonTree};
+use pm_trace::bsdf::near_specular::passes_through;
 use pm_trace::{Bsdf, MapAssignment, RayKind, Rng, Scene};
 use rayon::prelude::*;
 use std::f32::consts::{FRAC_1_PI, PI};

@@ -33,4 +33,3 @@ pub fn passes_through(material: &(impl Bsdf + ?Sized)) -> bool {
                 .glossy_roughness()
                 .is_some_and(|r| r < NEAR_SPECULAR_ROUGHNESS))
 }
-

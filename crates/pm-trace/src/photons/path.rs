@@ -4,6 +4,7 @@
 use super::light_picker::LightPicker;
 use super::options::{NEAR_LIGHT_DISTANCE, TraceOptions};
 use crate::bsdf::Bsdf;
+use crate::bsdf::near_specular::passes_through;
 use crate::partition::assignment::MapAssignment;
 use crate::ray::Ray;
 use crate::rng::Rng;
@@ -182,7 +183,11 @@ impl PhotonPath {
         }
         let material = scene.material(&hit);
         let wo = -self.ray.direction;
-        let direction = if material.lobes().has_non_delta() {
+        // Where camera paths pass through (mirror, glass, near-specular metal), photon paths
+        // bounce as off a mirror: no photon is stored there (none would be read), and the
+        // light they carry on stays caustic, read at the next diffuse surface from the
+        // caustic map as the camera would find it by sampling through.
+        let direction = if !passes_through(material) {
             // Photons scatter about the geometric normal (no shading-normal adjoint to correct).
             let at = scene.shading_point_about(&hit, hit.normal, 0.0);
             let albedo = material.albedo(&at, wo);
