@@ -28,6 +28,8 @@ mod gather;
 mod progressive;
 #[path = "render/report.rs"]
 mod report;
+#[path = "render/shard.rs"]
+mod shard;
 // Counts heap bytes so that progressive runs can report their peak (an atomic add per
 // allocation; the render loops do not allocate once warm).
 #[path = "../tests/support/tracking_allocator.rs"]
@@ -103,6 +105,14 @@ struct Args {
     /// Progressive mode: the first pass of this shard.
     #[arg(long, default_value_t = 0)]
     first_pass: u64,
+    /// Progressive mode: the shard's passes from this scheduler's array index i (its variable
+    /// SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or AWS_BATCH_JOB_ARRAY_INDEX): passes i×N …
+    /// i×N+N−1 with N = --passes-per-shard; `{index}` in --out and --stats-json becomes i.
+    #[arg(long, value_enum)]
+    shard_index_from: Option<shard::IndexSource>,
+    /// Progressive mode with --shard-index-from: passes per shard (N).
+    #[arg(long)]
+    passes_per_shard: Option<u64>,
     /// Progressive and SPPM modes: stop after the pass that spends this many seconds.
     #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
@@ -192,7 +202,9 @@ fn main() -> ExitCode {
     if args.compare && matches.value_source("mode") != Some(clap::parser::ValueSource::CommandLine) {
         args.mode = ModeChoice::PhotonMap;
     }
-    let result = applies::refuse_inapplicable(&args, &matches).and_then(|()| run(&args));
+    let result = applies::refuse_inapplicable(&args, &matches)
+        .and_then(|()| shard::resolve(&mut args, &matches))
+        .and_then(|()| run(&args));
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {

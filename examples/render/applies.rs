@@ -40,7 +40,9 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("save_cache" | "load_cache", run) => {
             matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather))
         }
-        ("first_pass" | "direct", run) => run == Run::Passes(Progressive),
+        ("first_pass" | "direct" | "shard_index_from" | "passes_per_shard", run) => {
+            run == Run::Passes(Progressive)
+        }
         ("light_units", _) => gltf,
         // gather.rs refines progressive: there they need --gather-rays.
         ("gather_rays" | "cache_every" | "corner_distance", run) => {
@@ -61,14 +63,14 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         "save_cache" | "load_cache" => {
             "the single-pass modes that read photons (photon-map, shadow-rays, final-gather; each progressive pass traces its own)"
         }
-        "first_pass" | "direct" => "--mode progressive",
+        "first_pass" | "direct" | "shard_index_from" | "passes_per_shard" => "--mode progressive",
         "light_units" => "glTF scenes (built-in scenes are in watts already)",
         _ => "other modes",
     })
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 21] = [
+const OPTIONS: [(&str, &str); 23] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -81,6 +83,8 @@ const OPTIONS: [(&str, &str); 21] = [
     ("seed", "--seed"),
     ("passes", "--passes"),
     ("first_pass", "--first-pass"),
+    ("shard_index_from", "--shard-index-from"),
+    ("passes_per_shard", "--passes-per-shard"),
     ("time", "--time"),
     ("light_units", "--light-units"),
     ("direct", "--direct"),
