@@ -42,16 +42,8 @@ impl<'a> Fields<'a> {
 
     /// The next `count × size` bytes, refused before anything is read when fewer remain.
     fn take(&mut self, field: &'static str, count: u64, size: u64) -> Result<&'a [u8], CacheFileError> {
-        let needed = count.saturating_mul(size);
-        if needed > self.remaining() as u64 {
-            return Err(CacheFileError::Truncated {
-                section: self.section,
-                offset: self.offset(),
-                field,
-                needed,
-                remaining: self.remaining() as u64,
-            });
-        }
+        self.check_room(field, count, size)?;
+        let needed = count * size;
         let bytes = &self.bytes[self.pos..self.pos + needed as usize];
         self.pos += needed as usize;
         Ok(bytes)

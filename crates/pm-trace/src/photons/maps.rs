@@ -71,13 +71,7 @@ impl PhotonMaps {
         traced: TracedPhotons,
         geometry: MapGeometry,
     ) -> Result<Self, MapError> {
-        if assignment.part_count() != scene.part_count() {
-            return Err(TraceError::AssignmentMismatch {
-                assigned: assignment.part_count(),
-                parts: scene.part_count(),
-            }
-            .into());
-        }
+        check_assignment(scene, assignment)?;
         let (photons, _) = traced.into_parts();
         if photons.len() != assignment.map_count() as usize {
             return Err(TraceError::AssignmentMismatch {
@@ -110,13 +104,7 @@ impl PhotonMaps {
         trees: Vec<PhotonTree>,
         geometry: MapGeometry,
     ) -> Result<Self, MapError> {
-        if assignment.part_count() != scene.part_count() {
-            return Err(TraceError::AssignmentMismatch {
-                assigned: assignment.part_count(),
-                parts: scene.part_count(),
-            }
-            .into());
-        }
+        check_assignment(scene, assignment)?;
         if trees.len() != assignment.map_count() as usize {
             return Err(TraceError::AssignmentMismatch {
                 assigned: trees.len(),
@@ -255,4 +243,16 @@ fn build_map(scene: &Scene, tree: PhotonTree, parts: &[PartId], kind: MapGeometr
         geometry,
         bounds,
     }
+}
+
+/// Refuses an assignment made for a scene of another part count.
+fn check_assignment(scene: &Scene, assignment: &MapAssignment) -> Result<(), MapError> {
+    if assignment.part_count() != scene.part_count() {
+        return Err(TraceError::AssignmentMismatch {
+            assigned: assignment.part_count(),
+            parts: scene.part_count(),
+        }
+        .into());
+    }
+    Ok(())
 }

@@ -84,22 +84,17 @@ fn feed_texture(sink: &mut dyn FnMut(&[u8]), texture: &Texture, sampler: &Sample
 
 /// The count and every coordinate's bits.
 fn feed_vec3s(sink: &mut dyn FnMut(&[u8]), values: &[Vec3]) {
-    sink(&(values.len() as u64).to_le_bytes());
-    let bytes: Vec<u8> = values
-        .iter()
-        .flat_map(|v| v.to_array())
-        .flat_map(|c| c.to_bits().to_le_bytes())
-        .collect();
-    sink(&bytes);
+    feed_floats(sink, values.len(), values.iter().flat_map(|v| v.to_array()));
 }
 
 /// The count and every coordinate's bits.
 fn feed_vec2s(sink: &mut dyn FnMut(&[u8]), values: &[Vec2]) {
-    sink(&(values.len() as u64).to_le_bytes());
-    let bytes: Vec<u8> = values
-        .iter()
-        .flat_map(|v| v.to_array())
-        .flat_map(|c| c.to_bits().to_le_bytes())
-        .collect();
+    feed_floats(sink, values.len(), values.iter().flat_map(|v| v.to_array()));
+}
+
+/// `count` (of vectors) and the bits of every coordinate, little-endian.
+fn feed_floats(sink: &mut dyn FnMut(&[u8]), count: usize, coordinates: impl Iterator<Item = f32>) {
+    sink(&(count as u64).to_le_bytes());
+    let bytes: Vec<u8> = coordinates.flat_map(|c| c.to_bits().to_le_bytes()).collect();
     sink(&bytes);
 }
