@@ -67,7 +67,12 @@ fn frame_paths(base: &Path, i: u32, frames: u32) -> (PathBuf, PathBuf) {
 pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> Result<(), String> {
     let (frames, orbit) = match (args.frames, args.orbit) {
         (Some(frames), Some(orbit)) => (frames, orbit),
-        (Some(_), None) => return Err("--frames needs --orbit DEGREES (the turn over all frames; 0 keeps the scene's camera)".into()),
+        (Some(_), None) => {
+            return Err(
+                "--frames needs --orbit DEGREES (the turn over all frames; 0 keeps the scene's camera)"
+                    .into(),
+            );
+        }
         (None, _) => return Err("--orbit needs --frames N (the number of frames of the fly-through)".into()),
     };
     check(args, frames, orbit)?;
@@ -147,9 +152,7 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
             .render_from_cache(partitioned.scene(), &cache, &bar, &mut stats)
             .map_err(|e| e.to_string())?;
         image.write_exr(exr).map_err(|e| e.to_string())?;
-        image
-            .write_png(png, args.exposure())
-            .map_err(|e| e.to_string())?;
+        image.write_png(png, args.exposure()).map_err(|e| e.to_string())?;
         let (seconds, mean) = (stats.render.as_secs_f64(), image.mean().to_array());
         render_total += seconds;
         if first.is_none() {
