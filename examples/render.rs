@@ -22,6 +22,8 @@ mod choices;
 mod compare;
 #[path = "render/files.rs"]
 mod files;
+#[path = "render/flythrough.rs"]
+mod flythrough;
 #[path = "render/gather.rs"]
 mod gather;
 #[path = "render/progressive.rs"]
@@ -156,6 +158,14 @@ struct Args {
     /// another scene or other settings (the camera, size and samples may differ).
     #[arg(long)]
     load_cache: Option<PathBuf>,
+    /// Single-pass modes that read photons: a fly-through of N frames from one photon cache
+    /// (built once, or --load-cache): frame i turns the camera by i × --orbit / N degrees about
+    /// the vertical axis through the scene's centre; writes <out stem>-<i>.exr and .png.
+    #[arg(long)]
+    frames: Option<u32>,
+    /// With --frames: degrees the camera turns over the N frames (-360 to 360; 360 loops).
+    #[arg(long, allow_negative_numbers = true)]
+    orbit: Option<f64>,
 }
 
 impl Args {
@@ -254,6 +264,9 @@ fn run(args: &Args) -> Result<(), String> {
     }
     if args.mode.is_progressive() {
         return progressive::run(args, settings, estimator);
+    }
+    if args.frames.is_some() || args.orbit.is_some() {
+        return flythrough::run(args, settings, estimator);
     }
 
     let scene_name = scene_name(&args.scene);

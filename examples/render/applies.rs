@@ -37,7 +37,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("spp", Run::Single(_)) => true,
         ("spp", Run::Passes(m)) => m == Progressive,
         ("passes" | "time", run) => matches!(run, Run::Passes(_)),
-        ("save_cache" | "load_cache", run) => {
+        ("save_cache" | "load_cache" | "frames" | "orbit", run) => {
             matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather))
         }
         ("first_pass" | "direct" | "shard_index_from" | "passes_per_shard", run) => {
@@ -60,7 +60,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
         "passes" | "time" => "--mode progressive and --mode sppm",
-        "save_cache" | "load_cache" => {
+        "save_cache" | "load_cache" | "frames" | "orbit" => {
             "the single-pass modes that read photons (photon-map, shadow-rays, final-gather; each progressive pass traces its own)"
         }
         "first_pass" | "direct" | "shard_index_from" | "passes_per_shard" => "--mode progressive",
@@ -70,7 +70,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 23] = [
+const OPTIONS: [(&str, &str); 25] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -94,6 +94,8 @@ const OPTIONS: [(&str, &str); 23] = [
     ("contact_gap", "--contact-gap"),
     ("save_cache", "--save-cache"),
     ("load_cache", "--load-cache"),
+    ("frames", "--frames"),
+    ("orbit", "--orbit"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

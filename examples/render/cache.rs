@@ -3,9 +3,9 @@
 
 use super::Args;
 use photon_maps::render::cache_file::{load_cache_file, save_cache_file};
-use photon_maps::render::{EstimatorKind, Progress, RenderStats, Rendered, Renderer};
+use photon_maps::render::{EstimatorKind, PhotonCache, Progress, RenderStats, Rendered, Renderer};
 use photon_maps::trace::Partitioned;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// What happened to the cache file, for the summary and the JSON.
 pub struct CacheUse {
@@ -23,6 +23,23 @@ pub fn render_with_cache_file(
     partitioned: &Partitioned,
     progress: &dyn Progress,
 ) -> Result<(Rendered, CacheUse), String> {
+    let (cache, mut stats, used) = obtain_cache(args, renderer, partitioned, progress)?;
+    let used = used.ok_or("no cache file named")?;
+    let image = renderer
+        .render_from_cache(partitioned.scene(), &cache, progress, &mut stats)
+        .map_err(|e| e.to_string())?;
+    Ok((Rendered { image, stats }, used))
+}
+
+/// The photon cache of a run: loaded from `--load-cache`, or built (and saved to
+/// `--save-cache` if named); with the set-up's figures (trace, build, precompute, or the
+/// load's counts) and what was done with a file.
+pub fn obtain_cache(
+    args: &Args,
+    renderer: &Renderer<EstimatorKind>,
+    partitioned: &Partitioned,
+    progress: &dyn Progress,
+) -> Result<(PhotonCache, RenderStats, Option<CacheUse>), String> {
     let mut stats = RenderStats {
         threads: match renderer.settings().threads {
             0 => rayon::current_num_threads(),
@@ -30,64 +47,32 @@ pub fn render_with_cache_file(
         },
         ..RenderStats::default()
     };
-    let start = Instant::now();
-    let (cache, what) = match (&args.load_cache, &args.save_cache) {
-        (Some(path), _) => {
-            progress.phase("load cache");
-            let cache = load_cache_file(path, renderer, partitioned)
-                .map_err(|e| format!("--load-cache {}: {e}", path.display()))?;
-            cache.record_figures(renderer.settings().k, &mut stats);
-            (cache, "loaded")
-        }
-        (None, Some(path)) => {
-            let cache = renderer
-                .build_photon_cache(partitioned, progress, &mut stats)
-                .map_err(|e| e.to_string())?;
-            let saving = Instant::now();
-            progress.phase("save cache");
-            save_cache_file(path, renderer, partitioned, &cache)
-                .map_err(|e| format!("--save-cache {}: {e}", path.display()))?;
-            // Only the write is the file's time; tracing and building are timed apart.
-            return render_from(
-                renderer,
-                partitioned,
-                &cache,
-                progress,
-                stats,
-                "saved",
-                saving.elapsed(),
-            );
-        }
-        (None, None) => return Err("no cache file named".into()),
-    };
-    render_from(
-        renderer,
-        partitioned,
-        &cache,
-        progress,
-        stats,
-        what,
-        start.elapsed(),
-    )
-}
-
-fn render_from(
-    renderer: &Renderer<EstimatorKind>,
-    partitioned: &Partitioned,
-    cache: &photon_maps::render::PhotonCache,
-    progress: &dyn Progress,
-    mut stats: RenderStats,
-    what: &'static str,
-    file_time: Duration,
-) -> Result<(Rendered, CacheUse), String> {
-    let image = renderer
-        .render_from_cache(partitioned.scene(), cache, progress, &mut stats)
+    if let Some(path) = &args.load_cache {
+        let start = Instant::now();
+        progress.phase("load cache");
+        let cache = load_cache_file(path, renderer, partitioned)
+            .map_err(|e| format!("--load-cache {}: {e}", path.display()))?;
+        cache.record_figures(renderer.settings().k, &mut stats);
+        let used = CacheUse {
+            what: "loaded",
+            seconds: start.elapsed().as_secs_f64(),
+        };
+        return Ok((cache, stats, Some(used)));
+    }
+    let cache = renderer
+        .build_photon_cache(partitioned, progress, &mut stats)
         .map_err(|e| e.to_string())?;
-    Ok((
-        Rendered { image, stats },
-        CacheUse {
-            what,
-            seconds: file_time.as_secs_f64(),
-        },
-    ))
+    let Some(path) = &args.save_cache else {
+        return Ok((cache, stats, None));
+    };
+    // Only the write is the file's time; tracing and building are timed apart.
+    let saving = Instant::now();
+    progress.phase("save cache");
+    save_cache_file(path, renderer, partitioned, &cache)
+        .map_err(|e| format!("--save-cache {}: {e}", path.display()))?;
+    let used = CacheUse {
+        what: "saved",
+        seconds: saving.elapsed().as_secs_f64(),
+    };
+    Ok((cache, stats, Some(used)))
 }

@@ -92,6 +92,16 @@ impl Camera {
         self.forward
     }
 
+    /// Unit up direction of the image (made orthogonal to [`Camera::forward`]).
+    pub fn up(&self) -> Vec3 {
+        self.up
+    }
+
+    /// The vertical field of view asked for, radians.
+    pub fn vfov(&self) -> f32 {
+        self.vfov
+    }
+
     /// The angle (radians, small-angle) a pixel spans at the image centre for an image
     /// `height` pixels tall: how fast a camera ray's footprint grows with distance.
     pub fn pixel_angle(&self, height: u32) -> f32 {
