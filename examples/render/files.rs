@@ -159,24 +159,18 @@ pub fn check_run_outputs(
         ));
     }
     let (exr, png) = (base.with_extension("exr"), base.with_extension("png"));
-    let mut outputs = vec![
-        NamedFile {
-            option: "--out's EXR",
-            path: &exr,
-        },
-        NamedFile {
-            option: "--out's PNG",
-            path: &png,
-        },
-    ];
-    if let Some(path) = stats_json {
-        outputs.push(NamedFile {
-            option: "--stats-json",
-            path,
-        });
-    }
-    check_outputs(&outputs, inputs)?;
+    check_outputs(&run_outputs(&exr, &png, stats_json), inputs)?;
     Ok((exr, png))
+}
+
+/// A run's image files and its figures' JSON, named by the options that give them.
+fn run_outputs<'a>(exr: &'a Path, png: &'a Path, stats_json: Option<&'a Path>) -> Vec<NamedFile<'a>> {
+    let images = [("--out's EXR", exr), ("--out's PNG", png)];
+    images
+        .into_iter()
+        .chain(stats_json.map(|path| ("--stats-json", path)))
+        .map(|(option, path)| NamedFile { option, path })
+        .collect()
 }
 
 /// The scene file as an input, when `--scene` names a file rather than a built-in scene.
@@ -219,20 +213,7 @@ pub fn check_cache_output(
     inputs: &[NamedFile<'_>],
 ) -> Result<(), String> {
     let (exr, png) = (base.with_extension("exr"), base.with_extension("png"));
-    let mut outputs = vec![
-        NamedFile {
-            option: "--out's EXR",
-            path: &exr,
-        },
-        NamedFile {
-            option: "--out's PNG",
-            path: &png,
-        },
-    ];
-    outputs.extend(stats_json.map(|path| NamedFile {
-        option: "--stats-json",
-        path,
-    }));
+    let mut outputs = run_outputs(&exr, &png, stats_json);
     outputs.push(NamedFile {
         option: "--save-cache",
         path: cache,
