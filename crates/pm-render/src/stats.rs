@@ -42,7 +42,7 @@ pub struct RenderStats {
     pub gather_rays: u64,
     /// What an automatic photon count did ([`crate::Renderer::build_photon_cache_auto`]),
     /// `None` for a fixed count.
-    pub auto_photons: Option<crate::auto_photons::AutoPhotonsReport>,
+    pub auto_photons: Option<crate::auto_photons::settings::AutoPhotonsReport>,
 }
 
 impl RenderStats {
