@@ -18,7 +18,11 @@ use rayon::prelude::*;
 /// with `estimator` and `options`, changes less than the threshold; the maps are bit-identical
 /// to those of [`pm_trace::trace_photons`] with the count reached and `seed`. Runs on the
 /// current rayon pool. The near-light fraction of the result is the path-weighted mean of
-/// the batches' (equal to a plain run's up to rounding).
+/// the batches' (equal to a plain run's up to rounding). Returns the maps, the report and
+/// that fraction.
+///
+/// Errors: bad `auto` ([`AutoPhotons::validate`]) or `options`, a trace or map error, and a
+/// first batch that yields no probe point ([`RenderError::BadAutoPhotons`]).
 pub fn trace_auto<E: FixedVolumeEstimator>(
     scene: &Scene,
     assignment: &MapAssignment,
@@ -68,6 +72,14 @@ pub fn trace_auto<E: FixedVolumeEstimator>(
         let probes = probes.get_or_insert_with(|| {
             choose_probes(scene, &map_of_part, &maps, auto.probes, estimator, &options)
         });
+        if probes.is_empty() {
+            // Nothing to compare: every batch would "agree", or none would.
+            return Err(RenderError::BadAutoPhotons(format!(
+                "no probe point: the first batch of {} photon paths stored no photon on a surface \
+                 of the maps (start with more photons)",
+                auto.start
+            )));
+        }
         let values = probe_irradiance(&maps, probes, estimator, &options);
         let change = previous.as_ref().map(|old| relative_change(old, &values));
         report.probes = values.len();
