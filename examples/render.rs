@@ -14,6 +14,8 @@ use std::process::ExitCode;
 
 #[path = "render/applies.rs"]
 mod applies;
+#[path = "render/auto.rs"]
+mod auto;
 #[path = "render/cache.rs"]
 mod cache;
 #[path = "render/choices.rs"]
@@ -166,6 +168,8 @@ struct Args {
     /// With --frames: degrees the camera turns over the N frames (-360 to 360; 360 loops).
     #[arg(long, allow_negative_numbers = true)]
     orbit: Option<f64>,
+    #[command(flatten)]
+    auto: auto::AutoArgs,
 }
 
 impl Args {
@@ -234,6 +238,7 @@ fn run(args: &Args) -> Result<(), String> {
     if args.compare {
         refuse_compare_conflicts(args)?;
     }
+    auto::refuse_conflicts(args)?;
     let settings = RenderSettings {
         width,
         height,
@@ -322,10 +327,7 @@ fn run(args: &Args) -> Result<(), String> {
         let bar = TileBar::new(variant.label);
         let renderer = Renderer::new(variant.estimator, settings);
         let (out, cache_use) = match (&args.save_cache, &args.load_cache) {
-            (None, None) => (
-                renderer.render(&partitioned, &bar).map_err(|e| e.to_string())?,
-                None,
-            ),
+            (None, None) => (auto::render(args, &renderer, &partitioned, &bar)?, None),
             _ => {
                 let (out, used) = cache::render_with_cache_file(args, &renderer, &partitioned, &bar)?;
                 (out, Some(used))

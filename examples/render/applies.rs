@@ -37,7 +37,11 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         ("spp", Run::Single(_)) => true,
         ("spp", Run::Passes(m)) => m == Progressive,
         ("passes" | "time", run) => matches!(run, Run::Passes(_)),
-        ("save_cache" | "load_cache" | "frames" | "orbit", run) => {
+        (
+            "save_cache" | "load_cache" | "frames" | "orbit" | "auto_photons" | "auto_max_photons"
+            | "auto_max_batches",
+            run,
+        ) => {
             matches!(run, Run::Single(PhotonMap | ShadowRays | FinalGather))
         }
         ("first_pass" | "direct" | "shard_index_from" | "passes_per_shard", run) => {
@@ -60,7 +64,8 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         "photons" | "k" => "the modes that read photon maps (not path-trace)",
         "spp" => "the single-pass and progressive modes (SPPM traces one ray per pixel and pass)",
         "passes" | "time" => "--mode progressive and --mode sppm",
-        "save_cache" | "load_cache" | "frames" | "orbit" => {
+        "save_cache" | "load_cache" | "frames" | "orbit" | "auto_photons" | "auto_max_photons"
+        | "auto_max_batches" => {
             "the single-pass modes that read photons (photon-map, shadow-rays, final-gather; each progressive pass traces its own)"
         }
         "first_pass" | "direct" | "shard_index_from" | "passes_per_shard" => "--mode progressive",
@@ -70,7 +75,7 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 25] = [
+const OPTIONS: [(&str, &str); 28] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -96,6 +101,9 @@ const OPTIONS: [(&str, &str); 25] = [
     ("load_cache", "--load-cache"),
     ("frames", "--frames"),
     ("orbit", "--orbit"),
+    ("auto_photons", "--auto-photons"),
+    ("auto_max_photons", "--auto-max-photons"),
+    ("auto_max_batches", "--auto-max-batches"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

@@ -59,9 +59,11 @@ pub fn obtain_cache(
         };
         return Ok((cache, stats, Some(used)));
     }
-    let cache = renderer
-        .build_photon_cache(partitioned, progress, &mut stats)
-        .map_err(|e| e.to_string())?;
+    let cache = match args.auto.settings(args.photons)? {
+        Some(auto) => renderer.build_photon_cache_auto(partitioned, &auto, progress, &mut stats),
+        None => renderer.build_photon_cache(partitioned, progress, &mut stats),
+    }
+    .map_err(|e| e.to_string())?;
     let Some(path) = &args.save_cache else {
         return Ok((cache, stats, None));
     };

@@ -126,8 +126,9 @@ pub fn summary(r: &Record<'_>) -> String {
         Some(c) => format!(", cache file {} in {:.3} s", c.what, c.seconds),
         None => String::new(),
     };
+    let auto = super::auto::summary(&s.auto_photons);
     format!(
-        "{} [{}]: {lighting}{}{}{cache}, mode {}, {}x{}, {} photons ({} stored{below}{near}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}{}{cache}, mode {}, {}x{}, {} photons ({} stored{below}{near}{auto}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.contacts.0,
@@ -219,6 +220,7 @@ pub fn json_object(r: &Record<'_>) -> String {
             json_number(s.gather_rays_per_second()),
         );
     }
+    o.push_str(&super::auto::json(&s.auto_photons));
     if let Some(c) = &r.cache {
         let _ = write!(
             o,

@@ -141,6 +141,13 @@ pub enum RenderError {
     /// A final-gather parameter is out of range (the message names it).
     #[error("final gather: {0}")]
     BadFinalGather(String),
+    /// An automatic photon count's threshold outside (0, 1) (relative change between batches).
+    #[error("auto photons: the threshold must lie strictly between 0 and 1, got {0}")]
+    BadAutoThreshold(f64),
+    /// An automatic photon count's start, maximum, batch or probe count out of range (the
+    /// message names it).
+    #[error("auto photons: {0}")]
+    BadAutoPhotons(String),
     /// Knaus & Zwicker's α outside (0, 1).
     #[error("alpha must lie strictly between 0 and 1, got {0}")]
     BadAlpha(f32),

@@ -71,6 +71,7 @@
 //!   report" in these docs is that report. The reproduction is in the repository's
 //!   `docs/results.md`.
 
+pub mod auto_photons;
 pub mod cache;
 pub mod cache_file;
 pub mod core;
@@ -87,6 +88,7 @@ pub mod settings;
 pub mod source;
 pub mod stats;
 
+pub use auto_photons::{AutoBatch, AutoPhotons, AutoPhotonsReport};
 pub use cache::{CachePoint, CacheQuery, CachedRadiance, QueryMap, RadianceCache};
 pub use core::{PathVertex, RadianceSource};
 pub use error::RenderError;

@@ -40,6 +40,9 @@ pub struct RenderStats {
     /// Gather rays cast by the final gather (first rays of each gather, not counting the
     /// specular bounces they follow).
     pub gather_rays: u64,
+    /// What an automatic photon count did ([`crate::Renderer::build_photon_cache_auto`]),
+    /// `None` for a fixed count.
+    pub auto_photons: Option<crate::auto_photons::settings::AutoPhotonsReport>,
 }
 
 impl RenderStats {

@@ -397,7 +397,7 @@ impl RadianceCache {
 }
 
 /// The map of each part of `assignment`, indexed by part.
-fn map_of_parts(assignment: &MapAssignment) -> Vec<u32> {
+pub(crate) fn map_of_parts(assignment: &MapAssignment) -> Vec<u32> {
     (0..assignment.part_count() as u32)
         .map(|p| assignment.map_of(pm_trace::PartId(p)))
         .collect()

@@ -13,5 +13,5 @@ pub use crate::bsdf::scatter::{fresnel_dielectric, glass_direction, mirror_direc
 pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
 pub use occupancy::MapOccupancy;
 pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};
-pub use trace::trace_photons;
+pub use trace::{trace_photon_paths, trace_photons};
 pub use traced::{TraceStats, TracedPhotons};

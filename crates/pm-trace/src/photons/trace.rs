@@ -11,6 +11,7 @@ use crate::partition::assignment::MapAssignment;
 use crate::scene::Scene;
 use pm_kdtree::Photon;
 use rayon::prelude::*;
+use std::ops::Range;
 use std::time::Instant;
 
 /// Paths per parallel work item.
@@ -26,10 +27,33 @@ pub fn trace_photons(
     assignment: &MapAssignment,
     options: &TraceOptions,
 ) -> Result<TracedPhotons, TraceError> {
+    trace_photon_paths(scene, assignment, options, 0..options.photons)
+}
+
+/// Traces paths `paths` (a range of path indices within `0..options.photons`) of the run
+/// `options` describes: each path is the path of that index in [`trace_photons`] (its own
+/// random stream, its power `Φ / options.photons` at emission), so the photons of `0..a` then
+/// `a..n` are, in order, the photons of `0..n`. [`TraceStats::emitted`] counts the paths of
+/// the range.
+///
+/// Errors: those of [`trace_photons`], and a range that is empty or reaches past
+/// `options.photons` ([`TraceError::ZeroPhotons`], [`TraceError::TooManyPhotons`]).
+pub fn trace_photon_paths(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    paths: Range<u32>,
+) -> Result<TracedPhotons, TraceError> {
     let start = Instant::now();
     check_request(scene, assignment, options)?;
+    if paths.is_empty() {
+        return Err(TraceError::ZeroPhotons);
+    }
+    if paths.end > options.photons {
+        return Err(TraceError::TooManyPhotons { photons: paths.end });
+    }
     let picker = LightPicker::new(scene, options.photons)?;
-    let (merged, near_light) = trace_in_waves(scene, assignment, options, &picker)?;
+    let (merged, near_light) = trace_in_waves(scene, assignment, options, &picker, paths.clone())?;
     let Merged { photons, stored, .. } = merged;
     let near_light_fraction = if near_light.emitted > 0.0 {
         near_light.near / near_light.emitted
@@ -37,7 +61,7 @@ pub fn trace_photons(
         0.0
     };
     let stats = TraceStats {
-        emitted: options.photons as u64,
+        emitted: u64::from(paths.end - paths.start),
         stored,
         near_light_fraction,
         seconds: start.elapsed().as_secs_f64(),
@@ -78,6 +102,7 @@ fn trace_in_waves(
     assignment: &MapAssignment,
     options: &TraceOptions,
     picker: &LightPicker,
+    paths: Range<u32>,
 ) -> Result<(Merged, NearLight), TraceError> {
     let maps = assignment.map_count() as usize;
     let mut merged = Merged {
@@ -85,7 +110,8 @@ fn trace_in_waves(
         stored: vec![[0u64; 3]; maps],
         total: 0,
     };
-    let chunks = options.photons.div_ceil(CHUNK);
+    let count = paths.end - paths.start;
+    let chunks = count.div_ceil(CHUNK);
     // At most one wave of buffers beyond what the run needs (and no u32 overflow below).
     let wave = (16 * rayon::current_num_threads()).min(chunks as usize).max(1) as u32;
     let paired = scene.prefers_ray_pairs();
@@ -101,8 +127,8 @@ fn trace_in_waves(
                 if chunk >= chunks {
                     return;
                 }
-                let begin = chunk * CHUNK;
-                let end = begin.saturating_add(CHUNK).min(options.photons);
+                let begin = paths.start + chunk * CHUNK;
+                let end = begin.saturating_add(CHUNK).min(paths.end);
                 trace_paths(
                     scene,
                     assignment,
@@ -127,8 +153,8 @@ fn trace_in_waves(
         }
     };
     trace_wave(0, &mut traced, &mut traced_near);
-    let first_wave_paths = (u64::from(wave) * u64::from(CHUNK)).min(u64::from(options.photons));
-    merged.reserve_for(&traced, options.photons as f64 / first_wave_paths as f64);
+    let first_wave_paths = (u64::from(wave) * u64::from(CHUNK)).min(u64::from(count));
+    merged.reserve_for(&traced, count as f64 / first_wave_paths as f64);
     let mut first = wave;
     while first < chunks {
         let (appended, ()) = rayon::join(
