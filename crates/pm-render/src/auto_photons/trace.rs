@@ -1,6 +1,7 @@
 //! The doubling batches and the probes' estimate (see the module above).
 
 use super::settings::{AutoBatch, AutoPhotons, AutoPhotonsReport};
+use crate::cache::build::photon_surface_point;
 use crate::cache::map_of_parts;
 use crate::error::RenderError;
 use crate::estimator::fixed::FixedVolumeEstimator;
@@ -9,9 +10,7 @@ use crate::estimator::point::{MapView, SurfacePoint};
 use crate::estimator::scratch::EstimatorScratch;
 use glam::DVec3;
 use pm_kdtree::{KindMask, Photon};
-use pm_trace::{
-    MapAssignment, PhotonMaps, Ray, RayKind, Scene, TraceOptions, TracedPhotons, trace_photon_paths,
-};
+use pm_trace::{MapAssignment, PhotonMaps, Scene, TraceOptions, TracedPhotons, trace_photon_paths};
 use rayon::prelude::*;
 
 /// Photon maps traced in doubling batches (`auto`) until the probes' irradiance, estimated
@@ -121,7 +120,6 @@ fn choose_probes<E: FixedVolumeEstimator>(
 ) -> Vec<Probe> {
     let total: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
     let stride = (total / count as usize).max(1);
-    let back = 4.0 * scene.epsilon();
     let mut probes = Vec::new();
     for (m, map) in maps.maps().iter().enumerate() {
         let view = MapView {
@@ -133,21 +131,7 @@ fn choose_probes<E: FixedVolumeEstimator>(
             indices
                 .par_iter()
                 .map_init(EstimatorScratch::new, |scratch, &i| {
-                    let photon = map.tree().get(i);
-                    let (position, direction) = (photon.position(), photon.direction());
-                    let ray = Ray {
-                        origin: position - direction * back,
-                        direction,
-                    };
-                    let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
-                    if map_of_part.get(hit.part.0 as usize) != Some(&(m as u32)) {
-                        return None;
-                    }
-                    let at = SurfacePoint {
-                        position,
-                        normal: scene.shading_normal_at(&hit),
-                        front_face: hit.front_face,
-                    };
+                    let (at, _) = photon_surface_point(scene, map.tree(), i, map_of_part, m as u32)?;
                     let extent = estimator.nearest_extent(at, view, options, scratch)?;
                     Some(Probe {
                         map: m as u32,

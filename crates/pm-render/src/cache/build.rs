@@ -7,7 +7,7 @@ use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_kdtree::PhotonTree;
-use pm_trace::{Ray, RayKind, Scene};
+use pm_trace::{Hit, Ray, RayKind, Scene};
 use rayon::prelude::*;
 
 /// Where [`super::RadianceCache::build_with`] asks for an irradiance estimate, and from what.
@@ -41,34 +41,17 @@ pub(crate) fn cache_points<F>(
 where
     F: Fn(CachePoint<'_>, &mut EstimatorScratch) -> Vec3 + Sync,
 {
-    // The cast that finds a photon's surface starts this far before it.
-    let back = 4.0 * scene.epsilon();
     indices
         .par_iter()
         .map_init(EstimatorScratch::new, |scratch, &i| {
-            let photon = tree.get(i);
-            let position = photon.position();
-            let direction = photon.direction();
-            let ray = Ray {
-                origin: position - direction * back,
-                direction,
-            };
-            let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
-            if map_of_part.get(hit.part.0 as usize) != Some(&(m as u32)) {
-                return None;
-            }
-            let at = SurfacePoint {
-                position,
-                normal: scene.shading_normal_at(&hit),
-                front_face: hit.front_face,
-            };
+            let (at, hit) = photon_surface_point(scene, tree, i, map_of_part, m as u32)?;
             let point = CachePoint {
                 map: m,
                 at,
                 photons: others,
             };
             Some(IrradiancePoint {
-                position,
+                position: at.position,
                 normal: hit.normal,
                 irradiance: (irradiance(point, scratch).as_dvec3() * set_aside).as_vec3(),
             })
@@ -103,6 +86,36 @@ pub(crate) fn split_cache_points(
     }
     let others = PhotonTree::build(others).map_err(|e| RenderError::BadFinalGather(e.to_string()))?;
     Ok((points, others))
+}
+
+/// Photon `i` of `tree` (of map `map`) placed on the surface it landed on: its position with
+/// the normal and side of the surface a short cast back along its travel finds there (from
+/// `4 ε` before it, the scene's rounding bound), with that hit; `None` when the surface is
+/// in another map or none is found.
+pub(crate) fn photon_surface_point(
+    scene: &Scene,
+    tree: &PhotonTree,
+    i: u32,
+    map_of_part: &[u32],
+    map: u32,
+) -> Option<(SurfacePoint, Hit)> {
+    let back = 4.0 * scene.epsilon();
+    let photon = tree.get(i);
+    let (position, direction) = (photon.position(), photon.direction());
+    let ray = Ray {
+        origin: position - direction * back,
+        direction,
+    };
+    let hit = scene.intersect(&ray, 2.0 * back, RayKind::Other)?;
+    if map_of_part.get(hit.part.0 as usize) != Some(&map) {
+        return None;
+    }
+    let at = SurfacePoint {
+        position,
+        normal: scene.shading_normal_at(&hit),
+        front_face: hit.front_face,
+    };
+    Some((at, hit))
 }
 
 /// SplitMix64's finaliser: a well-mixed 64-bit hash of `x`.

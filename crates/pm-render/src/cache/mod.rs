@@ -12,7 +12,7 @@ use glam::Vec3;
 use pm_kdtree::{KindMask, PhotonTree};
 use pm_trace::{Hit, MapAssignment, PhotonMaps, Scene};
 
-mod build;
+pub(crate) mod build;
 mod caustics;
 pub(crate) mod points;
 pub(crate) mod query;
