@@ -6,7 +6,8 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec2, Vec3};
 
-use crate::texture::{Sampler, Texture};
+use crate::sampler::Sampler;
+use crate::texture::Texture;
 
 /// A texture multiplying a mesh's emission ([`crate::Surface::emission`]) at each point,
 /// read at per-vertex texture coordinates with `sampler` (glTF's `emissiveTexture`; the
@@ -82,7 +83,7 @@ pub fn triangle_mean(texture: &EmissionTexture, uvs: [Vec2; 3], m: u32) -> Vec3 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::texture::Wrap;
+    use crate::sampler::Wrap;
 
     fn gradient() -> EmissionTexture {
         // Linear values 0, 1/3, 2/3, 1 are not 8-bit sRGB codes; use the codes' own values.

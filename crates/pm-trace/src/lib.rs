@@ -122,6 +122,7 @@ pub mod partition;
 pub mod photons;
 pub mod ray;
 pub mod rng;
+pub mod sampler;
 pub mod sampling;
 pub mod scene;
 pub mod scenes;
@@ -154,11 +155,12 @@ pub use photons::{
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;
 pub use rng::Rng;
+pub use sampler::{Sampler, Wrap};
 pub use scene::{
     Hit, MAX_SCENE_TRIANGLES, MetallicRoughnessTexture, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene,
     SceneBuilder, SceneMesh, VertexAttributes,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use sides::Sides;
-pub use texture::{Sampler, TexelEncoding, Texture, Wrap};
+pub use texture::{TexelEncoding, Texture};
 pub use texture_transform::TextureTransform;

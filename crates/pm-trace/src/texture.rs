@@ -4,7 +4,7 @@
 
 use std::sync::LazyLock;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// An RGB image stored as 8-bit texels (3 bytes a texel, sRGB-encoded or linear: its
 /// [`TexelEncoding`]), sampled as linear values, with its mip chain: each level half the size
@@ -63,16 +63,16 @@ struct Level {
 
 /// The image of one mip level, borrowed.
 #[derive(Clone, Copy)]
-struct LevelRef<'a> {
-    width: u32,
-    height: u32,
+pub(crate) struct LevelRef<'a> {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
     texels: &'a [[u8; 3]],
     encoding: TexelEncoding,
 }
 
 impl LevelRef<'_> {
     #[inline]
-    fn texel(&self, x: u32, y: u32) -> Vec3 {
+    pub(crate) fn texel(&self, x: u32, y: u32) -> Vec3 {
         let [r, g, b] = self.texels[(y as usize) * self.width as usize + x as usize];
         let table = self.encoding.table();
         Vec3::new(table[r as usize], table[g as usize], table[b as usize])
@@ -182,7 +182,7 @@ impl Texture {
 
     /// Mip level `i` (0 is the image itself); `i` must be at most [`Self::mip_levels`].
     #[inline]
-    fn level(&self, i: usize) -> LevelRef<'_> {
+    pub(crate) fn level(&self, i: usize) -> LevelRef<'_> {
         match i.checked_sub(1) {
             None => LevelRef {
                 width: self.width,
@@ -262,104 +262,11 @@ impl Texture {
     }
 }
 
-/// How texture coordinates outside `[0, 1]` map into the image (glTF's sampler wrap modes).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Wrap {
-    /// The image tiles (glTF's default).
-    #[default]
-    Repeat,
-    /// Every other tile is mirrored.
-    MirroredRepeat,
-    /// Coordinates clamp to the edge texels.
-    ClampToEdge,
-}
-
-impl Wrap {
-    /// The texel index for integer texel coordinate `i` on an axis of `n` texels.
-    #[inline]
-    fn index(self, i: i64, n: u32) -> u32 {
-        let n = n as i64;
-        let r = match self {
-            Wrap::Repeat => i.rem_euclid(n),
-            Wrap::ClampToEdge => i.clamp(0, n - 1),
-            Wrap::MirroredRepeat => {
-                let m = i.rem_euclid(2 * n);
-                if m < n { m } else { 2 * n - 1 - m }
-            }
-        };
-        r as u32
-    }
-}
-
-/// How a texture is read: wrap modes per axis and the filter.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Sampler {
-    /// Wrap along u (glTF `wrapS`).
-    pub wrap_u: Wrap,
-    /// Wrap along v (glTF `wrapT`).
-    pub wrap_v: Wrap,
-    /// Nearest-texel lookup instead of bilinear filtering (glTF `magFilter` NEAREST).
-    pub nearest: bool,
-}
-
-impl Sampler {
-    /// The linear colour at texture coordinate `uv` (glTF convention: `(0, 0)` is the image's
-    /// top-left corner, v grows downwards). Non-finite coordinates read texel (0, 0).
-    #[inline]
-    pub fn sample(&self, texture: &Texture, uv: Vec2) -> Vec3 {
-        self.sample_level(texture.level(0), uv)
-    }
-
-    /// The linear colour at `uv` averaged over a footprint about `texels` texels of the image
-    /// across: trilinear filtering between the two mip levels whose texels bracket the
-    /// footprint. A footprint of one texel or less (or not a number) is [`Self::sample`].
-    #[inline]
-    pub fn sample_footprint(&self, texture: &Texture, uv: Vec2, texels: f32) -> Vec3 {
-        if texels.is_nan() || texels <= 1.0 {
-            return self.sample(texture, uv);
-        }
-        let lod = texels.log2().min(texture.mip_levels() as f32);
-        let below = lod.floor();
-        let (i, t) = (below as usize, lod - below);
-        let fine = self.sample_level(texture.level(i), uv);
-        if t <= 0.0 || i >= texture.mip_levels() {
-            return fine;
-        }
-        fine.lerp(self.sample_level(texture.level(i + 1), uv), t)
-    }
-
-    /// Bilinear (or nearest) lookup in one mip level.
-    #[inline]
-    fn sample_level(&self, texture: LevelRef<'_>, uv: Vec2) -> Vec3 {
-        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
-        // Texel centres sit at half-integers; keep the integer parts in a safe range.
-        let x = (uv.x as f64 * texture.width as f64 - 0.5).clamp(-1e15, 1e15);
-        let y = (uv.y as f64 * texture.height as f64 - 0.5).clamp(-1e15, 1e15);
-        if self.nearest {
-            let ix = self.wrap_u.index(x.round() as i64, texture.width);
-            let iy = self.wrap_v.index(y.round() as i64, texture.height);
-            return texture.texel(ix, iy);
-        }
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
-        let (x0, y0) = (x0 as i64, y0 as i64);
-        let xs = [
-            self.wrap_u.index(x0, texture.width),
-            self.wrap_u.index(x0 + 1, texture.width),
-        ];
-        let ys = [
-            self.wrap_v.index(y0, texture.height),
-            self.wrap_v.index(y0 + 1, texture.height),
-        ];
-        let top = texture.texel(xs[0], ys[0]).lerp(texture.texel(xs[1], ys[0]), fx);
-        let bottom = texture.texel(xs[0], ys[1]).lerp(texture.texel(xs[1], ys[1]), fx);
-        top.lerp(bottom, fy)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampler::{Sampler, Wrap};
+    use glam::Vec2;
 
     #[test]
     fn srgb_decoding_matches_the_standard_at_known_codes() {
@@ -406,16 +313,6 @@ mod tests {
         );
         // Odd sizes round up (5×3: 3×2, 2×1, 1×1).
         assert_eq!(Texture::from_srgb8(5, 3, checker(5, 3)).unwrap().mip_levels(), 3);
-    }
-
-    #[test]
-    fn wrap_modes_fold_indices() {
-        assert_eq!(Wrap::Repeat.index(-1, 4), 3);
-        assert_eq!(Wrap::Repeat.index(5, 4), 1);
-        assert_eq!(Wrap::ClampToEdge.index(-3, 4), 0);
-        assert_eq!(Wrap::ClampToEdge.index(9, 4), 3);
-        assert_eq!(Wrap::MirroredRepeat.index(4, 4), 3);
-        assert_eq!(Wrap::MirroredRepeat.index(-1, 4), 0);
     }
 
     #[test]

@@ -20,8 +20,9 @@ use super::metallic_roughness::metallic_roughness_texture;
 use super::options::GltfOptions;
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use crate::emission::EmissionTexture;
+use crate::sampler::Sampler;
 use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
-use crate::texture::{Sampler, TexelEncoding, Texture};
+use crate::texture::{TexelEncoding, Texture};
 
 /// A triangle primitive in its mesh's space, only the vertices its triangles use.
 #[derive(Debug)]

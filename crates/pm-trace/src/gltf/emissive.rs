@@ -15,7 +15,8 @@ use super::image::{load_image, texture_source};
 use super::material::GltfMaterial;
 use super::options::GltfOptions;
 use crate::emission::EmissionTexture;
-use crate::texture::{Sampler, TexelEncoding, Texture};
+use crate::sampler::Sampler;
+use crate::texture::{TexelEncoding, Texture};
 
 /// Decoded images by glTF image index and encoding (each decoded once however many textures
 /// name it, and once more only if one material reads it as colour and another as data) and

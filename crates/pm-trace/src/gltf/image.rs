@@ -10,7 +10,8 @@ use gltf::json;
 use super::buffers::{Buffer, confined_target, decode_data_uri, has_prefix_ignore_case, read_regular};
 use super::error::GltfError;
 use super::options::GltfOptions;
-use crate::texture::{Sampler, Texture, Wrap};
+use crate::sampler::{Sampler, Wrap};
+use crate::texture::Texture;
 
 /// Texture `texture` of `root`: the index of its image (checked to exist) and its sampler.
 pub(super) fn texture_source(

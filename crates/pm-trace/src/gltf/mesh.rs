@@ -7,8 +7,9 @@ use glam::{Vec2, Vec3};
 
 use super::material::GltfMaterial;
 use crate::emission::EmissionTexture;
+use crate::sampler::Sampler;
 use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
-use crate::texture::{Sampler, Texture};
+use crate::texture::Texture;
 
 /// One mesh primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]

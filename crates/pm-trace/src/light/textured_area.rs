@@ -5,9 +5,10 @@ use super::{EmittedRay, Light, LightSample};
 use crate::emission::{EmissionTexture, MAX_SUBDIVISIONS, MEAN_LOOKUP_BUDGET, subdivisions, triangle_mean};
 use crate::ray::Ray;
 use crate::rng::Rng;
+use crate::sampler::Sampler;
 use crate::sampling::{cosine_hemisphere_in_frame, orthonormal_frame, pick_cumulative};
 use crate::sides::Sides;
-use crate::texture::{Sampler, Texture};
+use crate::texture::Texture;
 use glam::{DVec3, Vec2, Vec3};
 use std::sync::Arc;
 

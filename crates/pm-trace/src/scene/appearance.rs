@@ -4,7 +4,8 @@
 
 use super::Scene;
 use super::shading::VertexAttributes;
-use crate::texture::{Sampler, Texture};
+use crate::sampler::Sampler;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 
 impl Scene {

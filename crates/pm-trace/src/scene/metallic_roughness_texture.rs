@@ -6,7 +6,8 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 
 use crate::bsdf::shading_point::TextureFactors;
-use crate::texture::{Sampler, Texture};
+use crate::sampler::Sampler;
+use crate::texture::Texture;
 
 /// A texture whose blue channel multiplies a [`crate::bsdf::MetallicRoughness`]'s metalness
 /// and whose green channel multiplies its roughness at each point (glTF's

@@ -9,7 +9,8 @@ use glam::{Vec2, Vec3};
 use super::metallic_roughness_texture::{MetallicRoughnessTexture, texels_across};
 use crate::bsdf::shading_point::TextureFactors;
 use crate::emission::EmissionTexture;
-use crate::texture::{Sampler, Texture};
+use crate::sampler::Sampler;
+use crate::texture::Texture;
 
 /// What a mesh's vertices carry besides positions: see [`SceneBuilder::attributed_mesh`].
 ///
