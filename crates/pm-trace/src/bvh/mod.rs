@@ -17,6 +17,7 @@ use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 mod batch;
 pub(crate) mod closest;
 mod pair;
+pub(crate) mod pieces;
 mod sah;
 mod scan;
 pub(crate) mod shape;
@@ -24,6 +25,7 @@ pub(crate) mod traverse;
 mod watertight;
 
 use batch::TriangleBatches;
+use pieces::{PIECES, PieceIndex};
 use scan::BoundsScan;
 pub(crate) use shape::ShapePrimitive;
 use traverse::for_each_leaf_primitive;
@@ -70,7 +72,9 @@ pub(crate) enum Leaving {
 
 /// A triangle as the ray queries read it: its corners, its part and its part's surface (an
 /// index in the scene's surface table), in one 44-byte record, so that a hit needs no lookup
-/// of its surface in a per-part table (in a scene of 10⁵ triangles, another cache miss).
+/// of its surface in a per-part table (in a scene of 10⁵ triangles, another cache miss). A
+/// triangle of a face the contact partition cut into pieces of several parts carries
+/// [`PIECES`] and its face's piece list in `part` instead ([`pieces`]).
 #[derive(Clone, Copy, Debug)]
 struct TriangleRecord {
     v: [Vec3; 3],
@@ -85,6 +89,8 @@ pub(crate) struct SceneBvh {
     triangle_search: Search<TriangleBatches>,
     shapes: Vec<ShapePrimitive>,
     shape_search: Search<BoundsScan>,
+    /// The pieces of cut faces (empty unless the contact partition cut some).
+    pieces: PieceIndex,
 }
 
 impl std::fmt::Debug for SceneBvh {
@@ -175,7 +181,63 @@ impl SceneBvh {
             triangle_search,
             shapes,
             shape_search,
+            pieces: PieceIndex::default(),
         }
+    }
+
+    /// A search of `triangles` with `parts`, where a part may be a list of `pieces`
+    /// ([`PieceIndex::push`]), and of this one's shapes: the contact partition's faces as
+    /// the user gave them, each hit located among its pieces.
+    pub(crate) fn with_triangles(
+        &self,
+        triangles: Vec<[Vec3; 3]>,
+        parts: Vec<PartSurface>,
+        pieces: PieceIndex,
+    ) -> Self {
+        let mut bvh = Self::build(triangles, parts, self.shapes.clone());
+        bvh.pieces = pieces;
+        bvh
+    }
+
+    /// True when a ray meeting triangle record `record` at `p` meets a surface there: always,
+    /// unless its face was cut into pieces and `p` lies in none of them (where the partition
+    /// dropped a hidden copy of a coincident face).
+    #[inline(always)]
+    fn lands(&self, record: &TriangleRecord, p: impl FnOnce() -> Vec3) -> bool {
+        record.part.0 & PIECES == 0 || self.lands_on_piece(record.part.0 & !PIECES, p())
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn lands_on_piece(&self, list: u32, p: Vec3) -> bool {
+        self.pieces.locate(list, p).is_some()
+    }
+
+    /// The part and surface of triangle record `record` at `p` (located among its pieces when
+    /// its face was cut).
+    #[inline(always)]
+    fn record_part(&self, record: &TriangleRecord, p: Vec3) -> PartSurface {
+        if record.part.0 & PIECES == 0 {
+            return PartSurface {
+                part: record.part,
+                surface: record.surface,
+            };
+        }
+        self.piece_part(record, p)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn piece_part(&self, record: &TriangleRecord, p: Vec3) -> PartSurface {
+        let list = record.part.0 & !PIECES;
+        self.pieces
+            .locate(list, p)
+            .or_else(|| self.pieces.nearest(list, p))
+            // Lists are never empty (`PieceIndex::push`); the record's surface all the same.
+            .unwrap_or(PartSurface {
+                part: PartId(u32::MAX),
+                surface: record.surface,
+            })
     }
 
     /// The part and surface, and the unit geometric normal at `p`, of a primitive that was
@@ -185,11 +247,7 @@ impl SceneBvh {
         match hit {
             HitPrimitive::Triangle(i) => {
                 let record = &self.triangles[i as usize];
-                let part = PartSurface {
-                    part: record.part,
-                    surface: record.surface,
-                };
-                (part, triangle_normal(&record.v))
+                (self.record_part(record, p), triangle_normal(&record.v))
             }
             HitPrimitive::Shape(i) => {
                 let s = &self.shapes[i as usize];
@@ -259,6 +317,7 @@ impl SceneBvh {
             + self.shapes.capacity() * size_of::<ShapePrimitive>()
             + search_bytes(&self.triangle_search, TriangleBatches::heap_bytes)
             + search_bytes(&self.shape_search, BoundsScan::heap_bytes)
+            + self.pieces.heap_bytes()
     }
 
     /// True when any primitive lies on the ray in `(t_min, t_max)`.

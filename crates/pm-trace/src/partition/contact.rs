@@ -26,7 +26,10 @@ use pm_geom::{
 /// where an edge of one lies in the other (a wall standing on a floor), that overlap in one
 /// plane (duplicated or stacked floors), or that come closer than the gap tolerance without
 /// meeting, and cuts each such face into convex pieces along those segments; the
-/// [`Partitioned`] it returns holds that split scene. Then it flood-fills across edges with a
+/// [`Partitioned`] it returns holds that split scene, whose rays still meet the faces as given
+/// (a hit on a cut face is located among its pieces for its part; only hidden copies of
+/// coincident faces, which the split drops, let a ray pass to the copy kept at the same
+/// distance), so the split decides maps and never what a ray meets. Then it flood-fills across edges with a
 /// crease angle below `max_angle` over one half-edge mesh of *all* mesh faces, never across a
 /// segment where faces meet (or an edge of three or more faces), and never into a piece that
 /// lies inside a closed solid (the floor slab's top under a wall box: no light reaches it).
@@ -80,7 +83,8 @@ impl Contact {
         (self.relative_gap * scene.bounds().diagonal()).max(self.tolerance(scene))
     }
 
-    /// `scene` rebuilt with every mesh face cut where other faces meet it, and what was found. Each piece keeps its
+    /// `scene` rebuilt with every mesh face cut where other faces meet it, its ray queries
+    /// searching the faces as given (`Scene::trace_faces_as_given`), and what was found. Each piece keeps its
     /// face's surface and its vertex attributes (texture coordinates, colours and normals,
     /// interpolated over the original triangle, so [`Scene::albedo_at`] and
     /// [`Scene::shading_normal_at`] give what they gave before the split); lights, analytic
@@ -132,6 +136,8 @@ impl Contact {
                 face: faces.user_face[source],
             });
         }
+        // Rays will meet the faces as given: their triangles and faces, before the scene goes.
+        let original = scene.mesh_triangle_sources();
         // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
         // shaded by interpolating over the whole original triangle it lies in.
         let shading: Vec<_> = scene
@@ -143,7 +149,10 @@ impl Contact {
         let weld = MeshOptions {
             weld_tolerance: tolerance,
         };
-        let mut builder = scene.into_builder_without_meshes().mesh_options(weld);
+        let mut builder = scene
+            .into_builder_without_meshes()
+            .mesh_options(weld)
+            .defer_ray_triangles();
         let mut built_meshes = Vec::new();
         for (m, shading) in shading.into_iter().enumerate() {
             if !polygons[m].is_empty() {
@@ -152,7 +161,7 @@ impl Contact {
                 built_meshes.push(m);
             }
         }
-        let rebuilt = builder.build()?;
+        let mut rebuilt = builder.build()?;
         let mut sealed_parts = vec![false; rebuilt.part_count()];
         let mut source_faces = vec![None; rebuilt.part_count()];
         for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {
@@ -163,6 +172,7 @@ impl Contact {
                 source_faces[part] = Some(piece_sources[m][k]);
             }
         }
+        rebuilt.trace_faces_as_given(&original, &source_faces, tolerance);
         let record = ContactRecord {
             barriers: BarrierSet::new(split.barriers, tolerance),
             sealed_parts,

@@ -75,6 +75,18 @@ pub struct SceneBuilder {
     pub(super) mesh_options: MeshOptions,
     pub(super) max_triangles: Option<usize>,
     pub(super) origin_offset: DVec3,
+    pub(super) ray_triangles: RayTriangles,
+}
+
+/// Which triangles the built scene's ray queries search.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum RayTriangles {
+    /// Its own meshes' triangles.
+    #[default]
+    Own,
+    /// None yet: the caller puts others in (the contact partition's faces as given,
+    /// `Scene::trace_faces_as_given`), so the split scene's own are never searched.
+    Deferred,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -263,6 +275,13 @@ impl SceneBuilder {
         self
     }
 
+    /// Builds the scene without searching its meshes' triangles: the caller puts the triangles
+    /// rays meet in afterwards (`Scene::trace_faces_as_given`).
+    pub(crate) fn defer_ray_triangles(mut self) -> Self {
+        self.ray_triangles = RayTriangles::Deferred;
+        self
+    }
+
     /// Sets the mesh options (weld tolerance) used for meshes.
     pub fn mesh_options(mut self, options: MeshOptions) -> Self {
         self.mesh_options = options;
@@ -336,7 +355,10 @@ impl SceneBuilder {
             bounds,
             epsilon,
             mesh_options: self.mesh_options,
-            bvh: Arc::new(SceneBvh::build(triangles, triangle_parts, shape_prims)),
+            bvh: Arc::new(match self.ray_triangles {
+                RayTriangles::Own => SceneBvh::build(triangles, triangle_parts, shape_prims),
+                RayTriangles::Deferred => SceneBvh::build(Vec::new(), Vec::new(), shape_prims),
+            }),
             has_shading: meshes.has_shading,
             has_emission_textures: meshes.has_emission_textures,
             has_culling,

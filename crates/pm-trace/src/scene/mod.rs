@@ -5,6 +5,7 @@ mod appearance;
 mod assemble;
 pub(crate) mod builder;
 mod checks;
+mod faces_as_given;
 mod mesh_input;
 pub(crate) mod metallic_roughness_texture;
 pub mod offset;
