@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""The equal-time study on the obvhs kitchen (issue 34): every method's error against an
+independent reference at matched wall-clock time, set-up included (reading the glTF, the
+contact split, building the BVH: everything the `render` process does).
+
+Each method runs as the `render` example would for a user, once per time budget:
+- the progressive modes and SPPM stop by themselves (`--time`, which counts from the first
+  pass, so the script first measures each one's set-up with one pass and gives it
+  `budget - set-up`);
+- the one-pass modes (final gather, shadow rays, path tracer) are run on a ladder of sample
+  and photon counts, and each budget takes the rung whose time is nearest.
+Every run's process wall time is measured, and the tables say which time each error comes
+with, so nothing is matched by hand.
+
+Error: relative RMSE over the image against the reference (channel mean), with the
+reference's own variance removed, sqrt(max(mean((o - r)^2) - mean(se_r^2), 0)) / mean(r);
+also on 4×4-pixel means (the estimate's low-frequency error, with the per-pixel sampling
+noise mostly averaged out) and the image mean's relative difference. The reference is
+scripts/mitsuba-reference.py's .npy (mean and standard error per pixel); its noise is
+reported so that the reader can see it is at least 3× below the errors it judges.
+
+Writes a Markdown table and a JSON of every run to --out-dir (default
+target/kitchen/study); never into tracked files. Needs numpy and mitsuba (to read EXRs).
+
+Usage: scripts/kitchen-study.py --reference target/kitchen/out/mitsuba.npy
+       [--scene target/kitchen/kitchen.gltf] [--budgets 2,6,30] [--seeds 1]
+       [--methods sppm,progressive,...] [--render target/release/examples/render]
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+# name -> (arguments, kind). "timed" runs take --time; "ladder" runs take each rung's args.
+METHODS = {
+    "sppm": (["--mode", "sppm"], "timed"),
+    "progressive": (["--mode", "progressive", "--direct", "shadow-rays"], "timed"),
+    "progressive-gap1e-4": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001"], "timed"),
+    "progressive-crease": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
+    "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
+    "progressive-gather": (
+        ["--mode", "progressive", "--gather-rays", "4", "--spp", "4"], "timed"),
+    "final-gather": (["--mode", "final-gather"], "ladder"),
+    "shadow-rays": (["--mode", "shadow-rays"], "ladder"),
+    "path-trace": (["--mode", "path-trace"], "ladder"),
+}
+
+# Rungs of the one-pass methods, cheapest first.
+LADDERS = {
+    "final-gather": [["--spp", str(s), "--photons", str(p)] for s, p in
+                     [(1, 50000), (2, 100000), (4, 200000), (8, 300000), (16, 500000),
+                      (32, 1000000), (64, 2000000)]],
+    "shadow-rays": [["--spp", str(s), "--photons", str(p)] for s, p in
+                    [(4, 100000), (8, 300000), (16, 1000000), (32, 3000000), (64, 8000000)]],
+    "path-trace": [["--spp", str(s)] for s in [4, 8, 16, 32, 64, 128, 256]],
+}
+
+
+def read_exr(path):
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    return np.array(mi.Bitmap(path))[:, :, :3].astype(np.float64).mean(2)
+
+
+def down(a, b):
+    h, w = a.shape
+    return a[:h // b * b, :w // b * b].reshape(h // b, b, w // b, b).mean((1, 3))
+
+
+def errors(ours, ref, ref_var):
+    """Relative RMSE at full resolution and on 4×4 means (reference noise removed), and
+    the mean's relative difference."""
+    out = {}
+    for b in (1, 4):
+        o, r, v = down(ours, b), down(ref, b), down(ref_var, b) / (b * b)
+        mse = ((o - r) ** 2).mean() - v.mean()
+        out[f"rmse{b}"] = math.sqrt(max(mse, 0.0)) / ref.mean()
+        out[f"noise{b}"] = math.sqrt(v.mean()) / ref.mean()
+    out["mean"] = ours.mean() / ref.mean() - 1.0
+    return out
+
+
+def run(args, name, extra, seed, tag):
+    out = os.path.join(args.out_dir, f"{name}-{tag}-s{seed}.exr")
+    stats = out[:-4] + ".json"
+    size = f"{args.width}x{args.height}"
+    cmd = [args.render, "--scene", args.scene, "--size", size, "--seed", str(seed),
+           "--threads", str(args.threads), "--out", out, "--stats-json", stats] + extra
+    t0 = time.monotonic()
+    r0 = os.times()
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.monotonic() - t0
+    r1 = os.times()
+    if done.returncode != 0:
+        raise SystemExit(f"error: {' '.join(cmd)} failed:\n{done.stderr}")
+    cpu = (r1.children_user - r0.children_user) + (r1.children_system - r0.children_system)
+    with open(stats) as f:
+        figures = json.load(f)
+    return out, wall, cpu, figures
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--reference", required=True)
+    p.add_argument("--scene", default="target/kitchen/kitchen.gltf")
+    p.add_argument("--render", default="target/release/examples/render")
+    p.add_argument("--budgets", default="2,6,30")
+    p.add_argument("--seeds", default="1")
+    p.add_argument("--methods", default=",".join(METHODS))
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--out-dir", default="target/kitchen/study")
+    args = p.parse_args()
+    if not os.path.exists(args.scene):
+        print(f"skipped: {args.scene} not found (make it with scripts/kitchen-gltf.py)")
+        return
+    os.makedirs(args.out_dir, exist_ok=True)
+    ref_mean, ref_se = np.load(args.reference).astype(np.float64)
+    ref = ref_mean.mean(2)
+    ref_var = (ref_se ** 2).mean(2) / 3.0
+    args.height, args.width = ref.shape
+    budgets = [float(b) for b in args.budgets.split(",")]
+    seeds = [int(s) for s in args.seeds.split(",")]
+    records = []
+    for name in args.methods.split(","):
+        base, kind = METHODS[name]
+        for seed in seeds:
+            if kind == "timed":
+                _, wall1, _, fig = run(args, name, base + ["--passes", "1"], seed, "setup")
+                setup = max(wall1 - fig["seconds"]["total"], 0.0)
+                for b in budgets:
+                    t = max(b - setup, 0.01)
+                    out, wall, cpu, fig = run(args, name, base + ["--time", f"{t:.3f}"], seed, f"t{b:g}")
+                    e = errors(read_exr(out), ref, ref_var)
+                    rec = dict(method=name, seed=seed, budget=b, wall=wall, cpu=cpu, setup=setup,
+                               passes=fig.get("passes"), maps=fig.get("map_count"), **e)
+                    records.append(rec)
+                    print(json.dumps(rec), flush=True)
+            else:
+                for i, rung in enumerate(LADDERS[name]):
+                    out, wall, cpu, fig = run(args, name, base + rung, seed, f"r{i}")
+                    e = errors(read_exr(out), ref, ref_var)
+                    rec = dict(method=name, seed=seed, rung=" ".join(rung), wall=wall, cpu=cpu,
+                               maps=fig.get("map_count"), **e)
+                    records.append(rec)
+                    print(json.dumps(rec), flush=True)
+                    if wall > 1.5 * max(budgets):
+                        break
+    with open(os.path.join(args.out_dir, "study.json"), "w") as f:
+        json.dump(records, f, indent=1)
+    write_table(args, records, budgets)
+
+
+def write_table(args, records, budgets):
+    lines = [f"Reference noise (relative RMS): {records[0]['noise1']:.4f} per pixel, "
+             f"{records[0]['noise4']:.4f} on 4×4 means.", "",
+             "| method | " + " | ".join(f"~{b:g} s" for b in budgets) + " |",
+             "|---|" + "---|" * len(budgets)]
+    for name in dict.fromkeys(r["method"] for r in records):
+        mine = [r for r in records if r["method"] == name]
+        cells = []
+        for b in budgets:
+            near = [r for r in mine if r.get("budget") == b] or \
+                [min(mine, key=lambda r: abs(math.log(r["wall"] / b)))]
+            w = np.mean([r["wall"] for r in near])
+            e1 = np.mean([r["rmse1"] for r in near])
+            e4 = np.mean([r["rmse4"] for r in near])
+            m = np.mean([r["mean"] for r in near])
+            cells.append(f"{e1:.4f} / {e4:.4f} ({w:.1f} s, {100 * m:+.1f} %)")
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(args.out_dir, "study.md"), "w") as f:
+        f.write(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
