@@ -162,6 +162,9 @@ impl Contact {
             }
         }
         let mut rebuilt = builder.build()?;
+        // The pieces' copies are the rebuilt scene's now: freed before the ray structure's
+        // tables are made, so the peak holds one of them.
+        drop((positions, polygons, face_surfaces, piece_faces, faces));
         let mut sealed_parts = vec![false; rebuilt.part_count()];
         let mut source_faces = vec![None; rebuilt.part_count()];
         for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {
@@ -172,9 +175,11 @@ impl Contact {
                 source_faces[part] = Some(piece_sources[m][k]);
             }
         }
+        let barriers = BarrierSet::new(split.barriers, tolerance);
+        drop((split.polygons, piece_index, piece_sources));
         rebuilt.trace_faces_as_given(&original, &source_faces, tolerance);
         let record = ContactRecord {
-            barriers: BarrierSet::new(split.barriers, tolerance),
+            barriers,
             sealed_parts,
             source_faces,
             counts,
