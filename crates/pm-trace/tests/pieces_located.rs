@@ -2,7 +2,8 @@
 //! lies in. Checked against brute force on the built-in scenes the split cuts: every hit of
 //! random rays lies on the polygon of the part it reports (distance computed from the
 //! polygon's edges, not through the piece index), and at the same distance as the hit in the
-//! scene as given.
+//! scene as given (the duplicated floor of `solid-rooms-double-floor` included, whose hidden
+//! copy the split drops: a ray meeting it passes on to the copy kept at the same distance).
 
 use pm_trace::glam::Vec3;
 use pm_trace::{Contact, Partitioner, Ray, RayKind, Rng, Scene, scenes};

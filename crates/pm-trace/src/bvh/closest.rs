@@ -44,7 +44,7 @@ impl SceneBvh {
                             primitive: HitPrimitive::Triangle(i as u32),
                             t,
                         };
-                        if accept(&crossing) && self.lands(&self.triangles[i], || ray.at(t)) {
+                        if accept(&crossing) {
                             best.set((t, i as u32));
                         }
                         true
@@ -86,7 +86,7 @@ impl SceneBvh {
                 primitive: HitPrimitive::Triangle(i as u32),
                 t,
             };
-            if t < best.0 && accept(&crossing()) && self.lands(record, || ray.at(t)) {
+            if t < best.0 && accept(&crossing()) {
                 best = (t, i as u32);
                 // Rounded up a little, so that pruning by it stays conservative.
                 *limit = t * (1.0 + 1e-6);

@@ -199,60 +199,50 @@ impl SceneBvh {
         bvh
     }
 
-    /// True when a ray meeting triangle record `record` at `p` meets a surface there: always,
-    /// unless its face was cut into pieces and `p` lies in none of them (where the partition
-    /// dropped a hidden copy of a coincident face).
+    /// The part and surface of triangle record `record` at `p`: its own, or the piece's that
+    /// `p` lies in when its face was cut; `None` when `p` lies in no piece (where the
+    /// partition dropped a hidden copy of a coincident face: a ray passes there).
     #[inline(always)]
-    fn lands(&self, record: &TriangleRecord, p: impl FnOnce() -> Vec3) -> bool {
-        record.part.0 & PIECES == 0 || self.lands_on_piece(record.part.0 & !PIECES, p())
-    }
-
-    #[cold]
-    #[inline(never)]
-    fn lands_on_piece(&self, list: u32, p: Vec3) -> bool {
-        self.pieces.locate(list, p).is_some()
-    }
-
-    /// The part and surface of triangle record `record` at `p` (located among its pieces when
-    /// its face was cut).
-    #[inline(always)]
-    fn record_part(&self, record: &TriangleRecord, p: Vec3) -> PartSurface {
+    fn record_part(&self, record: &TriangleRecord, p: Vec3) -> Option<PartSurface> {
         if record.part.0 & PIECES == 0 {
-            return PartSurface {
+            return Some(PartSurface {
                 part: record.part,
                 surface: record.surface,
-            };
+            });
         }
         self.piece_part(record, p)
     }
 
     #[cold]
     #[inline(never)]
-    fn piece_part(&self, record: &TriangleRecord, p: Vec3) -> PartSurface {
-        let list = record.part.0 & !PIECES;
-        self.pieces
-            .locate(list, p)
-            .or_else(|| self.pieces.nearest(list, p))
-            // Lists are never empty (`PieceIndex::push`); the record's surface all the same.
-            .unwrap_or(PartSurface {
-                part: PartId(u32::MAX),
-                surface: record.surface,
-            })
+    fn piece_part(&self, record: &TriangleRecord, p: Vec3) -> Option<PartSurface> {
+        self.pieces.locate(record.part.0 & !PIECES, p)
     }
 
     /// The part and surface, and the unit geometric normal at `p`, of a primitive that was
-    /// hit (triangles: counter-clockwise winding).
+    /// hit (triangles: counter-clockwise winding); `None` where a ray passes a cut face
+    /// ([`SceneBvh::record_part`]). The closest-hit searches do not ask, so the few pieces of
+    /// a cut face are looked through once per hit, not at every crossing on the way.
     #[inline]
-    pub(crate) fn part_and_normal(&self, hit: HitPrimitive, p: Vec3) -> (PartSurface, Vec3) {
+    pub(crate) fn part_and_normal(&self, hit: HitPrimitive, p: Vec3) -> Option<(PartSurface, Vec3)> {
         match hit {
             HitPrimitive::Triangle(i) => {
                 let record = &self.triangles[i as usize];
-                (self.record_part(record, p), triangle_normal(&record.v))
+                Some((self.record_part(record, p)?, triangle_normal(&record.v)))
             }
             HitPrimitive::Shape(i) => {
                 let s = &self.shapes[i as usize];
-                (s.part(), s.normal_at(p))
+                Some((s.part(), s.normal_at(p)))
             }
+        }
+    }
+
+    /// The unit geometric normal at `p` of a primitive that was hit.
+    #[inline]
+    pub(crate) fn normal_at(&self, hit: HitPrimitive, p: Vec3) -> Vec3 {
+        match hit {
+            HitPrimitive::Triangle(i) => triangle_normal(&self.triangles[i as usize].v),
+            HitPrimitive::Shape(i) => self.shapes[i as usize].normal_at(p),
         }
     }
 

@@ -21,8 +21,8 @@ impl SceneBvh {
             WatertightRay::new(b.origin, b.direction),
         );
         let (mut best_a, mut best_b) = ((t_max, u32::MAX), (t_max, u32::MAX));
-        let mut visit_a = |i: usize, limit: &mut f32| self.visit_closest(a, &wa, i, &mut best_a, limit);
-        let mut visit_b = |i: usize, limit: &mut f32| self.visit_closest(b, &wb, i, &mut best_b, limit);
+        let mut visit_a = |i: usize, limit: &mut f32| self.visit_closest(&wa, i, &mut best_a, limit);
+        let mut visit_b = |i: usize, limit: &mut f32| self.visit_closest(&wb, i, &mut best_b, limit);
         let mut walk_a = Traversal::<true>::new(bvh, a, 0.0, t_max);
         let mut walk_b = Traversal::<true>::new(bvh, b, 0.0, t_max);
         let (mut live_a, mut live_b) = (true, true);
@@ -52,17 +52,9 @@ impl SceneBvh {
     /// A closest-hit search's test of leaf triangle `i`: keeps it in `best` if nearer, and
     /// shrinks the walk's `limit` to it.
     #[inline(always)]
-    fn visit_closest(
-        &self,
-        ray: &Ray,
-        w: &WatertightRay,
-        i: usize,
-        best: &mut (f32, u32),
-        limit: &mut f32,
-    ) -> bool {
-        let record = &self.triangles[i];
-        let t = w.intersect_triangle(&record.v, 0.0, best.0);
-        if t < best.0 && self.lands(record, || ray.at(t)) {
+    fn visit_closest(&self, w: &WatertightRay, i: usize, best: &mut (f32, u32), limit: &mut f32) -> bool {
+        let t = w.intersect_triangle(&self.triangles[i].v, 0.0, best.0);
+        if t < best.0 {
             *best = (t, i as u32);
             // Rounded up a little, so that pruning by it stays conservative.
             *limit = t * (1.0 + 1e-6);

@@ -165,21 +165,6 @@ impl PieceIndex {
         best.1
     }
 
-    /// The part of the piece of `list` nearest `p`, however far (a hit whose point the
-    /// closest-hit search located may round a little farther off when written in the
-    /// triangle's own coordinates).
-    pub(crate) fn nearest(&self, list: u32, p: Vec3) -> Option<PartSurface> {
-        let (start, end) = self.lists[list as usize];
-        self.triangles[start as usize..end as usize]
-            .iter()
-            .map(|piece| (piece.distance(p), piece.part))
-            .fold(None, |best: Option<(f32, PartSurface)>, (d, part)| match best {
-                Some((b, _)) if b <= d => best,
-                _ => Some((d, part)),
-            })
-            .map(|(_, part)| part)
-    }
-
     /// Heap bytes held.
     pub(crate) fn heap_bytes(&self) -> usize {
         self.lists.capacity() * size_of::<(u32, u32)>()
@@ -199,8 +184,8 @@ mod tests {
     }
 
     /// A unit square in z = 0 cut into a left and a right half (two triangles each): points
-    /// are located in their half, edge points in the larger (the first listed of equals), points just off within
-    /// the tolerance in the nearest, and points beyond it nowhere.
+    /// are located in their half, edge points in the larger (the first listed of equals), points
+    /// just off within the tolerance in the nearest, and points beyond it nowhere.
     #[test]
     fn locates_points_among_pieces() {
         let (a, b, c, d, e, f) = (
@@ -230,8 +215,6 @@ mod tests {
         assert_eq!(index.locate(list, Vec3::new(0.5, 0.5, 0.0)), Some(part(1)));
         assert_eq!(index.locate(list, Vec3::new(1.0005, 0.5, 0.0)), Some(part(2)));
         assert_eq!(index.locate(list, Vec3::new(1.01, 0.5, 0.0)), None);
-        assert_eq!(index.nearest(list, Vec3::new(1.01, 0.5, 0.0)), Some(part(2)));
-        assert_eq!(index.nearest(list, Vec3::new(-3.0, 0.5, 0.0)), Some(part(1)));
     }
 
     /// A fan triangle of three corners on one line (a piece outline with a T-junction vertex)

@@ -76,7 +76,7 @@ fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
             let ray = Ray { origin, direction };
             let t_max = if k % 3 == 0 { 0.05 } else { f32::INFINITY };
             let part_of = |b: &SceneBvh, (t, hit): (f32, HitPrimitive)| {
-                (t.to_bits(), b.part_and_normal(hit, ray.at(t)).0)
+                (t.to_bits(), b.part_and_normal(hit, ray.at(t)).unwrap().0)
             };
             let expected = scan
                 .closest(&ray, 0.0, t_max, |_| true)
@@ -278,7 +278,7 @@ fn the_bvh_matches_the_flat_scan_on_many_triangles_and_on_a_fan() {
                     t
                 );
                 if name == "rooms" {
-                    let part_of = |b: &SceneBvh, h| b.part_and_normal(h, ray.at(t)).0;
+                    let part_of = |b: &SceneBvh, h| b.part_and_normal(h, ray.at(t)).unwrap().0;
                     assert_eq!(
                         part_of(&bvh, HitPrimitive::Triangle(i)),
                         part_of(&scan, scan_hit),
@@ -334,7 +334,7 @@ fn the_bvh_matches_the_flat_scan_through_a_deep_stack_of_layers() {
         let surface = k as u32 % 7;
         let accept = |c: &Crossing| c.surface == surface;
         let part = |b: &SceneBvh, hit: Option<(f32, HitPrimitive)>| {
-            hit.map(|(t, h)| (t, b.part_and_normal(h, ray.at(t)).0))
+            hit.map(|(t, h)| (t, b.part_and_normal(h, ray.at(t)).unwrap().0))
         };
         let expected = part(&scan, scan.closest(&ray, 0.0, f32::INFINITY, accept));
         let found = part(&bvh, bvh.closest(&ray, 0.0, f32::INFINITY, accept));
@@ -382,7 +382,7 @@ fn the_bvh_matches_the_flat_scan_at_a_million_triangles() {
         })
         .collect();
     let part = |b: &SceneBvh, ray: &Ray, hit: Option<(f32, HitPrimitive)>| {
-        hit.map(|(t, h)| (t.to_bits(), b.part_and_normal(h, ray.at(t)).0))
+        hit.map(|(t, h)| (t.to_bits(), b.part_and_normal(h, ray.at(t)).unwrap().0))
     };
     for (k, pair) in rays.chunks_exact(2).enumerate() {
         let paired = bvh.closest_pair([&pair[0], &pair[1]], f32::INFINITY);

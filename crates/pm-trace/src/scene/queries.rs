@@ -17,6 +17,11 @@ use glam::Vec3;
 /// `benches/raycast.rs`).
 pub const PAIRED_RAYS_MIN_TRIANGLES: usize = 65_536;
 
+/// Crossings in dropped parts of cut faces a ray passes at most before it counts as meeting
+/// nothing (each is a hidden copy of a face; a model with more copies stacked on one spot is
+/// refused by the split's own bounds long before).
+const MAX_PASSED: usize = 16;
+
 impl Scene {
     /// The closest hit with `0 < t < t_max`. Rays leaving a surface should start at
     /// [`Scene::spawn_ray`]'s offset origin.
@@ -26,14 +31,57 @@ impl Scene {
     /// see every side of every surface.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
-        let (t, index) = match kind {
-            RayKind::Other => self.bvh.closest(ray, 0.0, t_max, |_| true)?,
-            RayKind::Camera if self.has_culling => self.closest_camera_hit_culling(ray, t_max)?,
+        let (t, index) = self.closest_of_kind(ray, t_max, kind, &[])?;
+        match self.hit_at(ray, t, index) {
+            Some(hit) => Some(hit),
+            None => self.intersect_past_dropped(ray, t_max, kind, index),
+        }
+    }
+
+    /// The closest crossing a ray of `kind` takes, skipping the triangles in `passed`.
+    #[inline(always)]
+    fn closest_of_kind(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        kind: RayKind,
+        passed: &[HitPrimitive],
+    ) -> Option<(f32, HitPrimitive)> {
+        match kind {
+            RayKind::Other if passed.is_empty() => self.bvh.closest(ray, 0.0, t_max, |_| true),
+            RayKind::Other => self
+                .bvh
+                .closest(ray, 0.0, t_max, |c| !passed.contains(&c.primitive)),
+            RayKind::Camera if self.has_culling => self.closest_camera_hit_culling(ray, t_max, passed),
             RayKind::Camera => self.bvh.closest(ray, 0.0, t_max, |c| {
-                self.surfaces[c.surface as usize].camera_visible
-            })?,
-        };
-        Some(self.hit_at(ray, t, index))
+                self.surfaces[c.surface as usize].camera_visible && !passed.contains(&c.primitive)
+            }),
+        }
+    }
+
+    /// [`Scene::intersect`] after its closest crossing, `first`, fell where the contact split
+    /// dropped a hidden copy of a coincident face: the search again without it (and without
+    /// each such crossing after it), which finds the copy kept at the same distance. A point
+    /// lies in a dropped part only of a split scene's cut faces, so this is rare and out of
+    /// line; past [`MAX_PASSED`] such crossings in a row the ray counts as meeting nothing.
+    #[cold]
+    #[inline(never)]
+    fn intersect_past_dropped(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        kind: RayKind,
+        first: HitPrimitive,
+    ) -> Option<Hit> {
+        let mut passed = vec![first];
+        while passed.len() <= MAX_PASSED {
+            let (t, index) = self.closest_of_kind(ray, t_max, kind, &passed)?;
+            match self.hit_at(ray, t, index) {
+                Some(hit) => return Some(hit),
+                None => passed.push(index),
+            }
+        }
+        None
     }
 
     /// The closest camera hit in a scene with single-sided surfaces: the backs of those are
@@ -41,10 +89,17 @@ impl Scene {
     /// distance (two rooms modelled on one wall plane, each single-sided). Out of line, so
     /// scenes without single-sided surfaces pay nothing for it.
     #[inline(never)]
-    fn closest_camera_hit_culling(&self, ray: &Ray, t_max: f32) -> Option<(f32, HitPrimitive)> {
+    fn closest_camera_hit_culling(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        passed: &[HitPrimitive],
+    ) -> Option<(f32, HitPrimitive)> {
         self.bvh.closest(ray, 0.0, t_max, |c| {
             let surface = &self.surfaces[c.surface as usize];
-            surface.camera_visible && !(surface.sides.culls_back() && self.faces_away(ray, c))
+            surface.camera_visible
+                && !(surface.sides.culls_back() && self.faces_away(ray, c))
+                && !passed.contains(&c.primitive)
         })
     }
 
@@ -52,7 +107,7 @@ impl Scene {
     /// the test [`Scene::hit_at`] makes for [`Hit::front_face`].
     #[inline]
     fn faces_away(&self, ray: &Ray, crossing: &Crossing) -> bool {
-        let (_, n) = self.bvh.part_and_normal(crossing.primitive, ray.at(crossing.t));
+        let n = self.bvh.normal_at(crossing.primitive, ray.at(crossing.t));
         n.dot(ray.direction) >= 0.0
     }
 
@@ -65,7 +120,13 @@ impl Scene {
             return rays.map(|ray| self.intersect(ray, t_max, RayKind::Other));
         }
         let hits = self.bvh.closest_pair(rays, t_max);
-        [0, 1].map(|k| hits[k].map(|(t, index)| self.hit_at(rays[k], t, index)))
+        [0, 1].map(|k| {
+            let (t, index) = hits[k]?;
+            match self.hit_at(rays[k], t, index) {
+                Some(hit) => Some(hit),
+                None => self.intersect_past_dropped(rays[k], t_max, RayKind::Other, index),
+            }
+        })
     }
 
     /// True when [`Scene::intersect_pair`] beats two calls of [`Scene::intersect`] on
@@ -75,9 +136,10 @@ impl Scene {
         self.bvh.triangle_count() >= PAIRED_RAYS_MIN_TRIANGLES
     }
 
-    /// The hit of `ray` at distance `t` on primitive `index`.
+    /// The hit of `ray` at distance `t` on primitive `index`; `None` where the point lies in
+    /// a part of a cut face that the contact split dropped (a hidden copy of a coincident face).
     #[inline(always)]
-    fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Hit {
+    fn hit_at(&self, ray: &Ray, t: f32, index: HitPrimitive) -> Option<Hit> {
         // On a triangle the point is written in the triangle's own coordinates, so it lies on
         // the triangle's plane within rounding of the corners however thin the triangle is
         // (`origin + t · direction` carries t's error, which a sliver magnifies).
@@ -101,9 +163,9 @@ impl Scene {
             }
             None => (on_ray, ray_error),
         };
-        let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position);
+        let (PartSurface { part, surface }, n) = self.bvh.part_and_normal(index, position)?;
         let front_face = n.dot(ray.direction) < 0.0;
-        Hit {
+        Some(Hit {
             t,
             position,
             normal: if front_face { n } else { -n },
@@ -112,7 +174,7 @@ impl Scene {
             surface,
             error,
             primitive: index,
-        }
+        })
     }
 
     /// True when a surface lies strictly between `from` and `to` (surfaces within the
