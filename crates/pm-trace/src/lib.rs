@@ -46,7 +46,10 @@
 //!   (the key hashed into both the PCG state and its increment, so neighbouring paths and
 //!   seeds are independent), so results are bit-identical for any number of threads.
 //! - Ray queries ([`Scene::intersect`], [`Scene::occluded`]) are watertight: no ray slips
-//!   between triangles that share an edge. Scenes of up to 64 triangles test every triangle
+//!   between triangles that share an edge. A ray leaving a surface point starts at
+//!   [`Scene::spawn_ray`]'s offset origin and is searched with [`Scene::intersect_from`] (shadow
+//!   rays: [`Scene::occluded_from`]), which skip the triangle it leaves: on a sliver, the
+//!   triangle test's rounding would now and then find it again. Scenes of up to 64 triangles test every triangle
 //!   (four at a time); larger ones go through an obvhs 8-wide BVH built by our own binned-SAH
 //!   builder (O(n log n) on any input, a triangle fan included), which is tested to find
 //!   exactly the same hits, also right next to the ray's origin and along the axes. Analytic

@@ -49,6 +49,20 @@ pub struct PathVertex {
 #[inline]
 pub fn follow_delta_bounces(
     scene: &Scene,
+    ray: Ray,
+    kind: RayKind,
+    rng: &mut Rng,
+    visit: impl FnMut(&Hit, &Ray, Vec3, u32),
+) -> Option<PathVertex> {
+    follow_delta_bounces_from(scene, None, ray, kind, rng, visit)
+}
+
+/// [`follow_delta_bounces`] for a `ray` that leaves the surface point `from` (a gather ray):
+/// no ray of the chain searches the triangle it leaves ([`Scene::intersect_from`]).
+#[inline]
+pub(crate) fn follow_delta_bounces_from(
+    scene: &Scene,
+    from: Option<&Hit>,
     mut ray: Ray,
     kind: RayKind,
     rng: &mut Rng,
@@ -56,8 +70,12 @@ pub fn follow_delta_bounces(
 ) -> Option<PathVertex> {
     let mut throughput = Vec3::ONE;
     let mut distance = 0.0f32;
+    let mut left = from.copied();
     for bounces in 0..=MAX_DELTA_BOUNCES {
-        let hit = scene.intersect(&ray, f32::INFINITY, kind)?;
+        let hit = match &left {
+            Some(from) => scene.intersect_from(from, &ray, f32::INFINITY, kind)?,
+            None => scene.intersect(&ray, f32::INFINITY, kind)?,
+        };
         distance += hit.t;
         visit(&hit, &ray, throughput, bounces);
         if !passes_through(scene.material(&hit)) {
@@ -72,6 +90,7 @@ pub fn follow_delta_bounces(
         let (next, factor) = specular_bounce(scene, &hit, &ray, rng)?;
         throughput *= factor;
         ray = next;
+        left = Some(hit);
     }
     None
 }

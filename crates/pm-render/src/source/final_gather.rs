@@ -21,7 +21,7 @@ use super::direct::{
 };
 use super::photon_map::estimate_at;
 use crate::cache::RadianceCache;
-use crate::core::{PathVertex, RadianceSource, follow_delta_bounces};
+use crate::core::{PathVertex, RadianceSource, follow_delta_bounces_from};
 use crate::error::RenderError;
 use crate::estimator::Estimator;
 use crate::estimator::options::EstimatorOptions;
@@ -223,6 +223,7 @@ struct EmissionWeight {
 /// the gather's origin carry it.
 fn gather<G: GatherReads>(
     source: &G,
+    from: &Hit,
     ray: Ray,
     corner: f32,
     mis: Option<EmissionWeight>,
@@ -231,16 +232,23 @@ fn gather<G: GatherReads>(
 ) -> Vec3 {
     let scene = source.scene();
     let mut emitted = Vec3::ZERO;
-    let vertex = follow_delta_bounces(scene, ray, RayKind::Other, rng, |hit, ray, _, bounce| {
-        if bounce == 0
-            && let Some(w) = mis
-        {
-            let le = scene.emission(hit);
-            if le != Vec3::ZERO {
-                emitted = le * bsdf_emission_weight(scene, w.from, ray.direction, hit.t, w.rays, w.pdf);
+    let vertex = follow_delta_bounces_from(
+        scene,
+        Some(from),
+        ray,
+        RayKind::Other,
+        rng,
+        |hit, ray, _, bounce| {
+            if bounce == 0
+                && let Some(w) = mis
+            {
+                let le = scene.emission(hit);
+                if le != Vec3::ZERO {
+                    emitted = le * bsdf_emission_weight(scene, w.from, ray.direction, hit.t, w.rays, w.pdf);
+                }
             }
-        }
-    });
+        },
+    );
     let Some(vertex) = vertex else {
         return emitted;
     };
@@ -311,7 +319,7 @@ fn glossy_bounce<G: GatherReads>(
             rays: MIS_GATHER_COUNT,
         });
         let ray = scene.spawn_ray(hit, sample.wi);
-        indirect += sample.weight * gather(source, ray, corner, weight, rng, scratch);
+        indirect += sample.weight * gather(source, hit, ray, corner, weight, rng, scratch);
     }
     direct + caustics + indirect / rays as f32
 }
@@ -356,6 +364,7 @@ fn diffuse_bounce<G: GatherReads>(
         });
         indirect += gather(
             source,
+            hit,
             scene.spawn_ray(hit, direction),
             corner,
             weight,

@@ -70,7 +70,7 @@ fn trace_from(scene: &Scene, vertex: &PathVertex, first: VertexEmission, rng: &m
     let mis = mis_enabled(scene);
     for depth in vertex.bounces..MAX_DEPTH {
         if depth > vertex.bounces {
-            let Some(next) = scene.intersect(&ray, f32::INFINITY, RayKind::Other) else {
+            let Some(next) = scene.intersect_from(&hit, &ray, f32::INFINITY, RayKind::Other) else {
                 break;
             };
             hit = next;

@@ -3,17 +3,30 @@
 
 use super::traverse::Traversal;
 use super::watertight::WatertightRay;
-use super::{HitPrimitive, SceneBvh, Search};
+use super::{HitPrimitive, Leaving, SceneBvh, Search};
 use crate::ray::Ray;
 
 impl SceneBvh {
-    /// The closest hits of two rays in `(0, t_max)` among all primitives: the same hits as
-    /// two calls of [`SceneBvh::closest`], but the two rays' BVH walks are interleaved a node
+    /// The closest hits of two rays in `(0, t_max)` among all primitives but the triangle each
+    /// leaves: the same hits as two calls of [`SceneBvh::closest`], but the two rays' BVH walks are interleaved a node
     /// at a time, so that the cache misses of one overlap those of the other (incoherent rays,
     /// as photon paths cast, spend most of their time waiting for memory).
-    pub(crate) fn closest_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<(f32, HitPrimitive)>; 2] {
+    pub(crate) fn closest_pair(
+        &self,
+        rays: [&Ray; 2],
+        t_max: f32,
+        leaving: [Leaving; 2],
+    ) -> [Option<(f32, HitPrimitive)>; 2] {
+        let skipped = leaving.map(|l| match l {
+            Leaving::Triangle(i) => i as usize,
+            Leaving::Nothing => usize::MAX,
+        });
         let Search::Bvh(bvh) = &self.triangle_search else {
-            return rays.map(|ray| self.closest(ray, 0.0, t_max, |_| true));
+            return [0, 1].map(|k| {
+                self.closest(rays[k], 0.0, t_max, |c| {
+                    c.primitive != HitPrimitive::Triangle(skipped[k] as u32) || skipped[k] == usize::MAX
+                })
+            });
         };
         let [a, b] = rays;
         let (wa, wb) = (
@@ -21,8 +34,10 @@ impl SceneBvh {
             WatertightRay::new(b.origin, b.direction),
         );
         let (mut best_a, mut best_b) = ((t_max, u32::MAX), (t_max, u32::MAX));
-        let mut visit_a = |i: usize, limit: &mut f32| self.visit_closest(&wa, i, &mut best_a, limit);
-        let mut visit_b = |i: usize, limit: &mut f32| self.visit_closest(&wb, i, &mut best_b, limit);
+        let mut visit_a =
+            |i: usize, limit: &mut f32| i == skipped[0] || self.visit_closest(&wa, i, &mut best_a, limit);
+        let mut visit_b =
+            |i: usize, limit: &mut f32| i == skipped[1] || self.visit_closest(&wb, i, &mut best_b, limit);
         let mut walk_a = Traversal::<true>::new(bvh, a, 0.0, t_max);
         let mut walk_b = Traversal::<true>::new(bvh, b, 0.0, t_max);
         let (mut live_a, mut live_b) = (true, true);

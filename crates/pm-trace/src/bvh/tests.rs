@@ -92,8 +92,8 @@ fn the_bvh_finds_exactly_the_hits_of_the_flat_scan() {
                 "{name}: any hit, ray {k}"
             );
             // The same ray cast beside the previous one through the interleaved pair search.
-            let [_, paired] = bvh.closest_pair([&previous, &ray], t_max);
-            let [paired_first, _] = bvh.closest_pair([&previous, &ray], t_max);
+            let [_, paired] = bvh.closest_pair([&previous, &ray], t_max, [Leaving::Nothing; 2]);
+            let [paired_first, _] = bvh.closest_pair([&previous, &ray], t_max, [Leaving::Nothing; 2]);
             assert_eq!(
                 paired.map(|h| part_of(&bvh, h)),
                 expected,
@@ -385,7 +385,7 @@ fn the_bvh_matches_the_flat_scan_at_a_million_triangles() {
         hit.map(|(t, h)| (t.to_bits(), b.part_and_normal(h, ray.at(t)).unwrap().0))
     };
     for (k, pair) in rays.chunks_exact(2).enumerate() {
-        let paired = bvh.closest_pair([&pair[0], &pair[1]], f32::INFINITY);
+        let paired = bvh.closest_pair([&pair[0], &pair[1]], f32::INFINITY, [Leaving::Nothing; 2]);
         for (ray, found) in pair.iter().zip(paired) {
             let expected = part(&scan, ray, scan.closest(ray, 0.0, f32::INFINITY, |_| true));
             assert!(expected.is_some(), "rays from inside the rooms hit a wall");

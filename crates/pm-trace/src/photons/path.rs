@@ -64,12 +64,19 @@ pub(super) fn trace_paths(
     loop {
         match &mut slots {
             [Some(a), Some(b)] => {
-                let [hit_a, hit_b] = scene.intersect_pair([&a.path.ray, &b.path.ray], f32::INFINITY);
+                let [hit_a, hit_b] = scene.intersect_pair_from(
+                    [&a.path.ray, &b.path.ray],
+                    [a.path.from.as_ref(), b.path.from.as_ref()],
+                    f32::INFINITY,
+                );
                 a.path.interact(scene, assignment, hit_a, &mut a.photons);
                 b.path.interact(scene, assignment, hit_b, &mut b.photons);
             }
             [Some(s), None] | [None, Some(s)] => {
-                let hit = scene.intersect(&s.path.ray, f32::INFINITY, RayKind::Other);
+                let hit = match &s.path.from {
+                    Some(from) => scene.intersect_from(from, &s.path.ray, f32::INFINITY, RayKind::Other),
+                    None => scene.intersect(&s.path.ray, f32::INFINITY, RayKind::Other),
+                };
                 s.path.interact(scene, assignment, hit, &mut s.photons);
             }
             [None, None] => break,
@@ -121,8 +128,9 @@ struct PhotonPath {
     emitted_at: Vec3,
     /// True until the first ray's hit has been handled.
     first_ray: bool,
-    /// The ray to cast next.
+    /// The ray to cast next, and the surface point it leaves (none for the first).
     ray: Ray,
+    from: Option<Hit>,
     diffuse_bounces: u32,
     specular: bool,
     /// Interactions left before the cut-off; zero once the path has ended.
@@ -145,6 +153,7 @@ impl PhotonPath {
             emitted_at: emitted.ray.origin,
             first_ray: true,
             // Step off the emitter's own surface (area lights start on their geometry).
+            from: None,
             ray: Ray {
                 origin: emitted.ray.at(scene.epsilon()),
                 direction: emitted.ray.direction,
@@ -238,6 +247,7 @@ impl PhotonPath {
             sample.wi
         };
         self.ray = scene.spawn_ray(&hit, direction);
+        self.from = Some(hit);
     }
 }
 

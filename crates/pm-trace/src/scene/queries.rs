@@ -34,7 +34,27 @@ impl Scene {
         let (t, index) = self.closest_of_kind(ray, t_max, kind, &[])?;
         match self.hit_at(ray, t, index) {
             Some(hit) => Some(hit),
-            None => self.intersect_past_dropped(ray, t_max, kind, index),
+            None => self.intersect_past_dropped(ray, t_max, kind, &[index]),
+        }
+    }
+
+    /// [`Scene::intersect`] for a ray that leaves the surface point `from` (a ray of
+    /// [`Scene::spawn_ray`]): the triangle `from` lies on is not searched. A ray leaving a
+    /// triangle's plane cannot meet it again, but the triangle test's own rounding, large on a
+    /// sliver (its distance errs by the triangle's condition `L² / 2A` times its corners'
+    /// rounding, more than the offset off a sliver), would now and then say it does, and the
+    /// path would lose a bounce there. Shapes are searched as usual (a ray leaving a sphere's
+    /// inside meets it again).
+    #[inline]
+    pub fn intersect_from(&self, from: &Hit, ray: &Ray, t_max: f32, kind: RayKind) -> Option<Hit> {
+        let leaving = match from.primitive {
+            HitPrimitive::Triangle(_) => from.primitive,
+            HitPrimitive::Shape(_) => return self.intersect(ray, t_max, kind),
+        };
+        let (t, index) = self.closest_of_kind(ray, t_max, kind, &[leaving])?;
+        match self.hit_at(ray, t, index) {
+            Some(hit) => Some(hit),
+            None => self.intersect_past_dropped(ray, t_max, kind, &[leaving, index]),
         }
     }
 
@@ -59,9 +79,10 @@ impl Scene {
         }
     }
 
-    /// [`Scene::intersect`] after its closest crossing, `first`, fell where the contact split
-    /// dropped a hidden copy of a coincident face: the search again without it (and without
-    /// each such crossing after it), which finds the copy kept at the same distance. A point
+    /// [`Scene::intersect`] after its closest crossing (the last of `skipped`, the rest being
+    /// a triangle the ray leaves) fell where the contact split dropped a hidden copy of a
+    /// coincident face: the search again without them (and without each such crossing after
+    /// it), which finds the copy kept at the same distance. A point
     /// lies in a dropped part only of a split scene's cut faces, so this is rare and out of
     /// line; past [`MAX_PASSED`] such crossings in a row the ray counts as meeting nothing.
     #[cold]
@@ -71,9 +92,9 @@ impl Scene {
         ray: &Ray,
         t_max: f32,
         kind: RayKind,
-        first: HitPrimitive,
+        skipped: &[HitPrimitive],
     ) -> Option<Hit> {
-        let mut passed = vec![first];
+        let mut passed = skipped.to_vec();
         while passed.len() <= MAX_PASSED {
             let (t, index) = self.closest_of_kind(ray, t_max, kind, &passed)?;
             match self.hit_at(ray, t, index) {
@@ -116,15 +137,42 @@ impl Scene {
     /// paths), because the two searches are interleaved and their waits for memory overlap.
     #[inline]
     pub fn intersect_pair(&self, rays: [&Ray; 2], t_max: f32) -> [Option<Hit>; 2] {
+        self.intersect_pair_from(rays, [None, None], t_max)
+    }
+
+    /// [`Scene::intersect_pair`] for rays that may leave surface points (`from`, as
+    /// [`Scene::intersect_from`]).
+    #[inline]
+    pub fn intersect_pair_from(
+        &self,
+        rays: [&Ray; 2],
+        from: [Option<&Hit>; 2],
+        t_max: f32,
+    ) -> [Option<Hit>; 2] {
         if !self.prefers_ray_pairs() {
-            return rays.map(|ray| self.intersect(ray, t_max, RayKind::Other));
+            return [0, 1].map(|k| match from[k] {
+                Some(f) => self.intersect_from(f, rays[k], t_max, RayKind::Other),
+                None => self.intersect(rays[k], t_max, RayKind::Other),
+            });
         }
-        let hits = self.bvh.closest_pair(rays, t_max);
+        let leaving = from.map(|f| match f.map(|f| f.primitive) {
+            Some(HitPrimitive::Triangle(i)) => Leaving::Triangle(i),
+            _ => Leaving::Nothing,
+        });
+        let hits = self.bvh.closest_pair(rays, t_max, leaving);
         [0, 1].map(|k| {
             let (t, index) = hits[k]?;
             match self.hit_at(rays[k], t, index) {
                 Some(hit) => Some(hit),
-                None => self.intersect_past_dropped(rays[k], t_max, RayKind::Other, index),
+                None => {
+                    let mut skipped: Vec<HitPrimitive> = from[k]
+                        .map(|f| f.primitive)
+                        .filter(|p| matches!(p, HitPrimitive::Triangle(_)))
+                        .into_iter()
+                        .collect();
+                    skipped.push(index);
+                    self.intersect_past_dropped(rays[k], t_max, RayKind::Other, &skipped)
+                }
             }
         })
     }
