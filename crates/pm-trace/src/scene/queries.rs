@@ -68,10 +68,13 @@ impl Scene {
         passed: &[HitPrimitive],
     ) -> Option<(f32, HitPrimitive)> {
         match kind {
-            RayKind::Other if passed.is_empty() => self.bvh.closest(ray, 0.0, t_max, |_| true),
-            RayKind::Other => self
-                .bvh
-                .closest(ray, 0.0, t_max, |c| !passed.contains(&c.primitive)),
+            RayKind::Other => match passed {
+                [] => self.bvh.closest(ray, 0.0, t_max, |_| true),
+                &[left] => self.bvh.closest(ray, 0.0, t_max, |c| c.primitive != left),
+                _ => self
+                    .bvh
+                    .closest(ray, 0.0, t_max, |c| !passed.contains(&c.primitive)),
+            },
             RayKind::Camera if self.has_culling => self.closest_camera_hit_culling(ray, t_max, passed),
             RayKind::Camera => self.bvh.closest(ray, 0.0, t_max, |c| {
                 self.surfaces[c.surface as usize].camera_visible && !passed.contains(&c.primitive)
