@@ -10,17 +10,18 @@
 //! Run: `cargo bench --bench bsdf -- --warm-up-time 1 --measurement-time 3`. Criterion prints
 //! estimates/s as elem/s for the first group.
 
+#[path = "support/maps.rs"]
+mod support_maps;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::{
     BsdfWeight, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GeometryCube, Irradiance,
     MapView, Mode, PhotonWeight, RenderSettings, Renderer, SurfacePoint,
 };
 use photon_maps::trace::glam::Vec3;
-use photon_maps::trace::{
-    Bsdf, CreaseAngle, Hit, Partitioner, PhotonMaps, RayKind, Scene, TraceOptions, scenes, trace_photons,
-};
+use photon_maps::trace::{Bsdf, CreaseAngle, Hit, Partitioner, PhotonMaps, RayKind, Scene, scenes};
 use std::hint::black_box;
 use std::time::Duration;
+use support_maps::maps;
 
 const GRID: u32 = 64;
 
@@ -29,21 +30,6 @@ struct Query {
     hit: Hit,
     wo: Vec3,
     map: u32,
-}
-
-fn maps(scene: &Scene) -> PhotonMaps {
-    let assignment = CreaseAngle::default()
-        .partition(scene.clone())
-        .unwrap()
-        .assignment()
-        .clone();
-    let options = TraceOptions {
-        photons: 100_000,
-        seed: 0,
-        ..TraceOptions::default()
-    };
-    let traced = trace_photons(scene, &assignment, &options).expect("the scene traces");
-    PhotonMaps::build(scene, &assignment, traced).expect("the maps build")
 }
 
 /// First camera hits on surfaces with a glossy lobe.
@@ -97,7 +83,7 @@ fn run(
 
 fn photon_reads(c: &mut Criterion) {
     let scene = scenes::build("glossy-cornell-box").expect("built-in scene");
-    let maps = maps(&scene);
+    let maps = maps(&scene, &CreaseAngle::default());
     let queries = glossy_queries(&scene, &maps);
     let mut group = c.benchmark_group("glossy_reads");
     group

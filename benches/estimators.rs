@@ -6,16 +6,16 @@
 //! Run: `cargo bench --bench estimators -- --warm-up-time 1 --measurement-time 2` (add a
 //! filter such as `estimators/crease` to run a part). Criterion prints queries/s as elem/s.
 
+#[path = "support/maps.rs"]
+mod support_maps;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::{
     Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, SurfacePoint,
 };
-use photon_maps::trace::{
-    CreaseAngle, Material, Partitioner, PhotonMaps, RayKind, Scene, SingleMap, TraceOptions, scenes,
-    trace_photons,
-};
+use photon_maps::trace::{CreaseAngle, Material, Partitioner, PhotonMaps, RayKind, Scene, SingleMap, scenes};
 use std::hint::black_box;
 use std::time::Duration;
+use support_maps::maps;
 
 const GRID: u32 = 64;
 
@@ -23,17 +23,6 @@ const GRID: u32 = 64;
 struct Query {
     at: SurfacePoint,
     map: usize,
-}
-
-fn maps(scene: &Scene, partitioner: &dyn Partitioner) -> PhotonMaps {
-    let assignment = partitioner.partition(scene.clone()).unwrap().assignment().clone();
-    let options = TraceOptions {
-        photons: 100_000,
-        seed: 0,
-        ..TraceOptions::default()
-    };
-    let traced = trace_photons(scene, &assignment, &options).expect("the Cornell box traces");
-    PhotonMaps::build(scene, &assignment, traced).expect("the Cornell box's maps build")
 }
 
 /// First hits on diffuse surfaces of camera rays through a grid of pixel centres.

@@ -7,34 +7,19 @@
 //! Run: `cargo bench --bench gather -- --warm-up-time 1 --measurement-time 2`. Criterion
 //! prints lookups/s as elem/s.
 
+#[path = "support/maps.rs"]
+mod support_maps;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::glam::Vec2;
 use photon_maps::render::source::map_irradiance;
 use photon_maps::render::{Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryCube, RadianceCache};
 use photon_maps::trace::sampling::cosine_hemisphere;
-use photon_maps::trace::{
-    CreaseAngle, Hit, Material, Partitioner, PhotonMaps, RayKind, Rng, Scene, TraceOptions, scenes,
-    trace_photons,
-};
+use photon_maps::trace::{CreaseAngle, Hit, Material, PhotonMaps, RayKind, Rng, Scene, scenes};
 use std::hint::black_box;
 use std::time::Duration;
+use support_maps::maps;
 
 const GRID: u32 = 32;
-
-fn maps(scene: &Scene) -> PhotonMaps {
-    let assignment = CreaseAngle::default()
-        .partition(scene.clone())
-        .unwrap()
-        .assignment()
-        .clone();
-    let options = TraceOptions {
-        photons: 100_000,
-        seed: 0,
-        ..TraceOptions::default()
-    };
-    let traced = trace_photons(scene, &assignment, &options).expect("the Cornell box traces");
-    PhotonMaps::build(scene, &assignment, traced).expect("the Cornell box's maps build")
-}
 
 fn diffuse(scene: &Scene, hit: &Hit) -> bool {
     matches!(scene.material(hit), Material::Lambertian { .. })
@@ -82,7 +67,7 @@ fn estimate<E: Estimator>(
 
 fn gather(c: &mut Criterion) {
     let scene = scenes::build("cornell-box").expect("built-in scene");
-    let maps = maps(&scene);
+    let maps = maps(&scene, &CreaseAngle::default());
     let options = EstimatorOptions::for_scene(&scene.bounds());
     let hits = gather_hits(&scene);
     let mut scratch = EstimatorScratch::new();

@@ -3,7 +3,7 @@
 //! the scene builder keeps (larger ones, whose area leaves f32, are dropped as degenerate).
 
 use pm_trace::glam::Vec3;
-use pm_trace::{Camera, PointLight, Ray, RayKind, Scene, Surface};
+use pm_trace::{Camera, Hit, PointLight, Ray, RayKind, Scene, Surface};
 
 fn one_triangle(corners: [Vec3; 3]) -> Scene {
     Scene::builder()
@@ -45,6 +45,34 @@ fn hits_lie_where_the_ray_meets_the_plane_for_huge_and_sliver_triangles() {
     }
 }
 
+/// Half the top of the sliver panel case's kick plate, alone in a scene: 1.98 m long and 1 cm
+/// deep, 0.29° sharp at one end (condition about 200).
+fn kick_plate_sliver() -> Scene {
+    one_triangle([
+        Vec3::new(-0.99, 0.0484, 0.5),
+        Vec3::new(0.99, 0.0484, 0.51),
+        Vec3::new(0.99, 0.0484, 0.5),
+    ])
+}
+
+/// Calls `f` with each hit on `sliver` of 200,000 rays from above aimed at random points of it
+/// (100,191 hit), and the stream the rays were drawn from; returns the number of hits.
+fn for_each_sliver_hit(sliver: &Scene, mut f: impl FnMut(&Hit, &mut dyn FnMut() -> f32)) -> u32 {
+    let mut rng = pm_trace::Rng::new(5, 0);
+    let mut u = || rng.next_f32();
+    let mut hits = 0;
+    for _ in 0..200_000 {
+        let target = Vec3::new(-0.99 + 1.98 * u(), 0.0484, 0.5 + 0.01 * u());
+        let origin = Vec3::new(-1.5 + 3.0 * u(), 0.0484 + 1.0 * u().max(1e-3), -1.0 + 3.0 * u());
+        let ray = Ray::new(origin, (target - origin).normalize());
+        if let Some(hit) = sliver.intersect(&ray, f32::INFINITY, RayKind::Other) {
+            hits += 1;
+            f(&hit, &mut u);
+        }
+    }
+    hits
+}
+
 /// A shadow ray leaving a sliver never finds the sliver itself: with the triangle alone in the
 /// scene, nothing may block a light above it. (The triangle test's distance errs by the
 /// triangle's condition `L² / 2A` times its corners' rounding, so before a ray leaving a
@@ -52,27 +80,12 @@ fn hits_lie_where_the_ray_meets_the_plane_for_huge_and_sliver_triangles() {
 /// surface, as `tests/split_visibility.rs` found on its sliver panel.)
 #[test]
 fn a_shadow_ray_never_meets_its_own_sliver() {
-    // Half the top of the sliver panel case's kick plate: 1.98 m long and 1 cm deep, 0.29°
-    // sharp at one end (condition about 200).
-    let sliver = one_triangle([
-        Vec3::new(-0.99, 0.0484, 0.5),
-        Vec3::new(0.99, 0.0484, 0.51),
-        Vec3::new(0.99, 0.0484, 0.5),
-    ]);
-    let mut rng = pm_trace::Rng::new(5, 0);
-    let mut u = || rng.next_f32();
-    let (mut hits, mut shadowed) = (0, 0);
-    for _ in 0..200_000 {
-        let target = Vec3::new(-0.99 + 1.98 * u(), 0.0484, 0.5 + 0.01 * u());
-        let origin = Vec3::new(-1.5 + 3.0 * u(), 0.0484 + 1.0 * u().max(1e-3), -1.0 + 3.0 * u());
-        let ray = Ray::new(origin, (target - origin).normalize());
-        let Some(hit) = sliver.intersect(&ray, f32::INFINITY, RayKind::Other) else {
-            continue;
-        };
-        hits += 1;
+    let sliver = kick_plate_sliver();
+    let mut shadowed = 0;
+    let hits = for_each_sliver_hit(&sliver, |hit, u| {
         let lamp = Vec3::new(-1.0 + 2.0 * u(), 0.1 + u(), -1.0 + 2.0 * u());
-        shadowed += sliver.occluded_from(&hit, lamp) as u32;
-    }
+        shadowed += sliver.occluded_from(hit, lamp) as u32;
+    });
     assert!(hits > 50_000, "only {hits} hits");
     assert_eq!(
         shadowed, 0,
@@ -86,32 +99,19 @@ fn a_shadow_ray_never_meets_its_own_sliver() {
 /// the triangle test's rounding: the path would lose a bounce there. The count is printed.)
 #[test]
 fn a_spawned_ray_never_meets_its_own_sliver() {
-    let sliver = one_triangle([
-        Vec3::new(-0.99, 0.0484, 0.5),
-        Vec3::new(0.99, 0.0484, 0.51),
-        Vec3::new(0.99, 0.0484, 0.5),
-    ]);
-    let mut rng = pm_trace::Rng::new(5, 0);
-    let mut u = || rng.next_f32();
-    let (mut hits, mut again_as_any, mut again_leaving) = (0, 0, 0);
-    for _ in 0..200_000 {
-        let target = Vec3::new(-0.99 + 1.98 * u(), 0.0484, 0.5 + 0.01 * u());
-        let origin = Vec3::new(-1.5 + 3.0 * u(), 0.0484 + 1.0 * u().max(1e-3), -1.0 + 3.0 * u());
-        let ray = Ray::new(origin, (target - origin).normalize());
-        let Some(hit) = sliver.intersect(&ray, f32::INFINITY, RayKind::Other) else {
-            continue;
-        };
-        hits += 1;
+    let sliver = kick_plate_sliver();
+    let (mut again_as_any, mut again_leaving) = (0, 0);
+    let hits = for_each_sliver_hit(&sliver, |hit, u| {
         // Leaving into the side the ray came from.
         let d = Vec3::new(u() - 0.5, u(), u() - 0.5).normalize() * Vec3::new(1.0, hit.normal.y.signum(), 1.0);
-        let spawned = sliver.spawn_ray(&hit, d);
+        let spawned = sliver.spawn_ray(hit, d);
         again_as_any += sliver
             .intersect(&spawned, f32::INFINITY, RayKind::Other)
             .is_some() as u32;
         again_leaving += sliver
-            .intersect_from(&hit, &spawned, f32::INFINITY, RayKind::Other)
+            .intersect_from(hit, &spawned, f32::INFINITY, RayKind::Other)
             .is_some() as u32;
-    }
+    });
     println!("{again_as_any} of {hits} spawned rays met their own sliver when searched as any ray");
     assert!(hits > 50_000, "only {hits} hits");
     assert_eq!(
