@@ -20,7 +20,7 @@
 //! every non-delta surface as Lambertian with `Scene::albedo_at`).
 
 use photon_maps::kdtree::KindMask;
-use photon_maps::render::core::{follow_delta_bounces, passes_through};
+use photon_maps::render::core::{follow_delta_bounces, follow_delta_bounces_from, passes_through};
 use photon_maps::render::glam::{Vec2, Vec3};
 use photon_maps::render::source::direct_irradiance;
 use photon_maps::render::{
@@ -129,15 +129,25 @@ impl<E: Estimator> CacheTracer<'_, E> {
             if direction.dot(hit.normal) <= 0.0 {
                 continue;
             }
-            indirect += self.gather(scene.spawn_ray(hit, direction), corner, rng, scratch);
+            indirect += self.gather(hit, scene.spawn_ray(hit, direction), corner, rng, scratch);
         }
         scene.albedo_at(hit) * (FRAC_1_PI * e + indirect / rays as f32)
     }
 
-    /// Radiance a gather ray carries back: through mirrors and glass to a diffuse hit y, then
-    /// the cache's answer at y (or one more bounce when y is within `corner` of the origin).
-    fn gather(&self, ray: Ray, corner: f32, rng: &mut Rng, scratch: &mut EstimatorScratch) -> Vec3 {
-        let Some(vertex) = follow_delta_bounces(self.scene, ray, RayKind::Other, rng, |_, _, _, _| {}) else {
+    /// Radiance a gather ray leaving `from` carries back: through mirrors and glass to a
+    /// diffuse hit y, then the cache's answer at y (or one more bounce when y is within
+    /// `corner` of the origin).
+    fn gather(
+        &self,
+        from: &Hit,
+        ray: Ray,
+        corner: f32,
+        rng: &mut Rng,
+        scratch: &mut EstimatorScratch,
+    ) -> Vec3 {
+        let vertex =
+            follow_delta_bounces_from(self.scene, Some(from), ray, RayKind::Other, rng, |_, _, _, _| {});
+        let Some(vertex) = vertex else {
             return Vec3::ZERO;
         };
         if vertex.distance < corner {

@@ -57,10 +57,12 @@ pub fn follow_delta_bounces(
     follow_delta_bounces_from(scene, None, ray, kind, rng, visit)
 }
 
-/// [`follow_delta_bounces`] for a `ray` that leaves the surface point `from` (a gather ray):
-/// no ray of the chain searches the triangle it leaves ([`Scene::intersect_from`]).
+/// [`follow_delta_bounces`] for a `ray` that leaves the surface point `from` (a gather ray,
+/// made by [`Scene::spawn_ray`]): no ray of the chain searches the triangle it leaves
+/// ([`Scene::intersect_from`]), so a sliver's rounding never ends the path at its own start.
+/// `None` for `from` is [`follow_delta_bounces`].
 #[inline]
-pub(crate) fn follow_delta_bounces_from(
+pub fn follow_delta_bounces_from(
     scene: &Scene,
     from: Option<&Hit>,
     mut ray: Ray,
