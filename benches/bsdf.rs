@@ -10,15 +10,18 @@
 //! Run: `cargo bench --bench bsdf -- --warm-up-time 1 --measurement-time 3`. Criterion prints
 //! estimates/s as elem/s for the first group.
 
+#[path = "support/camera_hits.rs"]
+mod camera_hits;
 #[path = "support/maps.rs"]
 mod support_maps;
+use camera_hits::camera_hits;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::{
     BsdfWeight, Estimator, EstimatorKind, EstimatorOptions, EstimatorScratch, GeometryCube, Irradiance,
     MapView, Mode, PhotonWeight, RenderSettings, Renderer, SurfacePoint,
 };
 use photon_maps::trace::glam::Vec3;
-use photon_maps::trace::{Bsdf, CreaseAngle, Hit, Partitioner, PhotonMaps, RayKind, Scene, scenes};
+use photon_maps::trace::{Bsdf, CreaseAngle, Hit, Partitioner, PhotonMaps, Scene, scenes};
 use std::hint::black_box;
 use std::time::Duration;
 use support_maps::maps;
@@ -34,24 +37,15 @@ struct Query {
 
 /// First camera hits on surfaces with a glossy lobe.
 fn glossy_queries(scene: &Scene, maps: &PhotonMaps) -> Vec<Query> {
-    let mut out = Vec::new();
-    for y in 0..GRID {
-        for x in 0..GRID {
-            let (u, v) = ((x as f32 + 0.5) / GRID as f32, (y as f32 + 0.5) / GRID as f32);
-            let ray = scene.camera().ray(u, v, 1.0);
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
-                continue;
-            };
-            if scene.material(&hit).lobes().has_glossy() {
-                out.push(Query {
-                    hit,
-                    wo: -ray.direction,
-                    map: maps.map_of(hit.part),
-                });
-            }
-        }
-    }
-    out
+    camera_hits(scene, GRID)
+        .into_iter()
+        .filter(|(hit, _)| scene.material(hit).lobes().has_glossy())
+        .map(|(hit, ray)| Query {
+            hit,
+            wo: -ray.direction,
+            map: maps.map_of(hit.part),
+        })
+        .collect()
 }
 
 fn run(

@@ -6,13 +6,16 @@
 //! Run: `cargo bench --bench estimators -- --warm-up-time 1 --measurement-time 2` (add a
 //! filter such as `estimators/crease` to run a part). Criterion prints queries/s as elem/s.
 
+#[path = "support/camera_hits.rs"]
+mod camera_hits;
 #[path = "support/maps.rs"]
 mod support_maps;
+use camera_hits::camera_hits;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::{
     Disc, Estimator, EstimatorOptions, EstimatorScratch, GeometryBall, GeometryCube, MapView, SurfacePoint,
 };
-use photon_maps::trace::{CreaseAngle, Material, Partitioner, PhotonMaps, RayKind, Scene, SingleMap, scenes};
+use photon_maps::trace::{CreaseAngle, Material, Partitioner, PhotonMaps, Scene, SingleMap, scenes};
 use std::hint::black_box;
 use std::time::Duration;
 use support_maps::maps;
@@ -27,28 +30,18 @@ struct Query {
 
 /// First hits on diffuse surfaces of camera rays through a grid of pixel centres.
 fn queries(scene: &Scene, maps: &PhotonMaps) -> Vec<Query> {
-    let mut out = Vec::new();
-    for y in 0..GRID {
-        for x in 0..GRID {
-            let (u, v) = ((x as f32 + 0.5) / GRID as f32, (y as f32 + 0.5) / GRID as f32);
-            let ray = scene.camera().ray(u, v, 1.0);
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY, RayKind::Camera) else {
-                continue;
-            };
-            if !matches!(scene.material(&hit), Material::Lambertian { .. }) {
-                continue;
-            }
-            out.push(Query {
-                at: SurfacePoint {
-                    position: hit.position,
-                    normal: hit.normal,
-                    front_face: hit.front_face,
-                },
-                map: maps.map_of(hit.part) as usize,
-            });
-        }
-    }
-    out
+    camera_hits(scene, GRID)
+        .into_iter()
+        .filter(|(hit, _)| matches!(scene.material(hit), Material::Lambertian { .. }))
+        .map(|(hit, _)| Query {
+            at: SurfacePoint {
+                position: hit.position,
+                normal: hit.normal,
+                front_face: hit.front_face,
+            },
+            map: maps.map_of(hit.part) as usize,
+        })
+        .collect()
 }
 
 fn run<E: Estimator>(
