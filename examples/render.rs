@@ -323,7 +323,7 @@ fn run(args: &Args) -> Result<(), String> {
         let partition = variant.maps.partitioner(args.contact_gap)?;
         let partitioned = partition
             .partition(scene.take().ok_or("no scene")?)
-            .map_err(|e| e.to_string())?;
+            .map_err(choices::partition_message)?;
         let bar = TileBar::new(variant.label);
         let renderer = Renderer::new(variant.estimator, settings);
         let (out, cache_use) = match (&args.save_cache, &args.load_cache) {

@@ -4,7 +4,7 @@
 use clap::ValueEnum;
 use photon_maps::render::{EstimatorKind, Mode};
 use photon_maps::trace::gltf::LightUnits;
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, SingleMap};
+use photon_maps::trace::{Contact, CreaseAngle, PartitionError, Partitioner, SingleMap};
 use std::fmt;
 
 /// `--maps`: which photon-map partition.
@@ -41,6 +41,17 @@ impl MapsChoice {
                 })
             }
         })
+    }
+}
+
+/// The message for a partition that failed; where the contact split gave up (more meetings
+/// than its bounds allow, as in a dense field of objects closer than the gap), what to try.
+pub fn partition_message(error: PartitionError) -> String {
+    match error {
+        PartitionError::Split(_) => {
+            format!("{error} (a smaller --contact-gap, such as 0.0001, or --maps crease avoids it)")
+        }
+        _ => error.to_string(),
     }
 }
 

@@ -124,7 +124,7 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
         .maps
         .partitioner(args.contact_gap)?
         .partition(scene)
-        .map_err(|e| e.to_string())?;
+        .map_err(crate::choices::partition_message)?;
     let contacts = (
         contacts_summary(partitioned.record()),
         contacts_json(partitioned.record()),

@@ -100,7 +100,9 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         )
     } else {
         let partition = args.maps().partitioner(args.contact_gap)?;
-        let partitioned = partition.partition(scene).map_err(|e| e.to_string())?;
+        let partitioned = partition
+            .partition(scene)
+            .map_err(crate::choices::partition_message)?;
         let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
             .render(&partitioned, &bar)
