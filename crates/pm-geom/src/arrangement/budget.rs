@@ -23,6 +23,17 @@ pub enum ArrangementError {
         /// The bound.
         limit: usize,
     },
+    /// More distinct cut lines on one polygon than
+    /// [`ArrangementOptions::max_cut_lines_per_polygon`](super::ArrangementOptions::max_cut_lines_per_polygon).
+    #[error(
+        "input polygon {polygon} is cut along more than {limit} lines (a face under a dense field of objects within the gap of it)"
+    )]
+    TooManyCutLines {
+        /// The polygon (its index in the input).
+        polygon: usize,
+        /// The bound.
+        limit: usize,
+    },
     /// More vertices than [`ArrangementOptions::max_vertices`](super::ArrangementOptions::max_vertices).
     #[error("cutting the faces where they meet makes more than {limit} vertices")]
     TooManyVertices {

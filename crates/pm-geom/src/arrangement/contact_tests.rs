@@ -294,3 +294,55 @@ fn box_on_a_floor_cuts_out_its_footprint_only() {
     assert_eq!(groups.len(), 1);
     assert_ne!(floor_groups_at(&split, &[vec3(1.5, 0.0, 1.5)])[0], groups[0]);
 }
+
+/// A 10 m floor under 300 small squares hovering 1 mm over it, facing it, at random places and
+/// angles: each square's outline gives the floor four cut lines of its own. Past
+/// `max_cut_lines_per_polygon` lines the split is refused, naming the floor, before the
+/// merging of cuts along lines (a search through the floor's lines per new cut) grows with
+/// their square; within the default bound it splits.
+#[test]
+fn a_floor_under_a_field_of_hovering_squares_is_bounded_in_its_cut_lines() {
+    let floor = vec![
+        vec3(0.0, 0.0, 0.0),
+        vec3(0.0, 0.0, 10.0),
+        vec3(10.0, 0.0, 10.0),
+        vec3(10.0, 0.0, 0.0),
+    ];
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut input = vec![floor];
+    for _ in 0..300 {
+        let (x, z, turn) = (
+            0.5 + 9.0 * next(),
+            0.5 + 9.0 * next(),
+            next() * std::f32::consts::FRAC_PI_2,
+        );
+        let (c, s) = (turn.cos() * 0.05, turn.sin() * 0.05);
+        // Wound to face down, towards the floor.
+        input.push(
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .map(|&(u, v): &(f32, f32)| vec3(x + u * c - v * s, 0.001, z + u * s + v * c))
+                .collect(),
+        );
+    }
+    let options = ArrangementOptions::new(1e-5, 0.01);
+    let split = split_polygons_at_intersections(&input, &[], &options).expect("within the default bound");
+    assert!(split.counts.meetings() >= 300, "{:?}", split.counts);
+    let bounded = ArrangementOptions {
+        max_cut_lines_per_polygon: 500,
+        ..options
+    };
+    assert_eq!(
+        split_polygons_at_intersections(&input, &[], &bounded).err(),
+        Some(ArrangementError::TooManyCutLines {
+            polygon: 0,
+            limit: 500
+        })
+    );
+}

@@ -316,7 +316,14 @@ impl Fold<'_, '_> {
                         limit: self.options.max_pieces,
                     });
                 }
-                add_cut(&mut self.found.cuts[face], c.a, c.b, self.tolerance);
+                let cuts = &mut self.found.cuts[face];
+                add_cut(cuts, c.a, c.b, self.tolerance);
+                if cuts.len() > self.options.max_cut_lines_per_polygon {
+                    return Err(ArrangementError::TooManyCutLines {
+                        polygon: face,
+                        limit: self.options.max_cut_lines_per_polygon,
+                    });
+                }
                 if c.barrier {
                     self.found.barriers.push([c.a, c.b]);
                 }

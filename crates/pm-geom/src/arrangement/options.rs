@@ -20,6 +20,11 @@ pub struct ArrangementOptions {
     pub max_pieces_per_polygon: usize,
     /// Most vertices over all output pieces.
     pub max_vertices: usize,
+    /// Most distinct cut lines on one input polygon. Cuts along one line merge, and finding the
+    /// line a new cut joins looks through the polygon's lines, so this bounds that work too (a
+    /// floor under a dense field of small objects within the gap of it gets a line per object
+    /// edge).
+    pub max_cut_lines_per_polygon: usize,
 }
 
 impl ArrangementOptions {
@@ -34,6 +39,10 @@ impl ArrangementOptions {
     /// cut each other into grids (51 copies of a 12-face room, offset by 10⁻⁴ of its size: 2,500
     /// pieces per face, 1.5 million in all, 53 s and 2.6 GB on 2 cores before the limit).
     pub const DEFAULT_MAX_PIECES_PER_POLYGON: usize = 8;
+    /// Default [`Self::max_cut_lines_per_polygon`]: 16,384. A floor under 80,000 cubes hovering
+    /// within the gap gets about 320,000; looking each new cut's line up among that many took
+    /// minutes, while the faces of real interiors get tens to hundreds.
+    pub const DEFAULT_MAX_CUT_LINES_PER_POLYGON: usize = 16_384;
     /// The pieces always allowed, however few the input polygons.
     pub const MIN_PIECE_LIMIT: usize = 100_000;
 
@@ -46,6 +55,7 @@ impl ArrangementOptions {
             max_pieces: Self::DEFAULT_MAX_PIECES,
             max_pieces_per_polygon: Self::DEFAULT_MAX_PIECES_PER_POLYGON,
             max_vertices: Self::DEFAULT_MAX_VERTICES,
+            max_cut_lines_per_polygon: Self::DEFAULT_MAX_CUT_LINES_PER_POLYGON,
         }
     }
 
