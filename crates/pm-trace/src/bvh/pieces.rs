@@ -93,11 +93,30 @@ fn segment_distance(p: Vec3, a: Vec3, b: Vec3) -> f32 {
     p.distance(a + ab * t)
 }
 
+/// Whether a cut face's pieces cover it all, or the split dropped part of it (the hidden copy
+/// of a coincident face).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Coverage {
+    /// The pieces tile the whole face: every point of it is on the nearest piece, however far
+    /// rounding puts it off (far from the origin an f32 step can be coarser than the tolerance).
+    Whole,
+    /// Part of the face was dropped: a point farther than the tolerance from every piece lies
+    /// there, and a ray passes.
+    Dropped,
+}
+
+/// One face's pieces: their range in the index's triangles, and whether they cover the face.
+#[derive(Clone, Copy, Debug)]
+struct PieceList {
+    start: u32,
+    end: u32,
+    coverage: Coverage,
+}
+
 /// Every cut face's pieces, as lists of triangles.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PieceIndex {
-    /// Each list's range in `triangles`.
-    lists: Vec<(u32, u32)>,
+    lists: Vec<PieceList>,
     triangles: Vec<PieceTriangle>,
     /// Points within this of a piece lie on it (the partition's tolerance).
     tolerance: f32,
@@ -114,12 +133,13 @@ impl PieceIndex {
     }
 
     /// Adds the pieces of a face of unit normal `normal` (triangles with their parts;
-    /// degenerate ones are skipped) and returns the part value its triangles' records carry:
+    /// degenerate ones are skipped), which cover it as `coverage` says, and returns the part value its triangles' records carry:
     /// [`PIECES`] plus the list's index. `None` when no piece has area, or past 2³¹ lists or
     /// triangles.
     pub(crate) fn push(
         &mut self,
         normal: Vec3,
+        coverage: Coverage,
         pieces: impl IntoIterator<Item = ([Vec3; 3], PartSurface)>,
     ) -> Option<PartId> {
         let index = u32::try_from(self.lists.len()).ok().filter(|&i| i < PIECES)?;
@@ -137,17 +157,22 @@ impl PieceIndex {
         if end == start {
             return None;
         }
-        self.lists.push((start, end));
+        self.lists.push(PieceList { start, end, coverage });
         Some(PartId(PIECES | index))
     }
 
     /// The part of the piece of list `list` (a record's part without [`PIECES`]) that
     /// contains `p` (the larger, on an edge two share; `p` lies in the face's plane), else the
-    /// nearest within the tolerance; `None` when `p` lies farther than that from every piece.
+    /// nearest; `None` when part of the face was dropped ([`Coverage::Dropped`]) and `p` lies
+    /// farther than the tolerance from every piece.
     #[inline]
     pub(crate) fn locate(&self, list: u32, p: Vec3) -> Option<PartSurface> {
-        let (start, end) = self.lists[list as usize];
-        let mut best = (self.tolerance, None);
+        let PieceList { start, end, coverage } = self.lists[list as usize];
+        let reach = match coverage {
+            Coverage::Whole => f32::INFINITY,
+            Coverage::Dropped => self.tolerance,
+        };
+        let mut best = (reach, None);
         let pieces = &self.triangles[start as usize..end as usize];
         if let Some(piece) = pieces.iter().find(|piece| piece.outside(p) <= 0.0) {
             return Some(piece.part);
@@ -167,7 +192,7 @@ impl PieceIndex {
 
     /// Heap bytes held.
     pub(crate) fn heap_bytes(&self) -> usize {
-        self.lists.capacity() * size_of::<(u32, u32)>()
+        self.lists.capacity() * size_of::<PieceList>()
             + self.triangles.capacity() * size_of::<PieceTriangle>()
     }
 }
@@ -200,6 +225,7 @@ mod tests {
         let id = index
             .push(
                 Vec3::Z,
+                Coverage::Dropped,
                 [
                     ([a, b, c], part(1)),
                     ([a, c, d], part(1)),
@@ -215,6 +241,18 @@ mod tests {
         assert_eq!(index.locate(list, Vec3::new(0.5, 0.5, 0.0)), Some(part(1)));
         assert_eq!(index.locate(list, Vec3::new(1.0005, 0.5, 0.0)), Some(part(2)));
         assert_eq!(index.locate(list, Vec3::new(1.01, 0.5, 0.0)), None);
+        // Pieces that cover their face: a point rounded off them is on the nearest.
+        let whole = index
+            .push(
+                Vec3::Z,
+                Coverage::Whole,
+                [([a, b, c], part(1)), ([b, e, f], part(2))],
+            )
+            .unwrap()
+            .0
+            & !PIECES;
+        assert_eq!(index.locate(whole, Vec3::new(1.01, 0.5, 0.0)), Some(part(2)));
+        assert_eq!(index.locate(whole, Vec3::new(-3.0, 0.9, 0.0)), Some(part(1)));
     }
 
     /// A fan triangle of three corners on one line (a piece outline with a T-junction vertex)
@@ -233,7 +271,7 @@ mod tests {
             Vec3::new(2.9, 2.44, -0.9),
         ];
         let list = index
-            .push(Vec3::Y, [(line, part(1)), (square, part(2))])
+            .push(Vec3::Y, Coverage::Dropped, [(line, part(1)), (square, part(2))])
             .unwrap()
             .0
             & !PIECES;

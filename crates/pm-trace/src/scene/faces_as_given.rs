@@ -7,7 +7,7 @@
 //! ray meets.
 
 use super::Scene;
-use crate::bvh::pieces::PieceIndex;
+use crate::bvh::pieces::{Coverage, PieceIndex};
 use crate::part::{PartId, PartSurface, SourceFace};
 use glam::Vec3;
 use std::sync::Arc;
@@ -56,7 +56,9 @@ impl Scene {
             .filter_map(|(v, part)| Some((sources.get(part.part.0 as usize).copied().flatten()?, v, part)))
             .collect();
         pieces.sort_by_key(|&(face, _, _)| face);
-        let mut index = PieceIndex::new(tolerance);
+        // A point rounded off a piece by the scene's own rounding still lies on it, where that
+        // is coarser than the partition's tolerance (far from the origin).
+        let mut index = PieceIndex::new(tolerance.max(4.0 * self.epsilon()));
         let mut triangles = Vec::with_capacity(original.len());
         let mut parts = Vec::with_capacity(original.len());
         // Original triangles of one face come together: each run is one face, whose record
@@ -105,7 +107,12 @@ fn face_part(
     let face_area: f64 = run.iter().map(|(v, _)| area(v)).sum();
     let piece_area: f64 = pieces.iter().map(|(_, v, _)| area(v)).sum();
     let one_part = pieces.iter().all(|&(_, _, p)| p.part == first.part);
-    if one_part && piece_area >= face_area * (1.0 - COVERED) {
+    let coverage = if piece_area >= face_area * (1.0 - COVERED) {
+        Coverage::Whole
+    } else {
+        Coverage::Dropped
+    };
+    if one_part && coverage == Coverage::Whole {
         return Some(first);
     }
     // The face's normal from its largest triangle (its pieces lie in its plane).
@@ -121,7 +128,7 @@ fn face_part(
         })
         .try_normalize()?;
     index
-        .push(normal, pieces.iter().map(|&(_, v, p)| (v, p)))
+        .push(normal, coverage, pieces.iter().map(|&(_, v, p)| (v, p)))
         .map(|list| PartSurface {
             part: list,
             surface: first.surface,
