@@ -69,6 +69,10 @@ fn frames_at_the_scene_camera_are_the_normal_image_and_turned_frames_differ() {
     ]);
     assert_eq!(read("loaded-0.exr"), read("turn-0.exr"));
     assert_eq!(read("loaded-1.exr"), read("turn-1.exr"));
+    // The fewest frames: one, numbered 0, the normal image.
+    let single = dir.path("single.exr");
+    render(&["--out", &single, "--frames", "1", "--orbit", "45"]);
+    assert_eq!(read("single-0.exr"), read("one.exr"));
 }
 
 #[test]
