@@ -308,13 +308,7 @@ fn a_floor_under_a_field_of_hovering_squares_is_bounded_in_its_cut_lines() {
         vec3(10.0, 0.0, 10.0),
         vec3(10.0, 0.0, 0.0),
     ];
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = super::test_stream::stream();
     let mut input = vec![floor];
     for _ in 0..300 {
         let (x, z, turn) = (

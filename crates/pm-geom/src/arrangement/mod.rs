@@ -27,6 +27,8 @@ mod pair;
 mod parallel_tests;
 mod pieces;
 #[cfg(test)]
+mod test_stream;
+#[cfg(test)]
 mod tests;
 
 pub use barrier::BarrierSet;
