@@ -308,7 +308,7 @@ fn a_floor_under_a_field_of_hovering_squares_is_bounded_in_its_cut_lines() {
         vec3(10.0, 0.0, 10.0),
         vec3(10.0, 0.0, 0.0),
     ];
-    let mut next = super::test_stream::stream();
+    let mut next = test_stream::stream();
     let mut input = vec![floor];
     for _ in 0..300 {
         let (x, z, turn) = (

@@ -31,7 +31,7 @@ fn tilted_stack(n: usize) -> Vec<Vec<Vec3>> {
 /// A floor crossed by `n` thin walls at random places and angles (a fixed stream), which cut
 /// the floor and each other: many cuts per face and many T-junctions.
 fn crossed_floor(n: usize) -> Vec<Vec<Vec3>> {
-    let mut next = super::test_stream::stream();
+    let mut next = test_stream::stream();
     let mut faces = vec![vec![
         vec3(0.0, 0.0, 0.0),
         vec3(10.0, 0.0, 0.0),
