@@ -34,7 +34,10 @@ pub(super) fn trace_paths(
         for path in begin..end {
             let mut p = PhotonPath::start(scene, options, picker, path);
             while p.is_live() {
-                let hit = scene.intersect(&p.ray, f32::INFINITY, RayKind::Other);
+                let hit = match &p.from {
+                    Some(from) => scene.intersect_from(from, &p.ray, f32::INFINITY, RayKind::Other),
+                    None => scene.intersect(&p.ray, f32::INFINITY, RayKind::Other),
+                };
                 p.interact(scene, assignment, hit, out);
             }
             near.add(&p);
