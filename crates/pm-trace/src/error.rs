@@ -150,6 +150,21 @@ pub enum TraceError {
         /// What is wrong with it.
         reason: PhotonFault,
     },
+    /// Camera-driven emission would emit more than [`crate::MAX_PHOTON_PATHS`] paths to
+    /// trace the paths asked for.
+    #[error(
+        "{photons} photon paths traced on at a keep rate of {keep_rate:.4} means emitting more than the limit of {max}; trace fewer, or raise the guide's floor",
+        max = crate::MAX_PHOTON_PATHS
+    )]
+    TooManyGuidedPhotons {
+        /// Paths to be traced on.
+        photons: u32,
+        /// The guide's keep rate.
+        keep_rate: f64,
+    },
+    /// Camera-driven emission options out of range.
+    #[error("camera-driven emission: {0}")]
+    InvalidGuide(String),
     /// The map assignment does not belong to this scene.
     #[error("map assignment covers {assigned} parts but the scene has {parts}")]
     AssignmentMismatch {

@@ -153,7 +153,8 @@ pub use partition::{
 };
 pub use photons::{
     MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy, NEAR_LIGHT_DISTANCE, PhotonMap,
-    PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_photon_paths, trace_photons,
+    EmissionGuide, GuideOptions, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_guided_photon_paths,
+    trace_photon_paths, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;

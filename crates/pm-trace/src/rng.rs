@@ -19,7 +19,7 @@ const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
 /// Murmur3's 64-bit finaliser: a bijection in which every input bit flips each output bit
 /// with probability close to ½.
 #[inline]
-const fn fmix64(mut h: u64) -> u64 {
+pub(crate) const fn fmix64(mut h: u64) -> u64 {
     h ^= h >> 33;
     h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
     h ^= h >> 33;

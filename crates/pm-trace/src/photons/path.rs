@@ -1,6 +1,7 @@
 //! Photon paths: one path from its light to its end (`PhotonPath`), and a chunk of paths
 //! traced one at a time or, in large scenes, two at a time with their rays cast together.
 
+use super::guide::EmissionGuide;
 use super::light_picker::LightPicker;
 use super::options::{NEAR_LIGHT_DISTANCE, TraceOptions};
 use crate::bsdf::Bsdf;
@@ -12,7 +13,8 @@ use crate::scene::{Hit, RayKind, Scene};
 use glam::Vec3;
 use pm_kdtree::{Photon, PhotonKind};
 
-/// Traces paths `begin..end` into `out`, in path order.
+/// Traces paths `begin..end` into `out`, in path order; with a `guide`, a path its bin drops
+/// at the light stores nothing and casts no ray.
 ///
 /// `paired` (chosen by [`Scene::prefers_ray_pairs`]: scenes large enough for memory to
 /// dominate) keeps two paths in flight and casts their rays together with
@@ -25,6 +27,7 @@ pub(super) fn trace_paths(
     assignment: &MapAssignment,
     options: &TraceOptions,
     picker: &LightPicker,
+    guide: Option<&EmissionGuide>,
     (begin, end): (u32, u32),
     paired: bool,
     out: &mut Vec<(u32, Photon)>,
@@ -32,14 +35,8 @@ pub(super) fn trace_paths(
 ) {
     if !paired {
         for path in begin..end {
-            let mut p = PhotonPath::start(scene, options, picker, path);
-            while p.is_live() {
-                let hit = match &p.from {
-                    Some(from) => scene.intersect_from(from, &p.ray, f32::INFINITY, RayKind::Other),
-                    None => scene.intersect(&p.ray, f32::INFINITY, RayKind::Other),
-                };
-                p.interact(scene, assignment, hit, out);
-            }
+            let mut p = PhotonPath::start(scene, options, picker, guide, path);
+            p.run_to_end(scene, assignment, out);
             near.add(&p);
         }
         return;
@@ -51,15 +48,21 @@ pub(super) fn trace_paths(
         photons: Vec<(u32, Photon)>,
     }
     let mut next = begin;
+    // The next path not dropped at its light (a dropped one stores nothing: skipping it keeps
+    // the order of every photon).
     let mut start = |photons: Vec<(u32, Photon)>| {
-        (next < end).then(|| {
+        while next < end {
             next += 1;
-            Slot {
-                path: PhotonPath::start(scene, options, picker, next - 1),
-                index: next - 1,
-                photons,
+            let path = PhotonPath::start(scene, options, picker, guide, next - 1);
+            if path.is_live() {
+                return Some(Slot {
+                    path,
+                    index: next - 1,
+                    photons,
+                });
             }
-        })
+        }
+        None
     };
     let mut slots = [start(Vec::new()), start(Vec::new())];
     // Photons of ended paths newer than the oldest path in flight, in path order.
@@ -102,18 +105,43 @@ pub(super) fn trace_paths(
     }
 }
 
+/// Traces pilot path `path` of `options` (uniform emission) to its end, storing its photons
+/// in `out`; returns its light and the ray it left that light along.
+pub(super) fn pilot_path(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    picker: &LightPicker,
+    path: u32,
+    out: &mut Vec<(u32, Photon)>,
+) -> (usize, Ray) {
+    let mut p = PhotonPath::start(scene, options, picker, None, path);
+    let left = (
+        p.light,
+        Ray {
+            origin: p.emitted_at,
+            direction: p.emitted_dir,
+        },
+    );
+    p.run_to_end(scene, assignment, out);
+    left
+}
+
 /// The power emitted by a chunk's paths and the part of it whose first hit lay on a surface
 /// within [`NEAR_LIGHT_DISTANCE`] of its light (summed over channels).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(super) struct NearLight {
     pub(super) emitted: f64,
     pub(super) near: f64,
+    /// Paths traced on (not dropped at their light by a guide).
+    pub(super) traced: u64,
 }
 
 impl NearLight {
     fn add(&mut self, path: &PhotonPath) {
         self.emitted += f64::from(path.emitted);
         self.near += f64::from(path.near_light);
+        self.traced += u64::from(!path.dropped);
     }
 }
 
@@ -121,6 +149,11 @@ impl NearLight {
 /// until it is absorbed, leaves the scene or reaches `max_bounces` interactions.
 struct PhotonPath {
     rng: Rng,
+    /// The light it left, and the direction it left along.
+    light: usize,
+    emitted_dir: Vec3,
+    /// True when a guide dropped it at its light (it casts no ray).
+    dropped: bool,
     power: Vec3,
     /// The power it started with, summed over channels.
     emitted: f32,
@@ -141,14 +174,39 @@ struct PhotonPath {
 }
 
 impl PhotonPath {
-    /// Path `path` of the run, emitted from a light picked in proportion to its power.
+    /// Path `path` of the run, emitted from a light picked in proportion to its power; with a
+    /// `guide`, traced on with its bin's keep probability `P` (one more draw from the path's
+    /// stream when `P < 1`) and then carrying `1 / P` times the power, or ended at once.
     #[inline]
-    fn start(scene: &Scene, options: &TraceOptions, picker: &LightPicker, path: u32) -> Self {
+    fn start(
+        scene: &Scene,
+        options: &TraceOptions,
+        picker: &LightPicker,
+        guide: Option<&EmissionGuide>,
+        path: u32,
+    ) -> Self {
         let mut rng = Rng::for_pass(options.seed, options.pass, path as u64);
         let (li, photon_power) = picker.pick(&mut rng);
         let emitted = scene.lights()[li].emit(&mut rng);
-        let power = photon_power * emitted.weight;
+        let mut power = photon_power * emitted.weight;
+        let mut bounces_left = options.max_bounces;
+        let mut dropped = false;
+        if let Some(guide) = guide {
+            let keep = guide.keep(li, &emitted.ray);
+            if keep < 1.0 {
+                if rng.next_f32() < keep {
+                    power /= keep;
+                } else {
+                    power = Vec3::ZERO;
+                    bounces_left = 0;
+                    dropped = true;
+                }
+            }
+        }
         PhotonPath {
+            light: li,
+            emitted_dir: emitted.ray.direction,
+            dropped,
             rng,
             power,
             emitted: power.element_sum(),
@@ -163,13 +221,24 @@ impl PhotonPath {
             },
             diffuse_bounces: 0,
             specular: false,
-            bounces_left: options.max_bounces,
+            bounces_left,
         }
     }
 
     #[inline]
     fn is_live(&self) -> bool {
         self.bounces_left > 0
+    }
+
+    /// Casts the path's rays one at a time until it ends, storing its photons in `out`.
+    fn run_to_end(&mut self, scene: &Scene, assignment: &MapAssignment, out: &mut Vec<(u32, Photon)>) {
+        while self.is_live() {
+            let hit = match &self.from {
+                Some(from) => scene.intersect_from(from, &self.ray, f32::INFINITY, RayKind::Other),
+                None => scene.intersect(&self.ray, f32::INFINITY, RayKind::Other),
+            };
+            self.interact(scene, assignment, hit, out);
+        }
     }
 
     /// What the path does at `hit`, the closest hit of its ray (`None`: it left the scene):
@@ -281,46 +350,59 @@ mod tests {
             ..TraceOptions::default()
         };
         let picker = LightPicker::new(&scene, options.photons).unwrap();
-        let trace = |paired: bool, range: (u32, u32)| {
-            let mut out = Vec::new();
-            let mut near = NearLight::default();
-            trace_paths(
-                &scene,
-                &assignment,
-                &options,
-                &picker,
-                range,
-                paired,
-                &mut out,
-                &mut near,
+        // Uniform emission, and a guide that sees only the floors.
+        let learnt = EmissionGuide::learn(
+            &scene,
+            &assignment,
+            &options,
+            &crate::photons::GuideOptions::default(),
+            &|_, p| p.y < 1e-3,
+        )
+        .unwrap();
+        assert!(learnt.keep_rate() < 0.9, "{}", learnt.keep_rate());
+        for guide in [None, Some(&learnt)] {
+            let trace = |paired: bool, range: (u32, u32)| {
+                let mut out = Vec::new();
+                let mut near = NearLight::default();
+                trace_paths(
+                    &scene,
+                    &assignment,
+                    &options,
+                    &picker,
+                    guide,
+                    range,
+                    paired,
+                    &mut out,
+                    &mut near,
+                );
+                out
+            };
+            // The smallest chunks too: one path (no pair), two (one pair), three (a pair and a
+            // path left over), and a chunk starting at an odd path.
+            for range in [(0, 1), (0, 2), (0, 3), (7, 10)] {
+                assert_eq!(trace(true, range), trace(false, range), "paths {range:?}");
+            }
+            let (one, two) = (
+                trace(false, (0, options.photons)),
+                trace(true, (0, options.photons)),
             );
-            out
-        };
-        // The smallest chunks too: one path (no pair), two (one pair), three (a pair and a
-        // path left over), and a chunk starting at an odd path.
-        for range in [(0, 1), (0, 2), (0, 3), (7, 10)] {
-            assert_eq!(trace(true, range), trace(false, range), "paths {range:?}");
-        }
-        let (one, two) = (
-            trace(false, (0, options.photons)),
-            trace(true, (0, options.photons)),
-        );
-        assert!(one.len() > 5_000, "{}", one.len());
-        assert_eq!(one.len(), two.len());
-        for (k, ((ma, a), (mb, b))) in one.iter().zip(&two).enumerate() {
-            assert_eq!(ma, mb, "photon {k}");
-            assert_eq!(
-                a.position.to_array().map(f32::to_bits),
-                b.position.to_array().map(f32::to_bits),
-                "photon {k}"
-            );
-            assert_eq!(
-                a.power.to_array().map(f32::to_bits),
-                b.power.to_array().map(f32::to_bits),
-                "photon {k}"
-            );
-            assert_eq!(a.direction, b.direction, "photon {k}");
-            assert_eq!(a.kind, b.kind, "photon {k}");
+            assert!(one.len() > 3_000, "{}", one.len());
+            assert_eq!(one.len(), two.len());
+            for (k, ((ma, a), (mb, b))) in one.iter().zip(&two).enumerate() {
+                assert_eq!(ma, mb, "photon {k}");
+                assert_eq!(
+                    a.position.to_array().map(f32::to_bits),
+                    b.position.to_array().map(f32::to_bits),
+                    "photon {k}"
+                );
+                assert_eq!(
+                    a.power.to_array().map(f32::to_bits),
+                    b.power.to_array().map(f32::to_bits),
+                    "photon {k}"
+                );
+                assert_eq!(a.direction, b.direction, "photon {k}");
+                assert_eq!(a.kind, b.kind, "photon {k}");
+            }
         }
     }
 

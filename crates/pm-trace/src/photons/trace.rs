@@ -2,6 +2,7 @@
 //! `(seed, pass, path index)`, chunks of paths run on rayon and are merged in path order, so the
 //! stored photons are bit-identical for any thread count.
 
+use super::guide::EmissionGuide;
 use super::light_picker::LightPicker;
 use super::options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, TraceOptions};
 use super::path::{NearLight, trace_paths};
@@ -44,6 +45,34 @@ pub fn trace_photon_paths(
     options: &TraceOptions,
     paths: Range<u32>,
 ) -> Result<TracedPhotons, TraceError> {
+    trace_paths_emitted(scene, assignment, options, paths, None)
+}
+
+/// [`trace_photon_paths`] with camera-driven emission: each path is emitted as there, then
+/// traced on with its bin's keep probability under `guide` (and carrying its power over that
+/// probability) or dropped at its light. Unbiased: every estimate's expected value is that
+/// of [`trace_photon_paths`] (see [`EmissionGuide`]). `options.photons` counts the paths
+/// emitted, dropped ones included ([`EmissionGuide::photons_to_emit`] gives the count that
+/// traces about a given number); [`TraceStats::emitted`] counts the range's paths, and
+/// [`TraceStats::traced`] those traced on.
+pub fn trace_guided_photon_paths(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    paths: Range<u32>,
+    guide: &EmissionGuide,
+) -> Result<TracedPhotons, TraceError> {
+    trace_paths_emitted(scene, assignment, options, paths, Some(guide))
+}
+
+/// The paths `paths` of the run, each emitted as `guide` (if any) says.
+fn trace_paths_emitted(
+    scene: &Scene,
+    assignment: &MapAssignment,
+    options: &TraceOptions,
+    paths: Range<u32>,
+    guide: Option<&EmissionGuide>,
+) -> Result<TracedPhotons, TraceError> {
     let start = Instant::now();
     check_request(scene, assignment, options)?;
     if paths.is_empty() {
@@ -53,7 +82,7 @@ pub fn trace_photon_paths(
         return Err(TraceError::TooManyPhotons { photons: paths.end });
     }
     let picker = LightPicker::new(scene, options.photons)?;
-    let (merged, near_light) = trace_in_waves(scene, assignment, options, &picker, paths.clone())?;
+    let (merged, near_light) = trace_in_waves(scene, assignment, options, &picker, guide, paths.clone())?;
     let Merged { photons, stored, .. } = merged;
     let near_light_fraction = if near_light.emitted > 0.0 {
         near_light.near / near_light.emitted
@@ -62,6 +91,7 @@ pub fn trace_photon_paths(
     };
     let stats = TraceStats {
         emitted: u64::from(paths.end - paths.start),
+        traced: near_light.traced,
         stored,
         near_light_fraction,
         seconds: start.elapsed().as_secs_f64(),
@@ -71,7 +101,7 @@ pub fn trace_photon_paths(
 
 /// Refuses zero photons, more than [`MAX_PHOTON_PATHS`], and an assignment made for another
 /// scene.
-fn check_request(
+pub(super) fn check_request(
     scene: &Scene,
     assignment: &MapAssignment,
     options: &TraceOptions,
@@ -102,6 +132,7 @@ fn trace_in_waves(
     assignment: &MapAssignment,
     options: &TraceOptions,
     picker: &LightPicker,
+    guide: Option<&EmissionGuide>,
     paths: Range<u32>,
 ) -> Result<(Merged, NearLight), TraceError> {
     let maps = assignment.map_count() as usize;
@@ -134,6 +165,7 @@ fn trace_in_waves(
                     assignment,
                     options,
                     picker,
+                    guide,
                     (begin, end),
                     paired,
                     out,
@@ -150,6 +182,7 @@ fn trace_in_waves(
         for n in near {
             near_light.emitted += n.emitted;
             near_light.near += n.near;
+            near_light.traced += n.traced;
         }
     };
     trace_wave(0, &mut traced, &mut traced_near);

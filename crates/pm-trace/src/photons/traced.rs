@@ -9,6 +9,9 @@ use pm_kdtree::Photon;
 pub struct TraceStats {
     /// Paths emitted.
     pub emitted: u64,
+    /// Paths traced on from their light: `emitted` less those an
+    /// [`EmissionGuide`](super::EmissionGuide) dropped there (all of them without one).
+    pub traced: u64,
     /// Photons stored per map, indexed by `PhotonKind as usize` (direct, indirect, caustic).
     pub stored: Vec<[u64; 3]>,
     /// The share of the emitted power (summed over channels) whose first hit lay on a surface
@@ -71,6 +74,7 @@ impl TracedPhotons {
             photons,
             stats: TraceStats {
                 emitted,
+                traced: emitted,
                 stored,
                 near_light_fraction: 0.0,
                 seconds: 0.0,
