@@ -22,6 +22,8 @@ mod cache;
 mod choices;
 #[path = "render/compare.rs"]
 mod compare;
+#[path = "render/emission.rs"]
+mod emission;
 #[path = "render/files.rs"]
 mod files;
 #[path = "render/flythrough.rs"]
@@ -170,6 +172,8 @@ struct Args {
     orbit: Option<f64>,
     #[command(flatten)]
     auto: auto::AutoArgs,
+    #[command(flatten)]
+    emission: emission::EmissionArgs,
 }
 
 impl Args {
@@ -249,6 +253,7 @@ fn run(args: &Args) -> Result<(), String> {
         seed: args.seed,
         threads: args.threads,
         final_gather: gather::options(args)?,
+        emission: args.emission.emission()?,
         ..RenderSettings::default()
     };
     settings.validate().map_err(|e| e.to_string())?;

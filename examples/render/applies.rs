@@ -48,6 +48,10 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
             run == Run::Passes(Progressive)
         }
         ("light_units", _) => gltf,
+        ("emission", Run::Single(m) | Run::Passes(m)) => m != PathTrace,
+        ("guide_pilot" | "guide_floor", Run::Single(m) | Run::Passes(m)) => {
+            m != PathTrace && args.emission.emission == super::emission::EmissionChoice::Camera
+        }
         // gather.rs refines progressive: there they need --gather-rays.
         ("gather_rays" | "cache_every" | "corner_distance", run) => {
             matches!(run, Run::Single(FinalGather) | Run::Passes(Progressive))
@@ -70,12 +74,14 @@ fn applies(option: &str, run: Run, args: &Args) -> Option<&'static str> {
         }
         "first_pass" | "direct" | "shard_index_from" | "passes_per_shard" => "--mode progressive",
         "light_units" => "glTF scenes (built-in scenes are in watts already)",
+        "emission" => "the modes that trace photons (not path-trace)",
+        "guide_pilot" | "guide_floor" => "--emission camera in the modes that trace photons",
         _ => "other modes",
     })
 }
 
 /// The options that some runs ignore, by clap id and command-line name.
-const OPTIONS: [(&str, &str); 28] = [
+const OPTIONS: [(&str, &str); 31] = [
     ("scene", "--scene"),
     ("maps", "--maps"),
     ("estimator", "--estimator"),
@@ -104,6 +110,9 @@ const OPTIONS: [(&str, &str); 28] = [
     ("auto_photons", "--auto-photons"),
     ("auto_max_photons", "--auto-max-photons"),
     ("auto_max_batches", "--auto-max-batches"),
+    ("emission", "--emission"),
+    ("guide_pilot", "--guide-pilot"),
+    ("guide_floor", "--guide-floor"),
 ];
 
 /// Refuses the first option given on the command line that this run would not use.

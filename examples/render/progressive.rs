@@ -134,8 +134,9 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     } else {
         String::new()
     };
+    let emission = super::emission::summary(stats.emission.as_ref(), stats.photons_emitted, stats.photons_traced);
     say(&format!(
-        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
+        "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{emission}{}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,
         range.start,
         range.end,
@@ -353,6 +354,7 @@ fn stats_json(
             "\"memory_bytes\": {{\"peak_heap\": {heap_peak}, \"pass_trees\": {}, \"pilot\": {}, \"accumulation\": {}}}, ",
             s.pass_tree_bytes, s.pilot_bytes, s.accumulation_bytes
         );
+        o.push_str(&super::emission::json(s.emission.as_ref(), s.photons_traced));
         let _ = write!(
             o,
             "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, ",

@@ -127,8 +127,9 @@ pub fn summary(r: &Record<'_>) -> String {
         None => String::new(),
     };
     let auto = super::auto::summary(&s.auto_photons);
+    let emission = super::emission::summary(s.emission.as_ref(), s.photons_emitted, s.photons_traced);
     format!(
-        "{} [{}]: {lighting}{}{}{cache}, mode {}, {}x{}, {} photons ({} stored{below}{near}{auto}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
+        "{} [{}]: {lighting}{}{}{cache}, mode {}, {}x{}, {} photons ({} stored{below}{near}{auto}{emission}): trace {:.3} s, build {:.3} s{gather}, render {:.3} s, total {:.3} s, mean rgb ({:.4}, {:.4}, {:.4})",
         r.scene,
         r.variant.label,
         r.contacts.0,
@@ -190,6 +191,9 @@ pub fn json_object(r: &Record<'_>) -> String {
         s.threads,
         r.args.seed,
     );
+    if photon_maps {
+        o.push_str(&super::emission::json(s.emission.as_ref(), s.photons_traced));
+    }
     if photon_maps && s.occupancy.maps > 0 {
         let m = &s.occupancy;
         let _ = write!(

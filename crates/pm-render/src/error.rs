@@ -141,6 +141,9 @@ pub enum RenderError {
     /// A final-gather parameter is out of range (the message names it).
     #[error("final gather: {0}")]
     BadFinalGather(String),
+    /// Camera-driven emission with bad options, or in a mode or run it does not apply to.
+    #[error("camera-driven emission: {0}")]
+    BadEmission(String),
     /// An automatic photon count's threshold outside (0, 1) (relative change between batches).
     #[error("auto photons: the threshold must lie strictly between 0 and 1, got {0}")]
     BadAutoThreshold(f64),

@@ -75,6 +75,7 @@ pub mod auto_photons;
 pub mod cache;
 pub mod cache_file;
 pub mod core;
+pub mod emission;
 pub mod error;
 pub mod estimator;
 pub mod image;

@@ -3,7 +3,8 @@
 /// Receives progress from the renderer. Called from worker threads, without locks on the
 /// renderer's side; keep implementations cheap.
 pub trait Progress: Sync {
-    /// A phase begins: `"trace"`, `"build"` or `"render"` (and `"pilot"` in progressive renders).
+    /// A phase begins: `"guide"` (camera-driven emission learning), `"trace"`, `"build"` or
+    /// `"render"` (and `"pilot"` in progressive renders).
     fn phase(&self, name: &'static str) {
         let _ = name;
     }

@@ -7,6 +7,7 @@ use crate::cache::RadianceCache;
 use crate::core::RadianceSource;
 use crate::core::tiles::SampleStreams;
 use crate::core::tiles::render_tiles;
+use crate::emission::Emitter;
 use crate::error::RenderError;
 use crate::estimator::Estimator;
 use crate::image::Image;
@@ -19,7 +20,7 @@ use crate::source::path_traced::PathTraced;
 use crate::source::photon_map::PhotonMapSource;
 use crate::source::photon_read::DirectLight;
 use crate::stats::RenderStats;
-use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene};
 use std::time::Instant;
 
 /// An image and the figures of the render that made it.
@@ -182,15 +183,14 @@ impl<E: Estimator> Renderer<E> {
         progress: &dyn Progress,
         stats: &mut RenderStats,
     ) -> Result<PhotonMaps, RenderError> {
+        progress.phase("guide");
+        let emitter = Emitter::new(scene, assignment, &self.settings, &[*scene.camera()])?;
+        stats.emission = emitter.report().copied();
         progress.phase("trace");
         let start = Instant::now();
-        let options = TraceOptions {
-            photons: self.settings.photons,
-            seed: self.settings.seed,
-            ..TraceOptions::default()
-        };
-        let traced = trace_photons(scene, assignment, &options)?;
+        let traced = emitter.trace(scene, assignment, &self.settings, 0)?;
         stats.photons_emitted = traced.stats().emitted;
+        stats.photons_traced = traced.stats().traced;
         stats.photons_stored = traced.stats().total_stored();
         stats.near_light_fraction = traced.stats().near_light_fraction;
         stats.map_count = assignment.map_count();

@@ -1,6 +1,7 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
 //! the report's defaults (Ball & Stejko).
 
+use crate::emission::PhotonEmission;
 use crate::error::RenderError;
 use crate::estimator::options::EstimatorOptions;
 use crate::mode::Mode;
@@ -39,6 +40,9 @@ pub struct RenderSettings {
     /// Gather rays, cache density and corner rule of [`Mode::FinalGather`] (checked only in
     /// that mode).
     pub final_gather: FinalGatherOptions,
+    /// How photons leave the lights ([`PhotonEmission::Uniform`] by default; camera-driven
+    /// emission is refused in [`Mode::PathTrace`], which traces no photons).
+    pub emission: PhotonEmission,
 }
 
 impl Default for RenderSettings {
@@ -56,6 +60,7 @@ impl Default for RenderSettings {
             threads: 0,
             tile_size: 16,
             final_gather: FinalGatherOptions::default(),
+            emission: PhotonEmission::Uniform,
         }
     }
 }
@@ -94,6 +99,15 @@ impl RenderSettings {
         }
         if self.tile_size == 0 {
             return Err(RenderError::ZeroTileSize);
+        }
+        if let PhotonEmission::CameraDriven(guide) = self.emission {
+            if !self.mode.uses_photons() {
+                return Err(RenderError::BadEmission(format!(
+                    "the {} mode traces no photons",
+                    self.mode
+                )));
+            }
+            guide.validate().map_err(RenderError::BadEmission)?;
         }
         if self.mode == Mode::FinalGather {
             self.final_gather.validate()?;

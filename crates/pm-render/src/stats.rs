@@ -7,6 +7,12 @@ use std::time::Duration;
 pub struct RenderStats {
     /// Photon paths emitted.
     pub photons_emitted: u64,
+    /// Photon paths traced on from their lights: `photons_emitted` less those camera-driven
+    /// emission dropped there.
+    pub photons_traced: u64,
+    /// What camera-driven emission learnt and what learning cost (`None` for uniform
+    /// emission or a mode that traces no photons).
+    pub emission: Option<crate::emission::EmissionReport>,
     /// Photons stored over all maps.
     pub photons_stored: u64,
     /// Photon power channels stored as zero because they were more than 2⁴⁰ (about 10¹²)
@@ -46,9 +52,9 @@ pub struct RenderStats {
 }
 
 impl RenderStats {
-    /// Sum of the phases.
+    /// Sum of the phases (camera-driven emission's learning included).
     pub fn total(&self) -> Duration {
-        self.trace + self.build + self.precompute + self.render
+        self.emission.map_or(Duration::ZERO, |e| e.learn) + self.trace + self.build + self.precompute + self.render
     }
 
     /// Gather rays per second of the render phase (zero when none were cast).

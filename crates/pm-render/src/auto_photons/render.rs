@@ -15,7 +15,7 @@ use std::time::Instant;
 impl<E: FixedVolumeEstimator> Renderer<E> {
     /// [`Renderer::build_photon_cache`] with the photon count chosen by `auto`
     /// ([`trace_auto`], with this renderer's estimator, options and seed; `settings.photons`
-    /// is not read): the maps (and the final gather's cache) are the bits of
+    /// is not read; camera-driven emission is refused): the maps (and the final gather's cache) are the bits of
     /// `build_photon_cache` with `photons` the count reached, which `stats.auto_photons`
     /// reports with every batch's change. The trace phase covers the batches' tracing,
     /// building and probing; the build phase is zero.
@@ -31,6 +31,13 @@ impl<E: FixedVolumeEstimator> Renderer<E> {
         let mode = settings.mode;
         if !mode.uses_photons() {
             return Err(RenderError::UnreadMaps(mode));
+        }
+        // Its batches are ranges of one uniform run, so that the count reached gives the
+        // bits of a fixed count; a guided run's paths depend on its count.
+        if settings.emission != crate::emission::PhotonEmission::Uniform {
+            return Err(RenderError::BadEmission(
+                "an automatic photon count traces uniform batches: choose one or the other".to_owned(),
+            ));
         }
         let scene = partitioned.scene();
         let assignment = partitioned.assignment();

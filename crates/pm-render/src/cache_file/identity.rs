@@ -56,6 +56,9 @@ impl CacheIdentity {
             ("photons".to_owned(), s.photons.to_string()),
             ("seed".to_owned(), s.seed.to_string()),
         ]);
+        if let Some(emission) = s.emission.identity() {
+            entries.push(("emission".to_owned(), emission));
+        }
         if s.mode == Mode::FinalGather {
             let options = s.estimator_options(&scene.bounds());
             entries.extend([

@@ -54,6 +54,12 @@ pub struct ProgressiveStats {
     pub passes: u64,
     /// Photon paths emitted over all passes (not counting the pilot).
     pub photons_emitted: u64,
+    /// Photon paths traced on over all passes: `photons_emitted` less those camera-driven
+    /// emission dropped at their lights.
+    pub photons_traced: u64,
+    /// What camera-driven emission learnt (once, before the passes; its time is part of
+    /// [`Self::pilot`]); `None` for uniform emission.
+    pub emission: Option<crate::emission::EmissionReport>,
     /// Photons stored over all passes.
     pub photons_stored: u64,
     /// The share of the emitted power whose first hit lay within 1 mm of its light, averaged
@@ -64,7 +70,8 @@ pub struct ProgressiveStats {
     pub map_count: u32,
     /// Worker threads used.
     pub threads: usize,
-    /// Partitioning the scene and tracing and building the pilot maps.
+    /// Partitioning the scene, learning camera-driven emission, and tracing and building the
+    /// pilot maps.
     pub pilot: Duration,
     /// Photon tracing and map building, summed over passes.
     pub trace: Duration,

@@ -62,6 +62,7 @@ use crate::cache::RadianceCache;
 use crate::core::tiles::SampleStreams;
 use crate::core::tiles::Tile;
 use crate::core::tiles::render_tiles;
+use crate::emission::Emitter;
 use crate::error::RenderError;
 use crate::estimator::fixed::FixedVolumeEstimator;
 use crate::estimator::options::EstimatorOptions;
@@ -77,7 +78,7 @@ use pass_maps::trace_pass_counted;
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
 use pm_kdtree::PhotonTree;
-use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -168,11 +169,14 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             map_count: assignment.map_count(),
             ..ProgressiveStats::default()
         };
-        progress.phase("pilot");
         let options = r.estimator_options(&scene.bounds());
         options.validate()?;
+        progress.phase("guide");
+        let emitter = Emitter::new(scene, assignment, r, &[*scene.camera()])?;
+        stats.emission = emitter.report().copied();
+        progress.phase("pilot");
         let pilot = Pilot::new(
-            trace_and_build(scene, assignment, r, PILOT_PASS)?.0,
+            trace_and_build(scene, assignment, r, &emitter, PILOT_PASS)?.0,
             &self.estimator,
             &options,
         )?;
@@ -195,6 +199,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             self.render_pass(
                 scene,
                 assignment,
+                &emitter,
                 &pilot,
                 &options,
                 pass,
@@ -232,6 +237,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         &self,
         scene: &Scene,
         assignment: &MapAssignment,
+        emitter: &Emitter,
         pilot: &Pilot,
         options: &EstimatorOptions,
         pass: u64,
@@ -244,6 +250,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             scene,
             assignment,
             r,
+            emitter,
             pass,
             options.kinds,
             accumulation.passes,
@@ -336,20 +343,16 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
     }
 }
 
-/// Traces pass `pass`'s photons and builds its maps; also the photons stored.
+/// Traces pass `pass`'s photons (emitted as `emitter` says) and builds its maps; also the
+/// photons stored.
 pub(crate) fn trace_and_build(
     scene: &Scene,
     assignment: &MapAssignment,
     settings: &RenderSettings,
+    emitter: &Emitter,
     pass: u64,
 ) -> Result<(PhotonMaps, u64), RenderError> {
-    let options = TraceOptions {
-        photons: settings.photons,
-        seed: settings.seed,
-        pass,
-        ..TraceOptions::default()
-    };
-    let traced = trace_photons(scene, assignment, &options)?;
+    let traced = emitter.trace(scene, assignment, settings, pass)?;
     let stored = traced.stats().total_stored();
     Ok((PhotonMaps::build(scene, assignment, traced)?, stored))
 }

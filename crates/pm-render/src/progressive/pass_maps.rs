@@ -3,12 +3,13 @@
 //! kinds the pass never gathers (direct ones, when shadow rays carry direct light) are not put
 //! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
 
+use crate::emission::Emitter;
 use crate::error::RenderError;
 use crate::progress::Progress;
 use crate::progressive::accumulation::ProgressiveStats;
 use crate::settings::RenderSettings;
 use pm_kdtree::{KindMask, PhotonTree};
-use pm_trace::{MapAssignment, MapError, Scene, TraceOptions, trace_photons};
+use pm_trace::{MapAssignment, MapError, Scene};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -16,6 +17,8 @@ use std::time::Instant;
 /// of the pass's power whose first hit lay within 1 mm of its light.
 pub(crate) struct PassMaps {
     pub(crate) trees: Vec<PhotonTree>,
+    pub(crate) emitted: u64,
+    pub(crate) traced: u64,
     pub(crate) stored: u64,
     pub(crate) near_light_fraction: f64,
 }
@@ -27,22 +30,18 @@ impl PassMaps {
     }
 }
 
-/// Traces pass `pass`'s photons (streams `(seed, pass, path)`) and builds one kd-tree per map
-/// of the photons of the kinds `kinds` accepts, in parallel.
+/// Traces pass `pass`'s photons (streams `(seed, pass, path)`, emitted as `emitter` says)
+/// and builds one kd-tree per map of the photons of the kinds `kinds` accepts, in parallel.
 pub(crate) fn trace_pass(
     scene: &Scene,
     assignment: &MapAssignment,
     settings: &RenderSettings,
+    emitter: &Emitter,
     pass: u64,
     kinds: KindMask,
 ) -> Result<PassMaps, RenderError> {
-    let options = TraceOptions {
-        photons: settings.photons,
-        seed: settings.seed,
-        pass,
-        ..TraceOptions::default()
-    };
-    let traced = trace_photons(scene, assignment, &options)?;
+    let traced = emitter.trace(scene, assignment, settings, pass)?;
+    let (emitted, traced_paths) = (traced.stats().emitted, traced.stats().traced);
     let stored = traced.stats().total_stored();
     let near_light_fraction = traced.stats().near_light_fraction;
     let (photons, _) = traced.into_parts();
@@ -61,6 +60,8 @@ pub(crate) fn trace_pass(
         .collect::<Result<Vec<_>, _>>()?;
     Ok(PassMaps {
         trees,
+        emitted,
+        traced: traced_paths,
         stored,
         near_light_fraction,
     })
@@ -73,6 +74,7 @@ pub(crate) fn trace_pass_counted(
     scene: &Scene,
     assignment: &MapAssignment,
     settings: &RenderSettings,
+    emitter: &Emitter,
     pass: u64,
     kinds: KindMask,
     done: u64,
@@ -81,9 +83,10 @@ pub(crate) fn trace_pass_counted(
 ) -> Result<PassMaps, RenderError> {
     progress.phase("trace");
     let t = Instant::now();
-    let maps = trace_pass(scene, assignment, settings, pass, kinds)?;
+    let maps = trace_pass(scene, assignment, settings, emitter, pass, kinds)?;
     stats.trace += t.elapsed();
-    stats.photons_emitted += u64::from(settings.photons);
+    stats.photons_emitted += maps.emitted;
+    stats.photons_traced += maps.traced;
     stats.photons_stored += maps.stored;
     stats.add_near_light(done, maps.near_light_fraction);
     stats.pass_tree_bytes = stats.pass_tree_bytes.max(maps.heap_bytes());

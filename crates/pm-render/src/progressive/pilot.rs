@@ -122,6 +122,7 @@ mod tests {
     use super::*;
     use crate::estimator::GeometryCube;
     use crate::mode::Mode;
+    use crate::emission::Emitter;
     use crate::progressive::{PILOT_PASS, trace_and_build};
     use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, Partitioner, scenes};
@@ -143,10 +144,10 @@ mod tests {
             ..RenderSettings::default()
         };
         let options = settings.estimator_options(&scene.bounds());
-        let maps = trace_and_build(&scene, &assignment, &settings, PILOT_PASS)
+        let maps = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), PILOT_PASS)
             .unwrap()
             .0;
-        let queries = trace_and_build(&scene, &assignment, &settings, 0).unwrap().0;
+        let queries = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), 0).unwrap().0;
         let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;

@@ -116,5 +116,6 @@ impl ProgressiveSettings {
             s.seed,
             self.alpha
         ) + &gather
+            + &s.emission.identity().map_or_else(String::new, |e| format!(" emission={e}"))
     }
 }

@@ -21,6 +21,7 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
+use crate::emission::Emitter;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;
@@ -152,6 +153,9 @@ impl SppmRenderer {
                 map_count: 1,
                 ..ProgressiveStats::default()
             };
+            progress.phase("guide");
+            let emitter = Emitter::new(scene, &assignment, r, &[*scene.camera()])?;
+            stats.emission = emitter.report().copied();
             let mut state = vec![PixelState::default(); r.width as usize * r.height as usize];
             stats.accumulation_bytes = (state.capacity() * size_of::<PixelState>()) as u64;
             let mut passes = 0u64;
@@ -162,6 +166,7 @@ impl SppmRenderer {
                 self.pass(
                     scene,
                     &assignment,
+                    &emitter,
                     &options,
                     passes,
                     &mut state,
@@ -207,6 +212,7 @@ impl SppmRenderer {
         &self,
         scene: &Scene,
         assignment: &MapAssignment,
+        emitter: &Emitter,
         options: &EstimatorOptions,
         pass: u64,
         state: &mut [PixelState],
@@ -214,7 +220,7 @@ impl SppmRenderer {
         progress: &dyn Progress,
     ) -> Result<(), RenderError> {
         let r = &self.settings.render;
-        let maps = trace_pass_counted(scene, assignment, r, pass, options.kinds, pass, stats, progress)?;
+        let maps = trace_pass_counted(scene, assignment, r, emitter, pass, options.kinds, pass, stats, progress)?;
         progress.phase("render");
         let t = Instant::now();
         let update = Pass {

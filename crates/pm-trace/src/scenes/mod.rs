@@ -3,6 +3,7 @@
 mod accordion;
 pub mod box_mesh;
 mod cornell;
+pub mod doorways;
 pub mod glossy_cornell;
 mod rooms;
 pub mod scale;
@@ -59,13 +60,17 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
 }
 
 /// How the scale scenes of [`scale`] are named for [`build`].
-pub const SCALE_NAMES: &str = "split-rooms-N (lit-unlit-rooms, faces split N x N) and cube-field-N (N cubes)";
+pub const SCALE_NAMES: &str = "split-rooms-N (lit-unlit-rooms, faces split N x N), cube-field-N (N cubes) and doorway-rooms-N (N lit rooms in a row, seen from the first)";
 
-/// A scale scene by name (`split-rooms-N`, `cube-field-N`), or `None` for other names.
+/// A scale scene by name (`split-rooms-N`, `cube-field-N`, `doorway-rooms-N`), or `None` for
+/// other names.
 fn build_scale(name: &str) -> Option<Result<Scene, SceneError>> {
     let number = |prefix: &str| name.strip_prefix(prefix).and_then(|n| n.parse::<u32>().ok());
     if let Some(n) = number("split-rooms-") {
         return Some(scale::split_rooms(n));
+    }
+    if let Some(n) = number("doorway-rooms-") {
+        return Some(doorways::doorway_rooms(n));
     }
     number("cube-field-").map(scale::cube_field)
 }
