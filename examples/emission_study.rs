@@ -6,7 +6,8 @@
 //!
 //! The reference is the mean of `--reference-replicates` path-traced images of independent
 //! seeds; its per-pixel variance (from the replicates) is removed from every error, and its
-//! noise is printed beside the errors it judges. Writes `emission-study-<scene>.md` into
+//! noise is printed beside the errors it judges (kept in `--out-dir` and reused by later
+//! runs of the same scene, size and samples). Writes `emission-study-<scene>.md` into
 //! `--out-dir` (default `target/emission-study`); nothing into the repository unless its
 //! folder is named.
 //!
@@ -48,7 +49,8 @@ struct Args {
     /// Path-traced reference: independent replicates (at least 2, for its variance).
     #[arg(long, default_value_t = 4)]
     reference_replicates: u64,
-    /// Where the table goes.
+    /// Where the table goes, and the references (kept and reused:
+    /// `reference-<scene>-<size>-<spp>x<replicates>.bin`).
     #[arg(long, default_value = "target/emission-study")]
     out_dir: PathBuf,
 }
@@ -62,6 +64,43 @@ struct Reference {
 }
 
 impl Reference {
+    /// The reference kept in `path`, or made and kept there.
+    fn kept(
+        path: &std::path::Path,
+        partitioned: &Partitioned,
+        base: RenderSettings,
+        spp: u32,
+        replicates: u64,
+    ) -> Result<Self, String> {
+        let pixels = base.width as usize * base.height as usize;
+        if let Ok(bytes) = std::fs::read(path) {
+            if bytes.len() == 16 * pixels {
+                let values: Vec<f64> = bytes
+                    .chunks_exact(8)
+                    .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")))
+                    .collect();
+                let (mean, variance_of_mean) = values.split_at(pixels);
+                eprintln!("reference: read {}", path.display());
+                return Ok(Reference {
+                    image_mean: mean.iter().sum::<f64>() / pixels as f64,
+                    mean: mean.to_vec(),
+                    variance_of_mean: variance_of_mean.to_vec(),
+                });
+            }
+            eprintln!("reference: {} has the wrong size; making it again", path.display());
+        }
+        eprintln!("reference: {replicates} × {spp} spp path traced");
+        let reference = Self::new(partitioned, base, spp, replicates)?;
+        let bytes: Vec<u8> = reference
+            .mean
+            .iter()
+            .chain(&reference.variance_of_mean)
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(reference)
+    }
+
     fn new(partitioned: &Partitioned, base: RenderSettings, spp: u32, replicates: u64) -> Result<Self, String> {
         let mut images = Vec::new();
         for r in 0..replicates.max(2) {
@@ -220,12 +259,16 @@ fn study(args: &Args) -> Result<String, String> {
         ..RenderSettings::default()
     };
     base.validate().map_err(|e| e.to_string())?;
-    eprintln!("reference: {} × {} spp path traced", args.reference_replicates, args.reference_spp);
-    let reference = Reference::new(&partitioned, base, args.reference_spp, args.reference_replicates)?;
+    std::fs::create_dir_all(&args.out_dir).map_err(|e| format!("{}: {e}", args.out_dir.display()))?;
+    let kept = args.out_dir.join(format!(
+        "reference-{}-{width}x{height}-{}x{}.bin",
+        args.scene, args.reference_spp, args.reference_replicates
+    ));
+    let reference = Reference::kept(&kept, &partitioned, base, args.reference_spp, args.reference_replicates)?;
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "## {} ({width}×{height}, {} photons per pass, crease maps, cube estimator)\n\nReference: path tracer, {} replicates × {} spp; its own relative RMS noise per pixel {:.4} (removed from every error below). Errors: relative RMSE per pixel, mean ± standard error over {} seeds; z = (camera − uniform) / combined se.\n",
+        "## {} ({width}×{height}, {} photons per pass, crease maps, cube estimator)\n\nReference: path tracer, {} replicates × {} spp; its own relative RMS noise per pixel {:.4} (removed from every error below). Errors: relative RMSE per pixel, mean ± standard error over {} seeds (a budget's error is that of the last pass ended within it, wall time from the renderer's start, the guide's learning and the pilot included); z = (camera − uniform) / combined se.\n",
         args.scene,
         args.photons,
         args.reference_replicates,

@@ -46,6 +46,13 @@ METHODS = {
     "progressive-crease": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
     "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
+    # Camera-driven emission (issue 36): the same runs with --emission camera.
+    "sppm-camera": (["--mode", "sppm", "--emission", "camera"], "timed"),
+    "progressive-camera": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--emission", "camera"], "timed"),
+    "progressive-gap1e-4-camera": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--emission", "camera"], "timed"),
     "progressive-gather": (
         ["--mode", "progressive", "--gather-rays", "4", "--spp", "4"], "timed"),
     "final-gather": (["--mode", "final-gather"], "ladder"),

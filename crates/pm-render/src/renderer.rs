@@ -7,7 +7,7 @@ use crate::cache::RadianceCache;
 use crate::core::RadianceSource;
 use crate::core::tiles::SampleStreams;
 use crate::core::tiles::render_tiles;
-use crate::emission::Emitter;
+use crate::emission::emitter::Emitter;
 use crate::error::RenderError;
 use crate::estimator::Estimator;
 use crate::image::Image;

@@ -1,7 +1,7 @@
 //! Render settings: image size, samples, photons, seed, threads and estimator parameters, with
 //! the report's defaults (Ball & Stejko).
 
-use crate::emission::PhotonEmission;
+use crate::emission::choice::PhotonEmission;
 use crate::error::RenderError;
 use crate::estimator::options::EstimatorOptions;
 use crate::mode::Mode;

@@ -12,7 +12,7 @@ pub struct RenderStats {
     pub photons_traced: u64,
     /// What camera-driven emission learnt and what learning cost (`None` for uniform
     /// emission or a mode that traces no photons).
-    pub emission: Option<crate::emission::EmissionReport>,
+    pub emission: Option<crate::emission::choice::EmissionReport>,
     /// Photons stored over all maps.
     pub photons_stored: u64,
     /// Photon power channels stored as zero because they were more than 2⁴⁰ (about 10¹²)

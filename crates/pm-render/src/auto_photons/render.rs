@@ -34,7 +34,7 @@ impl<E: FixedVolumeEstimator> Renderer<E> {
         }
         // Its batches are ranges of one uniform run, so that the count reached gives the
         // bits of a fixed count; a guided run's paths depend on its count.
-        if settings.emission != crate::emission::PhotonEmission::Uniform {
+        if settings.emission != crate::emission::choice::PhotonEmission::Uniform {
             return Err(RenderError::BadEmission(
                 "an automatic photon count traces uniform batches: choose one or the other".to_owned(),
             ));

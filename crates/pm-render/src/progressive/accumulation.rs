@@ -59,7 +59,7 @@ pub struct ProgressiveStats {
     pub photons_traced: u64,
     /// What camera-driven emission learnt (once, before the passes; its time is part of
     /// [`Self::pilot`]); `None` for uniform emission.
-    pub emission: Option<crate::emission::EmissionReport>,
+    pub emission: Option<crate::emission::choice::EmissionReport>,
     /// Photons stored over all passes.
     pub photons_stored: u64,
     /// The share of the emitted power whose first hit lay within 1 mm of its light, averaged

@@ -62,7 +62,7 @@ use crate::cache::RadianceCache;
 use crate::core::tiles::SampleStreams;
 use crate::core::tiles::Tile;
 use crate::core::tiles::render_tiles;
-use crate::emission::Emitter;
+use crate::emission::emitter::Emitter;
 use crate::error::RenderError;
 use crate::estimator::fixed::FixedVolumeEstimator;
 use crate::estimator::options::EstimatorOptions;
@@ -176,7 +176,10 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         stats.emission = emitter.report().copied();
         progress.phase("pilot");
         let pilot = Pilot::new(
-            trace_and_build(scene, assignment, r, &emitter, PILOT_PASS)?.0,
+            // Uniform whatever the passes' emission: the pilot sets each point's volume from
+            // the density uniform emission gives, so that camera-driven passes put more
+            // photons in the same volumes (less noise) rather than shrinking them.
+            trace_and_build(scene, assignment, r, &Emitter::uniform(), PILOT_PASS)?.0,
             &self.estimator,
             &options,
         )?;

@@ -3,7 +3,7 @@
 //! kinds the pass never gathers (direct ones, when shadow rays carry direct light) are not put
 //! in the trees, as pbrt-v4's SPPM deposits none at a path's first hit.
 
-use crate::emission::Emitter;
+use crate::emission::emitter::Emitter;
 use crate::error::RenderError;
 use crate::progress::Progress;
 use crate::progressive::accumulation::ProgressiveStats;

@@ -122,7 +122,7 @@ mod tests {
     use super::*;
     use crate::estimator::GeometryCube;
     use crate::mode::Mode;
-    use crate::emission::Emitter;
+    use crate::emission::emitter::Emitter;
     use crate::progressive::{PILOT_PASS, trace_and_build};
     use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, Partitioner, scenes};

@@ -21,7 +21,7 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
-use crate::emission::Emitter;
+use crate::emission::emitter::Emitter;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::error::RenderError;

@@ -21,28 +21,43 @@
 //! **Deterministic.** The pilot draws streams of its own, `(seed', u64::MAX, i)` with `seed'`
 //! a hash of the run's seed, counts in integers, and is the same for any thread count.
 
-use super::light_picker::LightPicker;
-use super::options::{MAX_PHOTON_PATHS, TraceOptions};
-use super::path::pilot_path;
+use super::options::MAX_PHOTON_PATHS;
 use crate::error::TraceError;
-use crate::partition::assignment::MapAssignment;
 use crate::ray::Ray;
-use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::Aabb;
-use rayon::prelude::*;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Direction cells per cube face side (4 × 4 × 6 = 96 cells over the sphere).
 const DIRECTION_SIDE: u32 = 4;
 /// Position cells per axis of the scene's bounds (4³ = 64 cells).
 const POSITION_SIDE: u32 = 4;
-/// Pilot paths per parallel work item.
-const PILOT_CHUNK: u32 = 1024;
 /// Weight (in pilot paths) of the scene-wide seen fraction in a bin's smoothed one.
 const PRIOR_PATHS: f64 = 1.0;
-/// Salt of the pilot's seed, so that its streams are not any pass of the run.
-const PILOT_SALT: u64 = 0x6775_6964_655f_7069; // "guide_pi"
+
+/// Hashes a bin key (made here, never by a caller: no flooding to fear) with Murmur3's
+/// finaliser, a few cycles against SipHash's tens per photon emitted.
+#[derive(Default)]
+pub(super) struct BinHasher(u64);
+
+impl Hasher for BinHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = crate::rng::fmix64(self.0 ^ u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, key: u64) {
+        self.0 = crate::rng::fmix64(self.0 ^ key);
+    }
+}
+
+pub(super) type BinMap<V> = HashMap<u64, V, BuildHasherDefault<BinHasher>>;
 
 /// How to learn an [`EmissionGuide`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -80,11 +95,11 @@ impl GuideOptions {
     }
 }
 
-/// Keep probabilities per emission bin, learnt by [`EmissionGuide::learn`]; used by
+/// Keep probabilities per emission bin, learnt by [`EmissionGuide::learn`] (in `pilot.rs`); used by
 /// [`trace_guided_photon_paths`](super::trace_guided_photon_paths).
 #[derive(Clone, Debug, PartialEq)]
 pub struct EmissionGuide {
-    keep: HashMap<u64, f32>,
+    keep: BinMap<f32>,
     bounds: Aabb,
     keep_rate: f64,
     seen_fraction: f64,
@@ -92,67 +107,13 @@ pub struct EmissionGuide {
 }
 
 impl EmissionGuide {
-    /// Learns the guide from `guide.pilot_photons` pilot paths of the run `options` describes
-    /// (its seed and bounce limit; not its photon count or pass): a path is seen when
-    /// `seen(map, position)` holds for one of the photons it stores. When no pilot path is
-    /// seen, every bin keeps every photon (the guide changes nothing).
-    ///
-    /// Errors: those of [`trace_photons`](super::trace_photons), and bad `guide` options
-    /// ([`TraceError::InvalidGuide`]).
-    pub fn learn(
-        scene: &Scene,
-        assignment: &MapAssignment,
-        options: &TraceOptions,
-        guide: &GuideOptions,
-        seen: &(dyn Fn(u32, Vec3) -> bool + Sync),
-    ) -> Result<Self, TraceError> {
-        guide.validate().map_err(TraceError::InvalidGuide)?;
-        let pilot = TraceOptions {
-            photons: guide.pilot_photons,
-            seed: crate::rng::fmix64(options.seed ^ PILOT_SALT),
-            pass: u64::MAX,
-            max_bounces: options.max_bounces,
-        };
-        super::trace::check_request(scene, assignment, &pilot)?;
-        let picker = LightPicker::new(scene, pilot.photons)?;
-        let bounds = scene.bounds();
-        let chunks = pilot.photons.div_ceil(PILOT_CHUNK);
-        let counts = (0..chunks)
-            .into_par_iter()
-            .map(|chunk| {
-                let begin = chunk * PILOT_CHUNK;
-                let end = (begin + PILOT_CHUNK).min(pilot.photons);
-                let mut counts: HashMap<u64, [u32; 2]> = HashMap::new();
-                let mut stored = Vec::new();
-                for path in begin..end {
-                    stored.clear();
-                    let (light, ray) = pilot_path(scene, assignment, &pilot, &picker, path, &mut stored);
-                    let key = bin(light, &ray, &bounds);
-                    let is_seen = stored.iter().any(|(map, p)| seen(*map, p.position));
-                    let c = counts.entry(key).or_default();
-                    c[0] += 1;
-                    c[1] += u32::from(is_seen);
-                }
-                counts
-            })
-            .reduce(HashMap::new, |mut a, b| {
-                for (k, [n, s]) in b {
-                    let c = a.entry(k).or_default();
-                    c[0] += n;
-                    c[1] += s;
-                }
-                a
-            });
-        Ok(Self::from_counts(counts, bounds, pilot.photons, guide.floor))
-    }
-
     /// The guide of pilot counts `[paths, seen paths]` per bin.
-    fn from_counts(counts: HashMap<u64, [u32; 2]>, bounds: Aabb, paths: u32, floor: f32) -> Self {
+    pub(super) fn from_counts(counts: BinMap<[u32; 2]>, bounds: Aabb, paths: u32, floor: f32) -> Self {
         let seen: u64 = counts.values().map(|c| u64::from(c[1])).sum();
         let seen_fraction = seen as f64 / f64::from(paths);
         if seen == 0 {
             return EmissionGuide {
-                keep: HashMap::new(),
+                keep: BinMap::default(),
                 bounds,
                 keep_rate: 1.0,
                 seen_fraction,
@@ -162,7 +123,7 @@ impl EmissionGuide {
         let smoothed =
             |[n, s]: [u32; 2]| (f64::from(s) + PRIOR_PATHS * seen_fraction) / (f64::from(n) + PRIOR_PATHS);
         let best = counts.values().map(|&c| smoothed(c)).fold(0.0, f64::max);
-        let keep: HashMap<u64, f32> = counts
+        let keep: BinMap<f32> = counts
             .iter()
             .map(|(&k, &c)| (k, ((smoothed(c) / best) as f32).clamp(floor, 1.0)))
             .collect();
@@ -231,7 +192,7 @@ impl EmissionGuide {
 /// The emission bin of a photon of light `light` leaving along `ray`: light, cube-map cell of
 /// the direction, cell of the origin in the scene's bounds.
 #[inline]
-fn bin(light: usize, ray: &Ray, bounds: &Aabb) -> u64 {
+pub(super) fn bin(light: usize, ray: &Ray, bounds: &Aabb) -> u64 {
     let d = ray.direction;
     let a = d.abs();
     let (face, u, v, m) = if a.x >= a.y && a.x >= a.z {
@@ -294,7 +255,7 @@ mod tests {
     #[test]
     fn keep_probabilities_follow_the_smoothed_seen_fraction() {
         let bounds = Aabb::cube(Vec3::ZERO, 1.0);
-        let counts = HashMap::from([(1u64, [100u32, 100u32]), (2, [100, 0]), (3, [200, 50])]);
+        let counts = BinMap::from_iter([(1u64, [100u32, 100u32]), (2, [100, 0]), (3, [200, 50])]);
         let g = EmissionGuide::from_counts(counts, bounds, 400, 0.125);
         assert_eq!(g.keep[&1], 1.0);
         assert_eq!(g.keep[&2], 0.125);
@@ -304,7 +265,7 @@ mod tests {
         let rate = (100.0 + 100.0 * 0.125 + 200.0 * f64::from(g.keep[&3])) / 400.0;
         assert!((g.keep_rate() - rate).abs() < 1e-9);
         assert_eq!(g.photons_to_emit(1000).unwrap(), (1000.0 / rate).ceil() as u32);
-        let none = EmissionGuide::from_counts(HashMap::from([(1u64, [10u32, 0u32])]), bounds, 10, 0.125);
+        let none = EmissionGuide::from_counts(BinMap::from_iter([(1u64, [10u32, 0u32])]), bounds, 10, 0.125);
         assert_eq!(none.keep(0, &ray(Vec3::ZERO, Vec3::Y)), 1.0);
         assert_eq!(none.keep_rate(), 1.0);
     }

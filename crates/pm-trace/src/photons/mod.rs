@@ -7,6 +7,7 @@ mod maps;
 mod occupancy;
 mod options;
 mod path;
+mod pilot;
 mod trace;
 mod traced;
 

@@ -1,0 +1,141 @@
+//! Camera-driven photon emission through the renderers: a progressive render's image mean
+//! with camera-driven passes agrees with uniform passes' (same volumes, independent seeds,
+//! standard errors) on rooms the camera sees one of; one-shot and SPPM images are the same
+//! bits on one and three threads; the option is refused where no photons are traced, with an
+//! automatic photon count, and out of range; and a cache made with it is refused by name by a
+//! run without it.
+
+use photon_maps::render::cache_file::CacheIdentity;
+use photon_maps::render::emission::PhotonEmission;
+use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings};
+use photon_maps::render::{AutoPhotons, GeometryCube, Mode, RenderError, RenderSettings, Renderer};
+use photon_maps::trace::{CreaseAngle, GuideOptions, Partitioned, Partitioner, scenes};
+
+fn rooms(n: u32) -> Partitioned {
+    CreaseAngle::default().partition(scenes::build(&format!("doorway-rooms-{n}")).unwrap()).unwrap()
+}
+
+fn camera() -> PhotonEmission {
+    PhotonEmission::CameraDriven(GuideOptions {
+        pilot_photons: 8_192,
+        floor: 0.125,
+    })
+}
+
+fn base() -> RenderSettings {
+    RenderSettings {
+        width: 24,
+        height: 18,
+        photons: 8_000,
+        mode: Mode::ShadowRays,
+        ..RenderSettings::default()
+    }
+}
+
+/// Mean over channels and pixels of a progressive render of `passes` passes.
+fn progressive_mean(partitioned: &Partitioned, settings: RenderSettings, passes: u64) -> f64 {
+    let rendered = ProgressiveRenderer::new(GeometryCube, ProgressiveSettings::new(settings, passes))
+        .render(partitioned, &())
+        .unwrap();
+    if let PhotonEmission::CameraDriven(_) = settings.emission {
+        let stats = &rendered.stats;
+        let report = stats.emission.expect("a camera-driven run reports its guide");
+        assert!(report.keep_rate < 0.6, "{report:?}");
+        assert!(stats.photons_traced < stats.photons_emitted, "{stats:?}");
+    }
+    f64::from(rendered.accumulation.mean().mean().element_sum()) / 3.0
+}
+
+fn mean_and_error(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+#[test]
+fn camera_driven_passes_estimate_what_uniform_passes_estimate() {
+    let partitioned = rooms(4);
+    let mut uniform = Vec::new();
+    let mut guided = Vec::new();
+    for seed in 0..5 {
+        uniform.push(progressive_mean(&partitioned, RenderSettings { seed, ..base() }, 6));
+        let settings = RenderSettings {
+            seed: 100 + seed,
+            emission: camera(),
+            ..base()
+        };
+        guided.push(progressive_mean(&partitioned, settings, 6));
+    }
+    let ((u, us), (g, gs)) = (mean_and_error(&uniform), mean_and_error(&guided));
+    let z = (g - u) / (us * us + gs * gs).sqrt();
+    assert!(z.abs() < 4.0, "uniform {u} ± {us}, camera-driven {g} ± {gs}: {z:.2} se");
+    assert!((g / u - 1.0).abs() < 0.02, "uniform {u}, camera-driven {g}");
+}
+
+#[test]
+fn camera_driven_images_are_the_same_bits_on_one_and_three_threads() {
+    let partitioned = rooms(3);
+    for mode in [Mode::PhotonMap, Mode::FinalGather] {
+        let image = |threads: usize| {
+            let settings = RenderSettings {
+                threads,
+                mode,
+                emission: camera(),
+                ..base()
+            };
+            Renderer::new(GeometryCube, settings).render(&partitioned, &()).unwrap().image
+        };
+        assert_eq!(image(1).pixels(), image(3).pixels(), "{mode}");
+    }
+    let sppm = |threads: usize| {
+        let render = RenderSettings {
+            threads,
+            emission: camera(),
+            ..base()
+        };
+        SppmRenderer::new(SppmSettings::new(render, 3))
+            .render(partitioned.scene(), &())
+            .unwrap()
+            .image
+    };
+    assert_eq!(sppm(1).pixels(), sppm(3).pixels());
+}
+
+#[test]
+fn camera_driven_emission_is_refused_where_it_cannot_apply() {
+    let path_trace = RenderSettings {
+        mode: Mode::PathTrace,
+        emission: camera(),
+        ..base()
+    };
+    assert!(matches!(path_trace.validate(), Err(RenderError::BadEmission(m)) if m.contains("path-trace")));
+    for (floor, pilot_photons) in [(0.0, 100), (1.5, 100), (f32::NAN, 100), (0.5, 0)] {
+        let settings = RenderSettings {
+            emission: PhotonEmission::CameraDriven(GuideOptions { pilot_photons, floor }),
+            ..base()
+        };
+        assert!(matches!(settings.validate(), Err(RenderError::BadEmission(_))), "{floor} {pilot_photons}");
+    }
+    let renderer = Renderer::new(GeometryCube, RenderSettings { emission: camera(), ..base() });
+    let auto = AutoPhotons::new(4_000, 0.5);
+    let err = renderer
+        .build_photon_cache_auto(&rooms(2), &auto, &(), &mut Default::default())
+        .unwrap_err();
+    assert!(matches!(err, RenderError::BadEmission(_)), "{err}");
+}
+
+#[test]
+fn a_camera_driven_cache_is_named_apart_from_a_uniform_one() {
+    let partitioned = rooms(2);
+    let uniform = CacheIdentity::of_run(&Renderer::new(GeometryCube, base()), &partitioned);
+    let guided = CacheIdentity::of_run(
+        &Renderer::new(GeometryCube, RenderSettings { emission: camera(), ..base() }),
+        &partitioned,
+    );
+    assert_eq!(guided.get("emission"), Some("camera/pilot=8192/floor=0.125"));
+    let err = uniform.check_file(&guided).unwrap_err().to_string();
+    assert!(err.contains("emission"), "{err}");
+    let err = guided.check_file(&uniform).unwrap_err().to_string();
+    assert!(err.contains("emission"), "{err}");
+}
