@@ -16,7 +16,9 @@
 
 use clap::Parser;
 use photon_maps::render::emission::PhotonEmission;
-use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings};
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
+};
 use photon_maps::render::{FinalGatherOptions, GeometryCube, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, GuideOptions, Partitioned, Partitioner, scenes};
 use std::fmt::Write as _;
@@ -55,7 +57,6 @@ struct Args {
     out_dir: PathBuf,
 }
 
-
 /// The path-traced reference: per-pixel mean of the replicates and the variance of that mean.
 struct Reference {
     mean: Vec<f64>,
@@ -87,7 +88,10 @@ impl Reference {
                     variance_of_mean: variance_of_mean.to_vec(),
                 });
             }
-            eprintln!("reference: {} has the wrong size; making it again", path.display());
+            eprintln!(
+                "reference: {} has the wrong size; making it again",
+                path.display()
+            );
         }
         eprintln!("reference: {replicates} × {spp} spp path traced");
         let reference = Self::new(partitioned, base, spp, replicates)?;
@@ -101,7 +105,12 @@ impl Reference {
         Ok(reference)
     }
 
-    fn new(partitioned: &Partitioned, base: RenderSettings, spp: u32, replicates: u64) -> Result<Self, String> {
+    fn new(
+        partitioned: &Partitioned,
+        base: RenderSettings,
+        spp: u32,
+        replicates: u64,
+    ) -> Result<Self, String> {
         let mut images = Vec::new();
         for r in 0..replicates.max(2) {
             let settings = RenderSettings {
@@ -118,7 +127,9 @@ impl Reference {
         }
         let n = images.len() as f64;
         let pixels = images[0].len();
-        let mean: Vec<f64> = (0..pixels).map(|i| images.iter().map(|im| im[i]).sum::<f64>() / n).collect();
+        let mean: Vec<f64> = (0..pixels)
+            .map(|i| images.iter().map(|im| im[i]).sum::<f64>() / n)
+            .collect();
         let variance_of_mean = (0..pixels)
             .map(|i| images.iter().map(|im| (im[i] - mean[i]).powi(2)).sum::<f64>() / (n - 1.0) / n)
             .collect();
@@ -134,7 +145,12 @@ impl Reference {
     fn error(&self, image: &Image) -> f64 {
         let g = grey(image);
         let n = g.len() as f64;
-        let squared = g.iter().zip(&self.mean).map(|(o, r)| (o - r).powi(2)).sum::<f64>() / n;
+        let squared = g
+            .iter()
+            .zip(&self.mean)
+            .map(|(o, r)| (o - r).powi(2))
+            .sum::<f64>()
+            / n;
         let noise = self.variance_of_mean.iter().sum::<f64>() / n;
         (squared - noise).max(0.0).sqrt() / self.image_mean
     }
@@ -146,7 +162,11 @@ impl Reference {
 }
 
 fn grey(image: &Image) -> Vec<f64> {
-    image.pixels().iter().map(|p| f64::from(p.element_sum()) / 3.0).collect()
+    image
+        .pixels()
+        .iter()
+        .map(|p| f64::from(p.element_sum()) / 3.0)
+        .collect()
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -251,7 +271,9 @@ fn study(args: &Args) -> Result<String, String> {
         return Err("give positive budgets and at least 2 seeds".into());
     }
     let scene = scenes::build(&args.scene).map_err(|e| e.to_string())?;
-    let partitioned = CreaseAngle::default().partition(scene).map_err(|e| e.to_string())?;
+    let partitioned = CreaseAngle::default()
+        .partition(scene)
+        .map_err(|e| e.to_string())?;
     let base = RenderSettings {
         width,
         height,
@@ -264,7 +286,13 @@ fn study(args: &Args) -> Result<String, String> {
         "reference-{}-{width}x{height}-{}x{}.bin",
         args.scene, args.reference_spp, args.reference_replicates
     ));
-    let reference = Reference::kept(&kept, &partitioned, base, args.reference_spp, args.reference_replicates)?;
+    let reference = Reference::kept(
+        &kept,
+        &partitioned,
+        base,
+        args.reference_spp,
+        args.reference_replicates,
+    )?;
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -276,16 +304,32 @@ fn study(args: &Args) -> Result<String, String> {
         reference.noise(),
         args.seeds
     );
-    let _ = writeln!(md, "| method | budget (s) | uniform | camera-driven | camera / uniform | z |\n|---|---|---|---|---|---|");
+    let _ = writeln!(
+        md,
+        "| method | budget (s) | uniform | camera-driven | camera / uniform | z |\n|---|---|---|---|---|---|"
+    );
     for method in [Method::Progressive, Method::ProgressiveGather, Method::Sppm] {
         let mut traces = [Vec::new(), Vec::new()];
-        for (e, emission) in [PhotonEmission::Uniform, PhotonEmission::CameraDriven(GuideOptions::default())]
-            .into_iter()
-            .enumerate()
+        for (e, emission) in [
+            PhotonEmission::Uniform,
+            PhotonEmission::CameraDriven(GuideOptions::default()),
+        ]
+        .into_iter()
+        .enumerate()
         {
             for seed in 0..args.seeds {
-                let settings = RenderSettings { seed, emission, ..base };
-                let trace = run(method, &partitioned, &reference, settings, Duration::from_secs_f64(largest))?;
+                let settings = RenderSettings {
+                    seed,
+                    emission,
+                    ..base
+                };
+                let trace = run(
+                    method,
+                    &partitioned,
+                    &reference,
+                    settings,
+                    Duration::from_secs_f64(largest),
+                )?;
                 eprintln!(
                     "{} {} seed {seed}: {} passes, error {:.4} at {:.2} s",
                     method.name(),
@@ -302,7 +346,11 @@ fn study(args: &Args) -> Result<String, String> {
                 runs.iter().map(|t| at_budget(t, budget)).collect()
             };
             let (Some(u), Some(c)) = (read(&traces[0]), read(&traces[1])) else {
-                let _ = writeln!(md, "| {} | {budget} | no pass ended in time | | | |", method.name());
+                let _ = writeln!(
+                    md,
+                    "| {} | {budget} | no pass ended in time | | | |",
+                    method.name()
+                );
                 continue;
             };
             let ((um, us), (cm, cs)) = (mean_and_error(&u), mean_and_error(&c));

@@ -56,7 +56,8 @@ struct Args {
     /// touching-rooms, glossy-cornell-box; the rooms built from solid boxes: solid-rooms-stand, solid-rooms-pierce,
     /// solid-rooms-gap, solid-rooms-sunk-box, solid-rooms-double-floor, solid-rooms-tee), a scale
     /// scene (split-rooms-N: lit-unlit-rooms with every face split
-    /// N×N; cube-field-N: N cubes) or a .gltf/.glb file.
+    /// N×N; cube-field-N: N cubes; doorway-rooms-N: N lit rooms joined by doorways, seen from
+    /// the first) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     scene: String,
     /// Photon-map partition [default: contact; the path tracer, which reads no photon map,

@@ -1,18 +1,23 @@
 //! Camera-driven photon emission through the renderers: a progressive render's image mean
 //! with camera-driven passes agrees with uniform passes' (same volumes, independent seeds,
 //! standard errors) on rooms the camera sees one of; one-shot and SPPM images are the same
-//! bits on one and three threads; the option is refused where no photons are traced, with an
+//! bits on one and three threads; progressive shards (each learning the guide again) merge
+//! into the bits of the single run; the option is refused where no photons are traced, with an
 //! automatic photon count, and out of range; and a cache made with it is refused by name by a
 //! run without it.
 
 use photon_maps::render::cache_file::CacheIdentity;
 use photon_maps::render::emission::PhotonEmission;
-use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings};
+use photon_maps::render::progressive::{
+    ProgressiveRenderer, ProgressiveSettings, Shard, SppmRenderer, SppmSettings,
+};
 use photon_maps::render::{AutoPhotons, GeometryCube, Mode, RenderError, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, GuideOptions, Partitioned, Partitioner, scenes};
 
 fn rooms(n: u32) -> Partitioned {
-    CreaseAngle::default().partition(scenes::build(&format!("doorway-rooms-{n}")).unwrap()).unwrap()
+    CreaseAngle::default()
+        .partition(scenes::build(&format!("doorway-rooms-{n}")).unwrap())
+        .unwrap()
 }
 
 fn camera() -> PhotonEmission {
@@ -59,7 +64,11 @@ fn camera_driven_passes_estimate_what_uniform_passes_estimate() {
     let mut uniform = Vec::new();
     let mut guided = Vec::new();
     for seed in 0..5 {
-        uniform.push(progressive_mean(&partitioned, RenderSettings { seed, ..base() }, 6));
+        uniform.push(progressive_mean(
+            &partitioned,
+            RenderSettings { seed, ..base() },
+            6,
+        ));
         let settings = RenderSettings {
             seed: 100 + seed,
             emission: camera(),
@@ -69,7 +78,10 @@ fn camera_driven_passes_estimate_what_uniform_passes_estimate() {
     }
     let ((u, us), (g, gs)) = (mean_and_error(&uniform), mean_and_error(&guided));
     let z = (g - u) / (us * us + gs * gs).sqrt();
-    assert!(z.abs() < 4.0, "uniform {u} ± {us}, camera-driven {g} ± {gs}: {z:.2} se");
+    assert!(
+        z.abs() < 4.0,
+        "uniform {u} ± {us}, camera-driven {g} ± {gs}: {z:.2} se"
+    );
     assert!((g / u - 1.0).abs() < 0.02, "uniform {u}, camera-driven {g}");
 }
 
@@ -84,7 +96,10 @@ fn camera_driven_images_are_the_same_bits_on_one_and_three_threads() {
                 emission: camera(),
                 ..base()
             };
-            Renderer::new(GeometryCube, settings).render(&partitioned, &()).unwrap().image
+            Renderer::new(GeometryCube, settings)
+                .render(&partitioned, &())
+                .unwrap()
+                .image
         };
         assert_eq!(image(1).pixels(), image(3).pixels(), "{mode}");
     }
@@ -115,9 +130,18 @@ fn camera_driven_emission_is_refused_where_it_cannot_apply() {
             emission: PhotonEmission::CameraDriven(GuideOptions { pilot_photons, floor }),
             ..base()
         };
-        assert!(matches!(settings.validate(), Err(RenderError::BadEmission(_))), "{floor} {pilot_photons}");
+        assert!(
+            matches!(settings.validate(), Err(RenderError::BadEmission(_))),
+            "{floor} {pilot_photons}"
+        );
     }
-    let renderer = Renderer::new(GeometryCube, RenderSettings { emission: camera(), ..base() });
+    let renderer = Renderer::new(
+        GeometryCube,
+        RenderSettings {
+            emission: camera(),
+            ..base()
+        },
+    );
     let auto = AutoPhotons::new(4_000, 0.5);
     let err = renderer
         .build_photon_cache_auto(&rooms(2), &auto, &(), &mut Default::default())
@@ -130,7 +154,13 @@ fn a_camera_driven_cache_is_named_apart_from_a_uniform_one() {
     let partitioned = rooms(2);
     let uniform = CacheIdentity::of_run(&Renderer::new(GeometryCube, base()), &partitioned);
     let guided = CacheIdentity::of_run(
-        &Renderer::new(GeometryCube, RenderSettings { emission: camera(), ..base() }),
+        &Renderer::new(
+            GeometryCube,
+            RenderSettings {
+                emission: camera(),
+                ..base()
+            },
+        ),
         &partitioned,
     );
     assert_eq!(guided.get("emission"), Some("camera/pilot=8192/floor=0.125"));
@@ -138,4 +168,39 @@ fn a_camera_driven_cache_is_named_apart_from_a_uniform_one() {
     assert!(err.contains("emission"), "{err}");
     let err = guided.check_file(&uniform).unwrap_err().to_string();
     assert!(err.contains("emission"), "{err}");
+}
+
+#[test]
+fn camera_driven_shards_merge_into_the_single_run() {
+    let partitioned = rooms(3);
+    let run = |first_pass: u64, passes: u64| {
+        let settings = ProgressiveSettings {
+            first_pass,
+            ..ProgressiveSettings::new(
+                RenderSettings {
+                    emission: camera(),
+                    ..base()
+                },
+                passes,
+            )
+        };
+        let renderer = ProgressiveRenderer::new(GeometryCube, settings);
+        let out = renderer.render(&partitioned, &()).unwrap();
+        assert!(
+            out.identity.contains("emission=camera/pilot=8192/floor=0.125"),
+            "{}",
+            out.identity
+        );
+        Shard::from_accumulation(&out.accumulation, "doorway-rooms-3", &out.identity).unwrap()
+    };
+    let single = run(0, 4);
+    let merged = Shard::merge(&[run(2, 2), run(0, 2)]).unwrap();
+    let bits = |s: &Shard| {
+        s.mean()
+            .pixels()
+            .iter()
+            .map(|p| p.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&merged), bits(&single));
 }

@@ -57,7 +57,14 @@ fn camera_driven_emission_is_reported() {
 
 #[test]
 fn camera_driven_emission_is_refused_where_it_does_not_apply() {
-    let base = ["--scene", "doorway-rooms-2", "--size", "8x8", "--out", "/nonexistent/never.exr"];
+    let base = [
+        "--scene",
+        "doorway-rooms-2",
+        "--size",
+        "8x8",
+        "--out",
+        "/nonexistent/never.exr",
+    ];
     let mut args = base.to_vec();
     args.extend(["--mode", "path-trace", "--emission", "camera"]);
     let Some(output) = run(&args) else { return };
@@ -71,7 +78,14 @@ fn camera_driven_emission_is_refused_where_it_does_not_apply() {
     let Some(output) = run(&args) else { return };
     assert_refused(&args, &output, "guide floor 0 is outside (0, 1]");
     let mut args = base.to_vec();
-    args.extend(["--emission", "camera", "--auto-photons", "0.5", "--mode", "final-gather"]);
+    args.extend([
+        "--emission",
+        "camera",
+        "--auto-photons",
+        "0.5",
+        "--mode",
+        "final-gather",
+    ]);
     let Some(output) = run(&args) else { return };
     assert_refused(&args, &output, "automatic photon count");
 }

@@ -15,6 +15,12 @@
 //! scenes, the same rooms built from solid boxes, and scale scenes for measuring how cost grows,
 //! are in [`scenes`].
 //!
+//! Where the camera sees a small part of what the lights light, an [`EmissionGuide`] learnt
+//! by [`EmissionGuide::learn`] from a pilot of photon paths (and a caller's test of what the
+//! camera sees) drops most photons that would light nothing seen at their light, and raises
+//! the power of those it keeps: [`trace_guided_photon_paths`] is unbiased (Hachisuka &
+//! Jensen's photon-path visibility, applied at the light).
+//!
 //! How a surface scatters light is a [`Bsdf`] ([`bsdf`]): the built-in Lambertian, mirror
 //! and glass of [`Material`] implement it, and a renderer author brings their own through
 //! [`Material::Custom`] ([`Surface::with_bsdf`]); the photon tracer and the renderer's delta

@@ -28,7 +28,9 @@ impl PhotonEmission {
     pub fn identity(&self) -> Option<String> {
         match self {
             PhotonEmission::Uniform => None,
-            PhotonEmission::CameraDriven(g) => Some(format!("camera/pilot={}/floor={}", g.pilot_photons, g.floor)),
+            PhotonEmission::CameraDriven(g) => {
+                Some(format!("camera/pilot={}/floor={}", g.pilot_photons, g.floor))
+            }
         }
     }
 }
@@ -49,4 +51,3 @@ pub struct EmissionReport {
     /// Emission bins the pilot reached.
     pub bins: usize,
 }
-

@@ -7,7 +7,8 @@ use crate::error::RenderError;
 use crate::mode::Mode;
 use crate::settings::RenderSettings;
 use pm_trace::{
-    Camera, EmissionGuide, MapAssignment, Scene, TraceOptions, TracedPhotons, trace_guided_photon_paths, trace_photons,
+    Camera, EmissionGuide, MapAssignment, Scene, TraceOptions, TracedPhotons, trace_guided_photon_paths,
+    trace_photons,
 };
 use std::time::Instant;
 

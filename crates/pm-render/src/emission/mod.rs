@@ -25,4 +25,3 @@ pub mod seen;
 pub use choice::{EmissionReport, PhotonEmission};
 pub use emitter::Emitter;
 pub use seen::{ReadAt, SeenSurfaces};
-

@@ -67,7 +67,14 @@ impl SeenSurfaces {
                     let u = (i as f32 + 0.5) / gw as f32;
                     let v = (j as f32 + 0.5) / gh as f32;
                     let ray = camera.ray(u, v, aspect);
-                    let Some(vertex) = follow_delta_bounces_from(scene, None, ray, RayKind::Camera, &mut rng, |_, _, _, _| {}) else {
+                    let Some(vertex) = follow_delta_bounces_from(
+                        scene,
+                        None,
+                        ray,
+                        RayKind::Camera,
+                        &mut rng,
+                        |_, _, _, _| {},
+                    ) else {
                         continue;
                     };
                     points.push((assignment.map_of(vertex.hit.part), vertex.hit.position));
@@ -106,7 +113,8 @@ impl SeenSurfaces {
     /// True when a point of map `map` at `position` is near a point where the maps are read.
     #[inline]
     pub fn sees(&self, map: u32, position: Vec3) -> bool {
-        self.cells.contains(&(map, cell_of(position, self.origin, self.cell)))
+        self.cells
+            .contains(&(map, cell_of(position, self.origin, self.cell)))
     }
 
     /// Points where the maps are read (camera and gather hits).
@@ -138,11 +146,17 @@ fn gather_points(
     rng: &mut Rng,
     points: &mut Vec<(u32, Vec3)>,
 ) {
-    let normal = if hit.normal.dot(ray.direction) > 0.0 { -hit.normal } else { hit.normal };
+    let normal = if hit.normal.dot(ray.direction) > 0.0 {
+        -hit.normal
+    } else {
+        hit.normal
+    };
     for _ in 0..GATHER_RAYS_PER_POINT {
         let direction = cosine_hemisphere(normal, Vec2::new(rng.next_f32(), rng.next_f32()));
         let gather = scene.spawn_ray(hit, direction);
-        if let Some(v) = follow_delta_bounces_from(scene, Some(hit), gather, RayKind::Other, rng, |_, _, _, _| {}) {
+        if let Some(v) =
+            follow_delta_bounces_from(scene, Some(hit), gather, RayKind::Other, rng, |_, _, _, _| {})
+        {
             points.push((assignment.map_of(v.hit.part), v.hit.position));
         }
     }

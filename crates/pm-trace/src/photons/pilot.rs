@@ -71,5 +71,4 @@ impl EmissionGuide {
             });
         Ok(Self::from_counts(counts, bounds, pilot.photons, guide.floor))
     }
-
 }

@@ -31,7 +31,8 @@ impl Quads {
     /// The rectangle `corner`, `corner + u`, `corner + u + v`, `corner + v`, facing `u × v`.
     fn rect(&mut self, corner: Vec3, u: Vec3, v: Vec3) {
         let i = self.corners.len() as u32;
-        self.corners.extend([corner, corner + u, corner + u + v, corner + v]);
+        self.corners
+            .extend([corner, corner + u, corner + u + v, corner + v]);
         self.faces.push([i, i + 1, i + 2, i + 3]);
     }
 
@@ -141,7 +142,11 @@ mod tests {
         let scene = doorway_rooms(3).unwrap();
         let through = Ray::new(Vec3::new(0.5, 0.3, 0.5), Vec3::X);
         let hit = scene.intersect(&through, f32::INFINITY, RayKind::Other).unwrap();
-        assert!((hit.position.x - (3.0 * ROOM + 2.0 * WALL)).abs() < 1e-4, "{}", hit.position);
+        assert!(
+            (hit.position.x - (3.0 * ROOM + 2.0 * WALL)).abs() < 1e-4,
+            "{}",
+            hit.position
+        );
         let beside = Ray::new(Vec3::new(0.5, 0.3, 0.2), Vec3::X);
         let hit = scene.intersect(&beside, f32::INFINITY, RayKind::Other).unwrap();
         assert!((hit.position.x - ROOM).abs() < 1e-4, "{}", hit.position);
