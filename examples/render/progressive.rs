@@ -134,7 +134,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     } else {
         String::new()
     };
-    let emission = super::emission::summary(stats.emission.as_ref(), stats.photons_emitted, stats.photons_traced);
+    let emission = super::emission::summary(
+        stats.emission.as_ref(),
+        stats.photons_emitted,
+        stats.photons_traced,
+    );
     say(&format!(
         "{scene_name} [{}]: passes {}..{} ({}), {} photons in all{near}{emission}{}{}: pilot {:.3} s, trace {:.3} s, precompute {:.3} s, render {:.3} s, total {:.3} s, peak heap {:.1} MiB (one pass's photon trees {:.1} MiB), mean rgb ({:.4}, {:.4}, {:.4})",
         args.mode,

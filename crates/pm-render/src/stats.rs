@@ -54,7 +54,11 @@ pub struct RenderStats {
 impl RenderStats {
     /// Sum of the phases (camera-driven emission's learning included).
     pub fn total(&self) -> Duration {
-        self.emission.map_or(Duration::ZERO, |e| e.learn) + self.trace + self.build + self.precompute + self.render
+        self.emission.map_or(Duration::ZERO, |e| e.learn)
+            + self.trace
+            + self.build
+            + self.precompute
+            + self.render
     }
 
     /// Gather rays per second of the render phase (zero when none were cast).

@@ -158,9 +158,9 @@ pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };
 pub use photons::{
-    MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy, NEAR_LIGHT_DISTANCE, PhotonMap,
-    EmissionGuide, GuideOptions, PhotonMaps, TraceOptions, TraceStats, TracedPhotons, trace_guided_photon_paths,
-    trace_photon_paths, trace_photons,
+    EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy,
+    NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons,
+    trace_guided_photon_paths, trace_photon_paths, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};
 pub use ray::Ray;

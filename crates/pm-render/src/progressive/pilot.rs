@@ -120,9 +120,9 @@ impl Pilot {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::emission::emitter::Emitter;
     use crate::estimator::GeometryCube;
     use crate::mode::Mode;
-    use crate::emission::emitter::Emitter;
     use crate::progressive::{PILOT_PASS, trace_and_build};
     use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, Partitioner, scenes};
@@ -147,7 +147,9 @@ mod tests {
         let maps = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), PILOT_PASS)
             .unwrap()
             .0;
-        let queries = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), 0).unwrap().0;
+        let queries = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), 0)
+            .unwrap()
+            .0;
         let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;

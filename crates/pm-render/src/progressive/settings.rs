@@ -116,6 +116,8 @@ impl ProgressiveSettings {
             s.seed,
             self.alpha
         ) + &gather
-            + &s.emission.identity().map_or_else(String::new, |e| format!(" emission={e}"))
+            + &s.emission
+                .identity()
+                .map_or_else(String::new, |e| format!(" emission={e}"))
     }
 }

@@ -21,9 +21,9 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
-use crate::emission::emitter::Emitter;
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
+use crate::emission::emitter::Emitter;
 use crate::error::RenderError;
 use crate::estimator::options::EstimatorOptions;
 use crate::estimator::weight::{BsdfWeight, Irradiance, PhotonWeight};
@@ -220,7 +220,17 @@ impl SppmRenderer {
         progress: &dyn Progress,
     ) -> Result<(), RenderError> {
         let r = &self.settings.render;
-        let maps = trace_pass_counted(scene, assignment, r, emitter, pass, options.kinds, pass, stats, progress)?;
+        let maps = trace_pass_counted(
+            scene,
+            assignment,
+            r,
+            emitter,
+            pass,
+            options.kinds,
+            pass,
+            stats,
+            progress,
+        )?;
         progress.phase("render");
         let t = Instant::now();
         let update = Pass {
