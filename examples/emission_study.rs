@@ -155,6 +155,18 @@ impl Reference {
         (squared - noise).max(0.0).sqrt() / self.image_mean
     }
 
+    /// The relative difference of `image`'s mean from the reference's.
+    fn mean_difference(&self, image: &Image) -> f64 {
+        let g = grey(image);
+        g.iter().sum::<f64>() / g.len() as f64 / self.image_mean - 1.0
+    }
+
+    /// The reference's own relative error of the image mean.
+    fn mean_noise(&self) -> f64 {
+        let n = self.mean.len() as f64;
+        (self.variance_of_mean.iter().sum::<f64>()).sqrt() / n / self.image_mean
+    }
+
     /// The reference's own relative RMS noise.
     fn noise(&self) -> f64 {
         (self.variance_of_mean.iter().sum::<f64>() / self.mean.len() as f64).sqrt() / self.image_mean
@@ -186,14 +198,14 @@ impl Method {
     }
 }
 
-/// (wall seconds, error, photon paths traced) after each pass of one run.
+/// (wall seconds, error, image mean's relative difference) after each pass of one run.
 fn run(
     method: Method,
     partitioned: &Partitioned,
     reference: &Reference,
     base: RenderSettings,
     budget: Duration,
-) -> Result<Vec<(f64, f64)>, String> {
+) -> Result<Vec<(f64, f64, f64)>, String> {
     let mut out = Vec::new();
     match method {
         Method::Progressive | Method::ProgressiveGather => {
@@ -219,7 +231,12 @@ fn run(
             };
             ProgressiveRenderer::new(GeometryCube, settings)
                 .render_observed(partitioned, &(), &mut |acc, stats| {
-                    out.push((stats.wall.as_secs_f64(), reference.error(&acc.mean())));
+                    let mean = acc.mean();
+                    out.push((
+                        stats.wall.as_secs_f64(),
+                        reference.error(&mean),
+                        reference.mean_difference(&mean),
+                    ));
                     ControlFlow::Continue(())
                 })
                 .map_err(|e| e.to_string())?;
@@ -233,7 +250,11 @@ fn run(
             SppmRenderer::new(settings)
                 .render_observed(partitioned.scene(), &(), &mut |snapshot| {
                     if let Ok(image) = snapshot.image() {
-                        out.push((snapshot.stats().wall.as_secs_f64(), reference.error(&image)));
+                        out.push((
+                            snapshot.stats().wall.as_secs_f64(),
+                            reference.error(&image),
+                            reference.mean_difference(&image),
+                        ));
                     }
                     ControlFlow::Continue(())
                 })
@@ -244,8 +265,8 @@ fn run(
 }
 
 /// The error of the last pass that ended within `budget` seconds (`None`: no pass did).
-fn at_budget(trace: &[(f64, f64)], budget: f64) -> Option<f64> {
-    trace.iter().rev().find(|(t, _)| *t <= budget).map(|&(_, e)| e)
+fn at_budget(trace: &[(f64, f64, f64)], budget: f64) -> Option<f64> {
+    trace.iter().rev().find(|(t, _, _)| *t <= budget).map(|&(_, e, _)| e)
 }
 
 fn mean_and_error(values: &[f64]) -> (f64, f64) {
@@ -308,6 +329,7 @@ fn study(args: &Args) -> Result<String, String> {
         md,
         "| method | budget (s) | uniform | camera-driven | camera / uniform | z |\n|---|---|---|---|---|---|"
     );
+    let mut bias = String::new();
     for method in [Method::Progressive, Method::ProgressiveGather, Method::Sppm] {
         let mut traces = [Vec::new(), Vec::new()];
         for (e, emission) in [
@@ -341,8 +363,21 @@ fn study(args: &Args) -> Result<String, String> {
                 traces[e].push(trace);
             }
         }
+        let last = |runs: &Vec<Vec<(f64, f64, f64)>>| -> Vec<f64> {
+            runs.iter().filter_map(|t| t.last().map(|l| l.2)).collect()
+        };
+        let ((um, us), (cm, cs)) = (mean_and_error(&last(&traces[0])), mean_and_error(&last(&traces[1])));
+        let _ = writeln!(
+            bias,
+            "| {} | {:+.2} % ± {:.2} % | {:+.2} % ± {:.2} % |",
+            method.name(),
+            100.0 * um,
+            100.0 * us,
+            100.0 * cm,
+            100.0 * cs
+        );
         for &budget in &budgets {
-            let read = |runs: &Vec<Vec<(f64, f64)>>| -> Option<Vec<f64>> {
+            let read = |runs: &Vec<Vec<(f64, f64, f64)>>| -> Option<Vec<f64>> {
                 runs.iter().map(|t| at_budget(t, budget)).collect()
             };
             let (Some(u), Some(c)) = (read(&traces[0]), read(&traces[1])) else {
@@ -363,6 +398,11 @@ fn study(args: &Args) -> Result<String, String> {
             );
         }
     }
+    let _ = writeln!(
+        md,
+        "\nImage mean against the reference's (its own error {:.2} %), after the last pass of the {largest} s runs, mean ± standard error over the seeds:\n\n| method | uniform | camera-driven |\n|---|---|---|\n{bias}",
+        100.0 * reference.mean_noise()
+    );
     Ok(md)
 }
 
