@@ -14,6 +14,10 @@
 //! `cargo run --release --example emission_study -- --scene doorway-rooms-8`
 //! `cargo run --release --example emission_study -- --scene cornell-box`
 
+#[path = "../tests/support/replicates.rs"]
+mod replicates;
+use replicates::mean_and_error;
+
 use clap::Parser;
 use photon_maps::render::emission::PhotonEmission;
 use photon_maps::render::progressive::{
@@ -266,14 +270,11 @@ fn run(
 
 /// The error of the last pass that ended within `budget` seconds (`None`: no pass did).
 fn at_budget(trace: &[(f64, f64, f64)], budget: f64) -> Option<f64> {
-    trace.iter().rev().find(|(t, _, _)| *t <= budget).map(|&(_, e, _)| e)
-}
-
-fn mean_and_error(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
-    (mean, (var / n).sqrt())
+    trace
+        .iter()
+        .rev()
+        .find(|(t, _, _)| *t <= budget)
+        .map(|&(_, e, _)| e)
 }
 
 fn study(args: &Args) -> Result<String, String> {
@@ -366,7 +367,10 @@ fn study(args: &Args) -> Result<String, String> {
         let last = |runs: &Vec<Vec<(f64, f64, f64)>>| -> Vec<f64> {
             runs.iter().filter_map(|t| t.last().map(|l| l.2)).collect()
         };
-        let ((um, us), (cm, cs)) = (mean_and_error(&last(&traces[0])), mean_and_error(&last(&traces[1])));
+        let ((um, us), (cm, cs)) = (
+            mean_and_error(&last(&traces[0])),
+            mean_and_error(&last(&traces[1])),
+        );
         let _ = writeln!(
             bias,
             "| {} | {:+.2} % ± {:.2} % | {:+.2} % ± {:.2} % |",

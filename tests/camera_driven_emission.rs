@@ -6,6 +6,10 @@
 //! automatic photon count, and out of range; and a cache made with it is refused by name by a
 //! run without it.
 
+#[path = "support/replicates.rs"]
+mod replicates;
+use replicates::mean_and_error;
+
 use photon_maps::render::cache_file::CacheIdentity;
 use photon_maps::render::emission::PhotonEmission;
 use photon_maps::render::progressive::{
@@ -49,13 +53,6 @@ fn progressive_mean(partitioned: &Partitioned, settings: RenderSettings, passes:
         assert!(stats.photons_traced < stats.photons_emitted, "{stats:?}");
     }
     f64::from(rendered.accumulation.mean().mean().element_sum()) / 3.0
-}
-
-fn mean_and_error(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
 }
 
 #[test]

@@ -9,6 +9,10 @@
 //!
 //! `cargo test --release --test glossy_roughness_sweep -- --ignored --nocapture`
 
+#[path = "support/replicates.rs"]
+mod replicates;
+use replicates::mean_and_error;
+
 use photon_maps::render::core::NEAR_SPECULAR_ROUGHNESS;
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
@@ -83,13 +87,6 @@ fn settings(mode: Mode, spp: u32, seed: u64) -> RenderSettings {
 fn floor_mean(image: &Image) -> f64 {
     let m = image.mean_in_rect(0, SIZE / 2, SIZE, SIZE / 2).unwrap();
     f64::from(m.x + m.y + m.z)
-}
-
-fn mean_and_error(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
 }
 
 #[test]
