@@ -4,7 +4,7 @@
 //! bits on one and three threads; progressive shards (each learning the guide again) merge
 //! into the bits of the single run; the option is refused where no photons are traced, with an
 //! automatic photon count, and out of range; and a cache made with it is refused by name by a
-//! run without it.
+//! run without it; a cache for several cameras learns what all of them see.
 
 #[path = "support/replicates.rs"]
 mod replicates;
@@ -12,11 +12,14 @@ use replicates::mean_and_error;
 
 use photon_maps::render::cache_file::CacheIdentity;
 use photon_maps::render::emission::PhotonEmission;
+use photon_maps::render::glam::Vec3;
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, Shard, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{AutoPhotons, GeometryCube, Mode, RenderError, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, GuideOptions, Partitioned, Partitioner, scenes};
+use photon_maps::render::{
+    AutoPhotons, GeometryCube, Mode, RenderError, RenderSettings, RenderStats, Renderer,
+};
+use photon_maps::trace::{Camera, CreaseAngle, GuideOptions, Partitioned, Partitioner, scenes};
 
 fn rooms(n: u32) -> Partitioned {
     CreaseAngle::default()
@@ -200,4 +203,44 @@ fn camera_driven_shards_merge_into_the_single_run() {
             .collect::<Vec<_>>()
     };
     assert_eq!(bits(&merged), bits(&single));
+}
+
+#[test]
+fn a_cache_for_several_cameras_learns_what_all_of_them_see() {
+    let partitioned = rooms(1);
+    // An image wider than the 128 camera rays a single camera is read with.
+    let settings = RenderSettings {
+        width: 256,
+        height: 192,
+        emission: camera(),
+        ..base()
+    };
+    let renderer = Renderer::new(GeometryCube, settings);
+    let seen_from = |cameras: &[Camera]| {
+        let mut stats = RenderStats::default();
+        renderer
+            .build_photon_cache_seen_from(&partitioned, cameras, &(), &mut stats)
+            .unwrap();
+        stats.emission.expect("camera-driven")
+    };
+    let own = *partitioned.scene().camera();
+    // The room's opposite half, seen from its far corner.
+    let back = Camera::new(
+        Vec3::new(0.9, 0.55, 0.92),
+        Vec3::new(0.05, 0.35, 0.4),
+        Vec3::Y,
+        70f32.to_radians(),
+    );
+    let one = seen_from(&[own]);
+    let both = seen_from(&[own, back]);
+    assert!(both.seen_fraction > one.seen_fraction + 0.05, "{one:?} {both:?}");
+    assert!(both.keep_rate > one.keep_rate, "{one:?} {both:?}");
+    // Two cameras hold no more points than one (each a grid half as fine).
+    assert!(both.seen_points <= one.seen_points, "{one:?} {both:?}");
+    // build_photon_cache is the scene's own camera.
+    let mut stats = RenderStats::default();
+    renderer
+        .build_photon_cache(&partitioned, &(), &mut stats)
+        .unwrap();
+    assert_eq!(stats.emission.unwrap().keep_rate, one.keep_rate);
 }

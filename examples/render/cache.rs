@@ -4,7 +4,7 @@
 use super::Args;
 use photon_maps::render::cache_file::{load_cache_file, save_cache_file};
 use photon_maps::render::{EstimatorKind, PhotonCache, Progress, RenderStats, Rendered, Renderer};
-use photon_maps::trace::Partitioned;
+use photon_maps::trace::{Camera, Partitioned};
 use std::time::Instant;
 
 /// What happened to the cache file, for the summary and the JSON.
@@ -23,7 +23,8 @@ pub fn render_with_cache_file(
     partitioned: &Partitioned,
     progress: &dyn Progress,
 ) -> Result<(Rendered, CacheUse), String> {
-    let (cache, mut stats, used) = obtain_cache(args, renderer, partitioned, progress)?;
+    let camera = *partitioned.scene().camera();
+    let (cache, mut stats, used) = obtain_cache(args, renderer, partitioned, &[camera], progress)?;
     let used = used.ok_or("no cache file named")?;
     let image = renderer
         .render_from_cache(partitioned.scene(), &cache, progress, &mut stats)
@@ -33,11 +34,13 @@ pub fn render_with_cache_file(
 
 /// The photon cache of a run: loaded from `--load-cache`, or built (and saved to
 /// `--save-cache` if named); with the set-up's figures (trace, build, precompute, or the
-/// load's counts) and what was done with a file.
+/// load's counts) and what was done with a file. A built cache's camera-driven emission
+/// learns what `cameras` (the frames it will render) see.
 pub fn obtain_cache(
     args: &Args,
     renderer: &Renderer<EstimatorKind>,
     partitioned: &Partitioned,
+    cameras: &[Camera],
     progress: &dyn Progress,
 ) -> Result<(PhotonCache, RenderStats, Option<CacheUse>), String> {
     let mut stats = RenderStats {
@@ -61,7 +64,7 @@ pub fn obtain_cache(
     }
     let cache = match args.auto.settings(args.photons)? {
         Some(auto) => renderer.build_photon_cache_auto(partitioned, &auto, progress, &mut stats),
-        None => renderer.build_photon_cache(partitioned, progress, &mut stats),
+        None => renderer.build_photon_cache_seen_from(partitioned, cameras, progress, &mut stats),
     }
     .map_err(|e| e.to_string())?;
     let Some(path) = &args.save_cache else {

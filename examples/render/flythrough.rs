@@ -131,13 +131,17 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
     );
     let renderer = Renderer::new(estimator, settings);
     let bar = TileBar::new("fly-through set-up");
-    let (cache, setup, cache_use) = cache::obtain_cache(args, &renderer, &partitioned, &bar)?;
+    let camera = *partitioned.scene().camera();
+    let centre = partitioned.scene().bounds().center();
+    // Camera-driven emission learns what every frame sees.
+    let cameras: Vec<Camera> = (0..frames)
+        .map(|i| orbit_camera(&camera, centre, frame_degrees(i, frames, orbit)))
+        .collect();
+    let (cache, setup, cache_use) = cache::obtain_cache(args, &renderer, &partitioned, &cameras, &bar)?;
     let setup_seconds = match &cache_use {
         Some(used) if used.what == "loaded" => used.seconds,
         _ => (setup.trace + setup.build + setup.precompute).as_secs_f64(),
     };
-    let camera = *partitioned.scene().camera();
-    let centre = partitioned.scene().bounds().center();
     let mut first = None;
     let mut cache_use = cache_use;
     let (mut frame_json, mut render_total) = (Vec::new(), 0.0);

@@ -20,7 +20,7 @@ use crate::source::path_traced::PathTraced;
 use crate::source::photon_map::PhotonMapSource;
 use crate::source::photon_read::DirectLight;
 use crate::stats::RenderStats;
-use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene};
+use pm_trace::{Camera, MapAssignment, Partitioned, PhotonMaps, Scene};
 use std::time::Instant;
 
 /// An image and the figures of the render that made it.
@@ -137,6 +137,21 @@ impl<E: Estimator> Renderer<E> {
         progress: &dyn Progress,
         stats: &mut RenderStats,
     ) -> Result<PhotonCache, RenderError> {
+        let camera = *partitioned.scene().camera();
+        self.build_photon_cache_seen_from(partitioned, &[camera], progress, stats)
+    }
+
+    /// [`Renderer::build_photon_cache`] for a cache that `cameras` will render from (a
+    /// fly-through's frames): camera-driven emission ([`crate::emission`]) learns what all of
+    /// them see; uniform emission ignores them. With one camera, the scene's own, it is
+    /// `build_photon_cache`.
+    pub fn build_photon_cache_seen_from(
+        &self,
+        partitioned: &Partitioned,
+        cameras: &[Camera],
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<PhotonCache, RenderError> {
         self.settings.validate()?;
         let mode = self.settings.mode;
         if !mode.uses_photons() {
@@ -144,7 +159,8 @@ impl<E: Estimator> Renderer<E> {
         }
         let scene = partitioned.scene();
         self.in_pool(|| {
-            let maps = self.build_maps(scene, partitioned.assignment(), progress, stats)?;
+            let maps =
+                self.build_maps_seen_from(scene, partitioned.assignment(), cameras, progress, stats)?;
             let radiance = match mode {
                 Mode::FinalGather => Some(self.build_cache(scene, &maps, progress, stats)?),
                 _ => None,
@@ -183,8 +199,21 @@ impl<E: Estimator> Renderer<E> {
         progress: &dyn Progress,
         stats: &mut RenderStats,
     ) -> Result<PhotonMaps, RenderError> {
+        self.build_maps_seen_from(scene, assignment, &[*scene.camera()], progress, stats)
+    }
+
+    /// [`Renderer::build_maps`] with camera-driven emission learning what `cameras` see
+    /// (uniform emission ignores them).
+    pub fn build_maps_seen_from(
+        &self,
+        scene: &Scene,
+        assignment: &MapAssignment,
+        cameras: &[Camera],
+        progress: &dyn Progress,
+        stats: &mut RenderStats,
+    ) -> Result<PhotonMaps, RenderError> {
         progress.phase("guide");
-        let emitter = Emitter::new(scene, assignment, &self.settings, &[*scene.camera()])?;
+        let emitter = Emitter::new(scene, assignment, &self.settings, cameras)?;
         stats.emission = emitter.report().copied();
         progress.phase("trace");
         let start = Instant::now();

@@ -11,8 +11,12 @@ use pm_trace::sampling::cosine_hemisphere;
 use pm_trace::{Camera, Hit, MapAssignment, Ray, RayKind, Rng, Scene};
 use std::collections::HashSet;
 
-/// Most camera rays across the image's longer side.
+/// Most camera rays across the image's longer side, for one camera; `n` cameras take
+/// `CAMERA_GRID / ⌈√n⌉` each (at least 8), so that they hold about as many points as one.
 pub const CAMERA_GRID: u32 = 128;
+
+/// Most cameras read: more are thinned to this many, evenly spaced.
+pub const MAX_CAMERAS: usize = 256;
 
 /// Rays from each camera point that find where a final gather reads the maps.
 pub const GATHER_RAYS_PER_POINT: u32 = 4;
@@ -37,8 +41,8 @@ pub struct SeenSurfaces {
 
 impl SeenSurfaces {
     /// The points of `cameras` (each on a grid of at most [`CAMERA_GRID`] rays across an image
-    /// of `width × height`); the cell is twice the median spacing of the camera rays where they
-    /// land.
+    /// of `width × height`, fewer for several cameras; at most [`MAX_CAMERAS`] cameras, evenly
+    /// spaced); the cell is twice the median spacing of the camera rays where they land.
     pub fn of_cameras(
         scene: &Scene,
         assignment: &MapAssignment,
@@ -47,7 +51,10 @@ impl SeenSurfaces {
         read_at: ReadAt,
         seed: u64,
     ) -> Self {
-        let scale = f64::from(CAMERA_GRID) / f64::from(width.max(height).max(1));
+        let step = cameras.len().div_ceil(MAX_CAMERAS).max(1);
+        let cameras: Vec<Camera> = cameras.iter().step_by(step).copied().collect();
+        let side = (f64::from(CAMERA_GRID) / (cameras.len() as f64).sqrt().ceil().max(1.0)).max(8.0);
+        let scale = side / f64::from(width.max(height).max(1));
         let (gw, gh) = if scale < 1.0 {
             (
                 ((f64::from(width) * scale).round() as u32).max(1),
