@@ -228,3 +228,33 @@ fn a_guide_that_sees_nothing_changes_nothing() {
     let uniform = trace_photons(&scene, &assignment, &options).unwrap();
     assert_eq!(guided.photons_per_map(), uniform.photons_per_map());
 }
+
+/// The floor's extreme: a floor of 1 keeps every photon whatever the pilot saw, and draws
+/// nothing more from any path's stream, so the photons are uniform emission's bit for bit.
+#[test]
+fn a_floor_of_one_keeps_every_photon_as_uniform_emission() {
+    let (scene, assignment) = grey_box();
+    let options = TraceOptions {
+        photons: 3_000,
+        seed: 4,
+        ..TraceOptions::default()
+    };
+    let guide = EmissionGuide::learn(
+        &scene,
+        &assignment,
+        &options,
+        &GuideOptions {
+            pilot_photons: 4_096,
+            floor: 1.0,
+        },
+        &floor_seen,
+    )
+    .unwrap();
+    assert!(guide.seen_fraction() > 0.0 && guide.seen_fraction() < 1.0);
+    assert_eq!(guide.keep_rate(), 1.0);
+    assert_eq!(guide.photons_to_emit(3_000).unwrap(), 3_000);
+    let guided = trace_guided_photon_paths(&scene, &assignment, &options, 0..3_000, &guide).unwrap();
+    let uniform = trace_photons(&scene, &assignment, &options).unwrap();
+    assert_eq!(guided.photons_per_map(), uniform.photons_per_map());
+    assert_eq!(guided.stats().traced, 3_000);
+}
