@@ -55,7 +55,7 @@ fn metallic_roughness_texels_reach_the_bsdf_at_each_half() {
     let options = GltfOptions::default();
     let content = read_content(&file, &options).unwrap();
     assert!(content.warnings.is_empty(), "{:?}", content.warnings);
-    assert!(content.meshes[0].metallic_roughness_texture.is_some());
+    assert!(content.meshes[0].material_textures.metallic_roughness.is_some());
     let scene = load_scene_with(&file, &options).unwrap();
 
     let wo = Vec3::new(0.3, -0.2, 1.0).normalize();
@@ -138,7 +138,7 @@ fn a_missing_texcoord_set_leaves_the_factors_with_a_warning() {
         "",
     );
     let content = read_content(&file, &GltfOptions::default()).unwrap();
-    assert!(content.meshes[0].metallic_roughness_texture.is_none());
+    assert!(content.meshes[0].material_textures.metallic_roughness.is_none());
     assert!(
         content
             .warnings

@@ -5,9 +5,9 @@
 //!
 //! The file's materials are metallic 0, roughness 1 dielectrics: under glTF's Appendix B each
 //! keeps a 4 % Fresnel layer (a glossy lobe), which the path tracer renders and the photon-map
-//! estimators do not read yet. So the comparison runs on the room with every material made
-//! Lambertian the way a file says so (`KHR_materials_specular`'s factor 0, written here), and
-//! the file as it is gets its comparison once glossy photon estimates land (ignored till then).
+//! estimators read through the BSDF. The comparison runs on the file as it is and on the room
+//! with every material made Lambertian the way a file says so (`KHR_materials_specular`'s
+//! factor 0, written here).
 
 use photon_maps::prelude::*;
 use photon_maps::trace::gltf::load_scene;

@@ -26,6 +26,19 @@ pub fn png_rgb(width: u32, height: u32, texels: &[[u8; 3]]) -> Vec<u8> {
     out
 }
 
+/// An 8-bit RGBA PNG of `width × height` texels (row-major, top row first).
+pub fn png_rgba(width: u32, height: u32, texels: &[[u8; 4]]) -> Vec<u8> {
+    assert_eq!(texels.len(), (width * height) as usize);
+    let mut out = Vec::new();
+    let mut e = png::Encoder::new(&mut out, width, height);
+    e.set_color(png::ColorType::Rgba);
+    e.set_depth(png::BitDepth::Eight);
+    let mut w = e.write_header().unwrap();
+    w.write_image_data(texels.as_flattened()).unwrap();
+    w.finish().unwrap();
+    out
+}
+
 /// The sRGB decoding of IEC 61966-2-1, written here independently of the loader.
 pub fn srgb_to_linear(code: u8) -> f64 {
     let c = code as f64 / 255.0;

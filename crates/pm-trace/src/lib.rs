@@ -167,8 +167,9 @@ pub use ray::Ray;
 pub use rng::Rng;
 pub use sampler::{Sampler, Wrap};
 pub use scene::{
-    Hit, MAX_SCENE_TRIANGLES, MetallicRoughnessTexture, PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene,
-    SceneBuilder, SceneMesh, VertexAttributes,
+    Hit, MAX_SCENE_TRIANGLES, MIN_MAPPED_COSINE, MaterialTexture, MaterialTextures, NormalTexture,
+    PAIRED_RAYS_MIN_TRIANGLES, RayKind, Scene, SceneBuilder, SceneMesh, VertexAttributes,
+    mikktspace_tangents,
 };
 pub use shape::{Ring, RingSide, Shape, Sphere};
 pub use sides::Sides;

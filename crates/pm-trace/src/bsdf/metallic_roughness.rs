@@ -178,17 +178,21 @@ impl MetallicRoughness {
         self.specular_color
     }
 
-    /// This material at `at`: the base colour times the point's tint, metallic and roughness
-    /// times its [`TextureFactors`](super::shading_point::TextureFactors) (each kept in
-    /// `[0, 1]`, a NaN read as 0). Every [`Bsdf`] method evaluates this; with no texture (tint
-    /// and factors one) it is `self`, bit for bit.
+    /// This material at `at`: the base colour times the point's tint, metallic, roughness,
+    /// specular strength and specular colour times its
+    /// [`TextureFactors`](super::shading_point::TextureFactors) (the first three kept in
+    /// `[0, 1]`, the colour not negative, a NaN read as 0). Every [`Bsdf`] method evaluates
+    /// this; with no texture (tint and factors one) it is `self`, bit for bit.
     #[inline]
     pub fn at_point(&self, at: &ShadingPoint) -> MetallicRoughness {
         let unit = |x: f32| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+        let colour = self.specular_color * at.factors.specular_color;
         MetallicRoughness {
             base_color: self.base_color * at.tint,
             metallic: unit(self.metallic * at.factors.metallic),
             roughness: unit(self.roughness * at.factors.roughness),
+            specular: unit(self.specular * at.factors.specular),
+            specular_color: Vec3::select(colour.cmpge(Vec3::ZERO), colour, Vec3::ZERO),
             ..*self
         }
     }

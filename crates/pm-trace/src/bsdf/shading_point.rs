@@ -26,13 +26,19 @@ pub struct ShadingPoint {
 
 /// What a material's parameter textures say at a point, as factors of the material's own
 /// parameters (glTF's `metallicRoughnessTexture`: blue channel × `metallicFactor`, green ×
-/// `roughnessFactor`). Each in `[0, 1]`; [`TextureFactors::ONE`] leaves the material as it is.
+/// `roughnessFactor`; `KHR_materials_specular`'s `specularTexture`: alpha × `specularFactor`,
+/// and `specularColorTexture`: RGB × `specularColorFactor`). Each in `[0, 1]`;
+/// [`TextureFactors::ONE`] leaves the material as it is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureFactors {
     /// Multiplies the metalness.
     pub metallic: f32,
     /// Multiplies the perceptual roughness.
     pub roughness: f32,
+    /// Multiplies the dielectric's specular strength.
+    pub specular: f32,
+    /// Multiplies the dielectric's specular colour, per channel.
+    pub specular_color: Vec3,
 }
 
 impl TextureFactors {
@@ -40,6 +46,8 @@ impl TextureFactors {
     pub const ONE: TextureFactors = TextureFactors {
         metallic: 1.0,
         roughness: 1.0,
+        specular: 1.0,
+        specular_color: Vec3::ONE,
     };
 }
 

@@ -99,7 +99,7 @@ fn add_mesh(builder: SceneBuilder, mesh: &GltfMesh, surface: Surface) -> SceneBu
         || mesh.colors.is_some()
         || mesh.normals.is_some()
         || mesh.emission_texture.is_some()
-        || mesh.metallic_roughness_texture.is_some();
+        || !mesh.material_textures.is_empty();
     if attributed {
         let attributes = VertexAttributes {
             uvs: mesh.uvs.clone(),
@@ -107,7 +107,7 @@ fn add_mesh(builder: SceneBuilder, mesh: &GltfMesh, surface: Surface) -> SceneBu
             normals: mesh.normals.clone(),
             base_color_texture: mesh.base_color_texture.clone(),
             emission_texture: mesh.emission_texture.clone(),
-            metallic_roughness_texture: mesh.metallic_roughness_texture.clone(),
+            material_textures: mesh.material_textures.clone(),
         };
         builder.attributed_mesh(&mesh.positions, &mesh.triangles, surface, attributes)
     } else {

@@ -21,9 +21,11 @@ use super::graph::{PlacedNode, root_nodes, walk};
 use super::light::{GltfLight, place_light};
 use super::mesh::GltfMesh;
 use super::node_transform::{NodeTransform, read_node_transforms};
+use super::normal_transform::read_normal_transforms;
 use super::options::GltfOptions;
 use super::origin::WorldBounds;
 use super::source::{guard, json_text, parse, read_bounded};
+use gltf::json::extensions::texture::TextureTransform as JsonTransform;
 
 /// A glTF file flattened into world space: what [`super::load_scene`] builds a scene from.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -72,9 +74,11 @@ pub fn read_content(path: &Path, options: &GltfOptions) -> Result<GltfContent, G
     let (root, blob, warnings) = parse(path, &bytes)?;
     // The gltf crate holds node transforms in f32; the walk composes them from the text.
     let transforms = read_node_transforms(path, json_text(&bytes), root.nodes.len())?;
+    let normal_transforms = read_normal_transforms(path, json_text(&bytes), root.materials.len())?;
     drop(bytes);
     let buffers = resolve_buffers(path, &root, blob, options.max_file_bytes)?;
-    let mut content = guard(path, || flatten(path, &root, &transforms, &buffers, options))?;
+    let read_apart = (transforms.as_slice(), normal_transforms.as_slice());
+    let mut content = guard(path, || flatten(path, &root, read_apart, &buffers, options))?;
     content.warnings.splice(0..0, warnings);
     Ok(content)
 }
@@ -131,7 +135,7 @@ fn placement_bytes(root: &json::Root, prim: &json::mesh::Primitive, buffer_bytes
 fn flatten(
     file: &Path,
     root: &json::Root,
-    transforms: &[NodeTransform],
+    (transforms, normal_transforms): (&[NodeTransform], &[Option<JsonTransform>]),
     buffers: &[Buffer],
     options: &GltfOptions,
 ) -> Result<GltfContent, GltfError> {
@@ -148,6 +152,7 @@ fn flatten(
             buffers,
             reader: &reader,
             options,
+            normal_transforms,
         },
         buffer_bytes,
         scene_bytes,

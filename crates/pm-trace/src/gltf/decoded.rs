@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec2, Vec3};
 use gltf::json;
+use gltf::json::extensions::texture::TextureTransform as JsonTransform;
 use json::accessor::Type;
 use json::mesh::Semantic;
 use json::validation::Checked;
@@ -15,14 +16,17 @@ use super::accessor::AccessorReader;
 use super::compact::{gather, keep_referenced};
 use super::emissive::{TextureCache, TextureSources, cached_texture, emission_texture};
 use super::error::GltfError;
+use super::image::ImageRead;
 use super::material::{GltfMaterial, map_material};
-use super::metallic_roughness::metallic_roughness_texture;
+use super::material_textures::{material_textures, with_tangents};
 use super::options::GltfOptions;
 use super::primitive::{PrimitiveGeometry, read_primitive};
 use crate::emission::EmissionTexture;
 use crate::sampler::Sampler;
-use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
-use crate::texture::{TexelEncoding, Texture};
+use crate::scene::material_texture::MaterialTexture;
+use crate::scene::material_textures::MaterialTextures;
+use crate::scene::normal_texture::NormalTexture;
+use crate::texture::Texture;
 
 /// A triangle primitive in its mesh's space, only the vertices its triangles use.
 #[derive(Debug)]
@@ -37,7 +41,7 @@ pub(super) struct LocalPrimitive {
     pub(super) normals: Option<Vec<Vec3>>,
     pub(super) base_color_texture: Option<(Arc<Texture>, Sampler)>,
     pub(super) emission_texture: Option<EmissionTexture>,
-    pub(super) metallic_roughness_texture: Option<MetallicRoughnessTexture>,
+    pub(super) material_textures: MaterialTextures,
 }
 
 /// A texture with the sampler that reads it.
@@ -74,32 +78,44 @@ pub(super) fn decode_primitive(
         PrimitiveGeometry::NotTriangles => return Ok(Decoded::NotTriangles),
         PrimitiveGeometry::NoPositions => return Ok(Decoded::NoPositions),
     };
-    let material = primitive_material(file, at, json_material, material_index, options)?;
+    let material = primitive_material(
+        file,
+        at,
+        json_material,
+        material_index,
+        sources.normal_transforms,
+        options,
+    )?;
     let (base_color_texture, uvs) =
         base_color_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
     let emission = emission_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
-    let metallic_roughness =
-        metallic_roughness_texture(sources, textures, scene_bytes, warnings, at, prim, &material)?;
+    let material_textures = material_textures(sources, textures, scene_bytes, warnings, at, prim, &material)?;
     let colors = vertex_colors(reader, prim)?;
     let normals = vertex_normals(reader, prim)?;
     let n = positions.len();
-    check_attribute_lengths(
-        file,
-        at,
-        n,
-        [
-            ("texture coordinates", uvs.as_ref().map(Vec::len)),
-            (
-                "emissive texture coordinates",
-                emission.as_ref().map(|e| e.uvs.len()),
-            ),
-            (
-                "metallic-roughness texture coordinates",
-                metallic_roughness.as_ref().map(|t| t.uvs.len()),
-            ),
-            ("colours", colors.as_ref().map(Vec::len)),
-            ("normals", normals.as_ref().map(Vec::len)),
-        ],
+    let mut lengths = vec![
+        ("texture coordinates".to_string(), uvs.as_ref().map(Vec::len)),
+        (
+            "emissive texture coordinates".to_string(),
+            emission.as_ref().map(|e| e.uvs.len()),
+        ),
+        ("colours".to_string(), colors.as_ref().map(Vec::len)),
+        ("normals".to_string(), normals.as_ref().map(Vec::len)),
+    ];
+    for (name, texture) in material_textures.named() {
+        lengths.push((
+            format!("{name} texture coordinates"),
+            texture.map(|t| t.uvs.len()),
+        ));
+    }
+    check_attribute_lengths(file, at, n, &lengths)?;
+    let material_textures = with_tangents(
+        material_textures,
+        (file, at),
+        reader,
+        prim,
+        (&positions, &triangles),
+        normals.as_deref(),
     )?;
     // Only the vertices the triangles use are kept (and later welded).
     let mut triangles = triangles;
@@ -117,11 +133,29 @@ pub(super) fn decode_primitive(
             uvs: gather(&e.uvs, &kept),
             ..e
         }),
-        metallic_roughness_texture: metallic_roughness.map(|t| MetallicRoughnessTexture {
-            uvs: gather(&t.uvs, &kept),
-            ..t
-        }),
+        material_textures: gather_textures(material_textures, &kept),
     })))
+}
+
+/// `textures` with every texture's coordinates and the normal map's tangents kept for the
+/// vertices `kept` only.
+fn gather_textures(textures: MaterialTextures, kept: &[u32]) -> MaterialTextures {
+    let keep = |t: Option<MaterialTexture>| {
+        t.map(|t| MaterialTexture {
+            uvs: gather(&t.uvs, kept),
+            ..t
+        })
+    };
+    MaterialTextures {
+        metallic_roughness: keep(textures.metallic_roughness),
+        specular: keep(textures.specular),
+        specular_color: keep(textures.specular_color),
+        normal: textures.normal.map(|n| NormalTexture {
+            map: keep(Some(n.map)).expect("a texture stays a texture"),
+            tangents: gather(&n.tangents, kept),
+            ..n
+        }),
+    }
 }
 
 /// [`GltfError::Primitive`] for primitive `at` (mesh and primitive indices) of `file`.
@@ -164,9 +198,13 @@ fn primitive_material(
     at: (usize, usize),
     json_material: Option<&json::Material>,
     material_index: Option<usize>,
+    normal_transforms: &[Option<JsonTransform>],
     options: &GltfOptions,
 ) -> Result<GltfMaterial, GltfError> {
-    map_material(json_material, options).map_err(|reason| {
+    let normal_transform = material_index
+        .and_then(|i| normal_transforms.get(i))
+        .and_then(Option::as_ref);
+    map_material(json_material, normal_transform, options).map_err(|reason| {
         primitive_error(
             file,
             at,
@@ -184,7 +222,7 @@ fn check_attribute_lengths(
     file: &Path,
     at: (usize, usize),
     n: usize,
-    lengths: [(&str, Option<usize>); 5],
+    lengths: &[(String, Option<usize>)],
 ) -> Result<(), GltfError> {
     for (what, len) in lengths {
         if let Some(len) = len.filter(|&len| len != n) {
@@ -213,13 +251,7 @@ fn base_color_texture(
     let Some(reference) = material.base_color_texture else {
         return Ok((None, None));
     };
-    let loaded = cached_texture(
-        sources,
-        textures,
-        reference.index,
-        TexelEncoding::Srgb,
-        scene_bytes,
-    )?;
+    let loaded = cached_texture(sources, textures, reference.index, ImageRead::COLOUR, scene_bytes)?;
     let uvs = reference.read_uvs(sources.reader, prim)?;
     if uvs.is_some() {
         return Ok((Some(loaded), uvs));

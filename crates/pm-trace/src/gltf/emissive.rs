@@ -11,20 +11,20 @@ use gltf::json;
 use super::accessor::AccessorReader;
 use super::buffers::Buffer;
 use super::error::GltfError;
-use super::image::{load_image, texture_source};
+use super::image::{ImageRead, load_image, texture_source};
 use super::material::GltfMaterial;
 use super::options::GltfOptions;
 use crate::emission::EmissionTexture;
 use crate::sampler::Sampler;
 use crate::texture::{TexelEncoding, Texture};
 
-/// Decoded images by glTF image index and encoding (each decoded once however many textures
-/// name it, and once more only if one material reads it as colour and another as data) and
-/// the textures made of them, by texture index and encoding.
+/// Decoded images by glTF image index and how they are read (each decoded once however many
+/// textures name it, and once more only if one material reads it as colour and another as
+/// data, or its alpha) and the textures made of them, by texture index and read.
 #[derive(Default)]
 pub(super) struct TextureCache {
-    images: HashMap<(usize, TexelEncoding), Arc<Texture>>,
-    textures: HashMap<(usize, TexelEncoding), (Arc<Texture>, Sampler)>,
+    images: HashMap<(usize, ImageRead), Arc<Texture>>,
+    textures: HashMap<(usize, ImageRead), (Arc<Texture>, Sampler)>,
 }
 
 /// Where textures come from: the file, its JSON, its buffers and the loader's limits.
@@ -34,9 +34,11 @@ pub(super) struct TextureSources<'a> {
     pub(super) buffers: &'a [Buffer],
     pub(super) reader: &'a AccessorReader<'a>,
     pub(super) options: &'a GltfOptions,
+    /// Each material's normal-texture `KHR_texture_transform`, read apart from the JSON text.
+    pub(super) normal_transforms: &'a [Option<json::extensions::texture::TextureTransform>],
 }
 
-/// Texture `texture` read with `encoding` (sRGB for colour, linear for data) from the cache,
+/// Texture `texture` read as `read` says (channels; sRGB for colour, linear for data) from the cache,
 /// else its image from the image cache, else decoded (a broken, missing or too large image is
 /// [`GltfError::Image`]; the decode is checked against what `scene_bytes` leaves of
 /// [`GltfOptions::max_scene_bytes`] from the image's header before it starts) and its bytes
@@ -45,14 +47,14 @@ pub(super) fn cached_texture(
     sources: &TextureSources<'_>,
     cache: &mut TextureCache,
     texture: usize,
-    encoding: TexelEncoding,
+    read: ImageRead,
     scene_bytes: &mut u64,
 ) -> Result<(Arc<Texture>, Sampler), GltfError> {
-    if let Some(t) = cache.textures.get(&(texture, encoding)) {
+    if let Some(t) = cache.textures.get(&(texture, read)) {
         return Ok(t.clone());
     }
     let (image, sampler) = texture_source(sources.file, sources.root, texture)?;
-    let decoded = match cache.images.get(&(image, encoding)) {
+    let decoded = match cache.images.get(&(image, read)) {
         Some(decoded) => decoded.clone(),
         None => {
             let budget = sources.options.max_scene_bytes.saturating_sub(*scene_bytes);
@@ -60,22 +62,20 @@ pub(super) fn cached_texture(
                 sources.file,
                 sources.root,
                 sources.buffers,
-                image,
+                (image, read.channels),
                 sources.options,
                 budget,
             )?;
-            let decoded = Arc::new(match encoding {
+            let decoded = Arc::new(match read.encoding {
                 TexelEncoding::Srgb => srgb,
                 TexelEncoding::Linear => srgb.with_encoding(TexelEncoding::Linear),
             });
             *scene_bytes = scene_bytes.saturating_add(decoded.heap_bytes() as u64);
-            cache.images.insert((image, encoding), decoded.clone());
+            cache.images.insert((image, read), decoded.clone());
             decoded
         }
     };
-    cache
-        .textures
-        .insert((texture, encoding), (decoded.clone(), sampler));
+    cache.textures.insert((texture, read), (decoded.clone(), sampler));
     Ok((decoded, sampler))
 }
 
@@ -111,7 +111,7 @@ pub(super) fn emission_texture(
         ));
         return Ok(None);
     };
-    let (texture, sampler) = cached_texture(sources, cache, texture, TexelEncoding::Srgb, scene_bytes)?;
+    let (texture, sampler) = cached_texture(sources, cache, texture, ImageRead::COLOUR, scene_bytes)?;
     Ok(Some(EmissionTexture {
         uvs,
         texture,

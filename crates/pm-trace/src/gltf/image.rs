@@ -11,7 +11,7 @@ use super::buffers::{Buffer, confined_target, decode_data_uri, has_prefix_ignore
 use super::error::GltfError;
 use super::options::GltfOptions;
 use crate::sampler::{Sampler, Wrap};
-use crate::texture::Texture;
+use crate::texture::{TexelEncoding, Texture};
 
 /// Texture `texture` of `root`: the index of its image (checked to exist) and its sampler.
 pub(super) fn texture_source(
@@ -49,14 +49,52 @@ pub(super) fn decode_bytes(width: u32, height: u32) -> u64 {
     u64::from(width) * u64::from(height) * 12
 }
 
-/// Reads image `image` of `root` and decodes it, after checking from its header that the
-/// decode fits in `budget` bytes (see [`decode_bytes`]): a broken, missing or too large
-/// image is [`GltfError::Image`].
+/// Which of an image's channels a texture reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) enum ImageChannels {
+    /// Red, green and blue (a grey image's grey in all three).
+    Rgb,
+    /// Alpha, copied into all three channels (opaque, 255, where the image has none: every
+    /// JPEG, and PNGs without alpha or transparency): `KHR_materials_specular`'s
+    /// `specularTexture` keeps its strength there.
+    Alpha,
+}
+
+/// How a material reads a texture's image: which channels, and what their codes encode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(super) struct ImageRead {
+    /// The channels read.
+    pub(super) channels: ImageChannels,
+    /// sRGB for colour, linear for data.
+    pub(super) encoding: TexelEncoding,
+}
+
+impl ImageRead {
+    /// Colour: the RGB channels, sRGB-encoded (base colour, emission, specular colour).
+    pub(super) const COLOUR: ImageRead = ImageRead {
+        channels: ImageChannels::Rgb,
+        encoding: TexelEncoding::Srgb,
+    };
+    /// Data in the RGB channels, linear (metallic-roughness, normals).
+    pub(super) const DATA: ImageRead = ImageRead {
+        channels: ImageChannels::Rgb,
+        encoding: TexelEncoding::Linear,
+    };
+    /// Data in the alpha channel, linear (specular strength).
+    pub(super) const ALPHA_DATA: ImageRead = ImageRead {
+        channels: ImageChannels::Alpha,
+        encoding: TexelEncoding::Linear,
+    };
+}
+
+/// Reads image `image` of `root` and decodes `channels` of it, after checking from its header
+/// that the decode fits in `budget` bytes (see [`decode_bytes`]): a broken, missing or too
+/// large image is [`GltfError::Image`].
 pub(super) fn load_image(
     file: &Path,
     root: &json::Root,
     buffers: &[Buffer],
-    image: usize,
+    (image, channels): (usize, ImageChannels),
     options: &GltfOptions,
     budget: u64,
 ) -> Result<Texture, GltfError> {
@@ -77,7 +115,7 @@ pub(super) fn load_image(
             "{width}×{height} texels take {needed} bytes to decode, past the {budget} bytes left of GltfOptions::max_scene_bytes"
         )));
     }
-    decode_image(&bytes, options.max_texture_pixels).map_err(fail)
+    decode_image(&bytes, options.max_texture_pixels, channels).map_err(fail)
 }
 
 fn map_sampler(s: &json::texture::Sampler) -> Sampler {
@@ -156,11 +194,15 @@ pub(super) fn image_size(bytes: &[u8]) -> Result<(u32, u32), String> {
     Ok((reader.info().width, reader.info().height))
 }
 
-/// Decodes PNG or JPEG bytes into a texture, refusing images of more than `max_pixels` texels
-/// from their header, before the pixel buffer is allocated.
-pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
+/// Decodes `channels` of PNG or JPEG bytes into a texture, refusing images of more than
+/// `max_pixels` texels from their header, before the pixel buffer is allocated.
+pub(super) fn decode_image(
+    bytes: &[u8],
+    max_pixels: u64,
+    channels: ImageChannels,
+) -> Result<Texture, String> {
     if bytes.starts_with(JPEG_MAGIC) {
-        return decode_jpeg(bytes, max_pixels);
+        return decode_jpeg(bytes, max_pixels, channels);
     }
     if !bytes.starts_with(PNG_MAGIC) {
         return Err("not a PNG image".into());
@@ -183,15 +225,15 @@ pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, Str
         .ok_or("PNG: output size out of range")?;
     let mut buf = vec![0u8; size];
     let frame = reader.next_frame(&mut buf).map_err(|e| format!("PNG: {e}"))?;
-    let channels = frame.color_type.samples();
-    if frame.bit_depth != png::BitDepth::Eight || !(1..=4).contains(&channels) {
+    let samples = frame.color_type.samples();
+    if frame.bit_depth != png::BitDepth::Eight || !(1..=4).contains(&samples) {
         return Err(format!(
             "PNG: unsupported layout {:?} {:?}",
             frame.color_type, frame.bit_depth
         ));
     }
     // The frame's layout is checked against the buffer, not trusted: no slice can panic.
-    let row_bytes = width as usize * channels;
+    let row_bytes = width as usize * samples;
     let rows = frame
         .line_size
         .checked_mul(height as usize)
@@ -200,10 +242,13 @@ pub(super) fn decode_image(bytes: &[u8], max_pixels: u64) -> Result<Texture, Str
         .ok_or("PNG: frame layout out of range")?;
     let mut texels = Vec::with_capacity(pixels as usize);
     for row in rows.chunks_exact(frame.line_size) {
-        for px in row[..row_bytes].chunks_exact(channels) {
-            texels.push(match channels {
-                1 | 2 => [px[0]; 3],
-                _ => [px[0], px[1], px[2]],
+        for px in row[..row_bytes].chunks_exact(samples) {
+            texels.push(match (channels, samples) {
+                (ImageChannels::Rgb, 1 | 2) => [px[0]; 3],
+                (ImageChannels::Rgb, _) => [px[0], px[1], px[2]],
+                (ImageChannels::Alpha, 2) => [px[1]; 3],
+                (ImageChannels::Alpha, 4) => [px[3]; 3],
+                (ImageChannels::Alpha, _) => [u8::MAX; 3],
             });
         }
     }
@@ -214,10 +259,11 @@ fn too_large(width: u32, height: u32, max_pixels: u64) -> String {
     format!("{width}×{height} texels, more than the limit of {max_pixels} (GltfOptions::max_texture_pixels)")
 }
 
-/// Decodes a JPEG (baseline or progressive) to RGB: the header is read first and a declared
-/// size past `max_pixels` is refused before the pixel buffer is allocated; the decoder's own
-/// width and height limits are set too.
-fn decode_jpeg(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
+/// Decodes a JPEG (baseline or progressive) to RGB (its alpha, for [`ImageChannels::Alpha`],
+/// is opaque): the header is read first and a declared size past `max_pixels` is refused
+/// before the pixel buffer is allocated; the decoder's own width and height limits are set
+/// too.
+fn decode_jpeg(bytes: &[u8], max_pixels: u64, channels: ImageChannels) -> Result<Texture, String> {
     use zune_jpeg::JpegDecoder;
     use zune_jpeg::zune_core::bytestream::ZCursor;
     use zune_jpeg::zune_core::colorspace::ColorSpace;
@@ -245,7 +291,10 @@ fn decode_jpeg(bytes: &[u8], max_pixels: u64) -> Result<Texture, String> {
     decoder
         .decode_into(&mut buf)
         .map_err(|e| format!("JPEG: {e:?}"))?;
-    let texels = buf.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+    let texels = match channels {
+        ImageChannels::Rgb => buf.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+        ImageChannels::Alpha => vec![[u8::MAX; 3]; pixels as usize],
+    };
     Texture::from_srgb8(width, height, texels).ok_or_else(|| "JPEG: empty image".into())
 }
 
@@ -290,16 +339,26 @@ mod tests {
 
     #[test]
     fn png_round_trips_to_linear_texels() {
-        let t = decode_image(&png_bytes(2, 1, &[255, 0, 0, 0, 0, 188]), 100).unwrap();
+        let t = decode_image(&png_bytes(2, 1, &[255, 0, 0, 0, 0, 188]), 100, ImageChannels::Rgb).unwrap();
         assert_eq!((t.width(), t.height()), (2, 1));
         assert_eq!(t.texel(0, 0), glam::Vec3::X);
         assert!((t.texel(1, 0).z - 0.5029).abs() < 1e-3);
     }
 
     #[test]
+    fn an_image_without_alpha_reads_as_opaque_alpha() {
+        let png = png_bytes(2, 1, &[255, 0, 0, 0, 0, 188]);
+        let t = decode_image(&png, 100, ImageChannels::Alpha).unwrap();
+        assert_eq!((t.texel(0, 0), t.texel(1, 0)), (glam::Vec3::ONE, glam::Vec3::ONE));
+        let t = decode_image(&flat_jpeg(2, [150, 100, 170]), 1000, ImageChannels::Alpha).unwrap();
+        assert_eq!(t.texel(3, 3), glam::Vec3::ONE);
+    }
+
+    #[test]
     fn one_texel_png_claiming_65535_squared_is_refused_before_allocation() {
         let png = lie_about_size(png_bytes(1, 1, &[1, 2, 3]), 65535, 65535);
-        let err = decode_image(&png, GltfOptions::DEFAULT.max_texture_pixels).unwrap_err();
+        let err =
+            decode_image(&png, GltfOptions::DEFAULT.max_texture_pixels, ImageChannels::Rgb).unwrap_err();
         assert!(err.contains("65535×65535"), "{err}");
     }
 
@@ -307,13 +366,16 @@ mod tests {
     fn lying_or_truncated_pngs_are_errors() {
         // Claims 4×4 within the limit but holds one texel's data.
         let png = lie_about_size(png_bytes(1, 1, &[1, 2, 3]), 4, 4);
-        assert!(decode_image(&png, 100).is_err());
+        assert!(decode_image(&png, 100, ImageChannels::Rgb).is_err());
         let whole = png_bytes(4, 4, &[7; 48]);
         for cut in [8, 20, 33, whole.len() / 2, whole.len() - 13] {
-            assert!(decode_image(&whole[..cut], 100).is_err(), "cut at {cut}");
+            assert!(
+                decode_image(&whole[..cut], 100, ImageChannels::Rgb).is_err(),
+                "cut at {cut}"
+            );
         }
-        assert!(decode_image(b"GIF89a", 100).is_err());
-        assert!(decode_image(&[0xFF, 0xD8, 0xFF, 0xE0], 100).is_err());
+        assert!(decode_image(b"GIF89a", 100, ImageChannels::Rgb).is_err());
+        assert!(decode_image(&[0xFF, 0xD8, 0xFF, 0xE0], 100, ImageChannels::Rgb).is_err());
     }
 
     /// A baseline JPEG of `blocks_x`×1 flat 8×8 blocks of one YCbCr colour, written by hand:
@@ -374,7 +436,7 @@ mod tests {
     #[test]
     fn flat_jpeg_decodes_to_its_colour_in_linear_texels() {
         // Y 150, Cb 100, Cr 170 is sRGB (208.9, 129.6, 100.4) by the JFIF conversion.
-        let t = decode_image(&flat_jpeg(2, [150, 100, 170]), 1000).unwrap();
+        let t = decode_image(&flat_jpeg(2, [150, 100, 170]), 1000, ImageChannels::Rgb).unwrap();
         assert_eq!((t.width(), t.height()), (16, 8));
         let expected = Texture::from_srgb8(1, 1, vec![[209, 130, 100]])
             .unwrap()
@@ -391,23 +453,27 @@ mod tests {
         // SOF0 sits after SOI (2) and DQT (69): marker 2 bytes, length 2, precision 1.
         assert_eq!(jpeg[71..73], [0xFF, 0xC0]);
         jpeg[76..80].copy_from_slice(&[0xFF, 0xFF, 0xFF, 0xFF]);
-        let err = decode_image(&jpeg, GltfOptions::DEFAULT.max_texture_pixels).unwrap_err();
+        let err =
+            decode_image(&jpeg, GltfOptions::DEFAULT.max_texture_pixels, ImageChannels::Rgb).unwrap_err();
         assert!(err.contains("65535×65535"), "{err}");
         // Within the pixel limit but past what the data holds: an error, not a panic.
         jpeg[76..80].copy_from_slice(&[0, 64, 0, 64]);
-        let _ = decode_image(&jpeg, 1 << 20);
+        let _ = decode_image(&jpeg, 1 << 20, ImageChannels::Rgb);
     }
 
     #[test]
     fn truncated_or_corrupt_jpegs_are_errors() {
         let whole = flat_jpeg(4, [90, 200, 40]);
-        assert!(decode_image(&whole, 1000).is_ok());
+        assert!(decode_image(&whole, 1000, ImageChannels::Rgb).is_ok());
         for cut in [3, 10, 40, 72, 80, 100, 150, whole.len() - 12] {
-            assert!(decode_image(&whole[..cut], 1000).is_err(), "cut at {cut}");
+            assert!(
+                decode_image(&whole[..cut], 1000, ImageChannels::Rgb).is_err(),
+                "cut at {cut}"
+            );
         }
         // Zero width in the frame header.
         let mut zero = whole.clone();
         zero[78..80].copy_from_slice(&[0, 0]);
-        assert!(decode_image(&zero, 1000).is_err());
+        assert!(decode_image(&zero, 1000, ImageChannels::Rgb).is_err());
     }
 }

@@ -23,8 +23,8 @@ use crate::material::Material;
 ///   (0 is GGX at [`MIN_ALPHA`](crate::bsdf::MIN_ALPHA), not a mirror) and metalness. glTF's
 ///   default material (none named) is white, metallic 1, roughness 1: a rough white metal.
 ///
-/// The base-colour, metallic-roughness and emissive textures are read (with
-/// `KHR_texture_transform`). `emission` is `emissiveFactor × emissiveStrength ×`
+/// The base-colour, metallic-roughness, specular, specular-colour, normal and emissive textures
+/// are read (with `KHR_texture_transform`). `emission` is `emissiveFactor × emissiveStrength ×`
 /// [`LightUnits::emission_factor`](super::LightUnits::emission_factor) `×`
 /// [`GltfOptions::emission_scale`], a radiance in W/(m²·sr), which the emissive texture (if
 /// any) multiplies at each point.
@@ -42,6 +42,15 @@ pub struct GltfMaterial {
     /// blue channel multiplies the metallic factor and its green channel the roughness factor
     /// at each point, read as linear values.
     pub metallic_roughness_texture: Option<TextureRef>,
+    /// `KHR_materials_specular`'s `specularTexture` (its alpha channel, linear, multiplies
+    /// the specular factor), kept as the metallic-roughness texture is.
+    pub specular_texture: Option<TextureRef>,
+    /// `KHR_materials_specular`'s `specularColorTexture` (sRGB colour multiplying the
+    /// specular colour factor), kept as the metallic-roughness texture is.
+    pub specular_color_texture: Option<TextureRef>,
+    /// The normal map and its `scale`, for every kind (a bent shading normal changes glass
+    /// and Lambertian surfaces too).
+    pub normal_texture: Option<(TextureRef, f32)>,
     /// The emissive texture, its `TEXCOORD` set and `KHR_texture_transform`, if the material
     /// has one; its texels multiply `emission`.
     pub emissive_texture: Option<TextureRef>,
@@ -51,9 +60,11 @@ pub struct GltfMaterial {
     pub double_sided: bool,
 }
 
-/// Maps a glTF material (or the spec's default material for `None`).
+/// Maps a glTF material (or the spec's default material for `None`), whose normal texture's
+/// `KHR_texture_transform` is `normal_transform` (read apart: see `normal_transform.rs`).
 pub(super) fn map_material(
     material: Option<&json::Material>,
+    normal_transform: Option<&json::extensions::texture::TextureTransform>,
     options: &GltfOptions,
 ) -> Result<GltfMaterial, String> {
     let Some(m) = material else {
@@ -63,6 +74,9 @@ pub(super) fn map_material(
             emission: Vec3::ZERO,
             base_color_texture: None,
             metallic_roughness_texture: None,
+            specular_texture: None,
+            specular_color_texture: None,
+            normal_texture: None,
             emissive_texture: None,
             double_sided: false,
         });
@@ -91,14 +105,22 @@ pub(super) fn map_material(
         ));
     }
     let kind = scattering(m).map_err(|e| e.to_string())?;
-    let metallic_roughness_texture = match kind {
-        Material::MetallicRoughness(_) => pbr.metallic_roughness_texture.as_ref().map(TextureRef::from_info),
+    // Parameter textures change only the metallic-roughness kind.
+    let parameter = |info: Option<&json::texture::Info>| match kind {
+        Material::MetallicRoughness(_) => info.map(TextureRef::from_info),
         _ => None,
     };
+    let specular = ext.and_then(|e| e.specular.as_ref());
     Ok(GltfMaterial {
         kind,
         emission,
-        metallic_roughness_texture,
+        metallic_roughness_texture: parameter(pbr.metallic_roughness_texture.as_ref()),
+        specular_texture: parameter(specular.and_then(|s| s.specular_texture.as_ref())),
+        specular_color_texture: parameter(specular.and_then(|s| s.specular_color_texture.as_ref())),
+        normal_texture: m
+            .normal_texture
+            .as_ref()
+            .map(|n| TextureRef::from_normal(n, normal_transform)),
         base_color_texture: pbr.base_color_texture.as_ref().map(TextureRef::from_info),
         emissive_texture: m.emissive_texture.as_ref().map(TextureRef::from_info),
         double_sided: m.double_sided,
@@ -120,7 +142,7 @@ mod tests {
             let m = material_from(&format!(
                 r#"{{"pbrMetallicRoughness":{{"metallicFactor":0,{texture}}}{extra}}}"#
             ));
-            map_material(Some(&m), &GltfOptions::default()).unwrap()
+            map_material(Some(&m), None, &GltfOptions::default()).unwrap()
         };
         let reference = mapped("").metallic_roughness_texture.unwrap();
         assert_eq!((reference.index, reference.tex_coord), (3, 1));
@@ -141,14 +163,14 @@ mod tests {
             ..GltfOptions::default()
         };
         assert_eq!(
-            map_material(Some(&m), &options).unwrap().emission,
+            map_material(Some(&m), None, &options).unwrap().emission,
             Vec3::new(2.0, 1.0, 0.0)
         );
         // Without the extension the strength is 1; colours above 1 are clamped.
         let m = material_from(
             r#"{"emissiveFactor":[0.25,0.25,0.25],"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,1],"metallicFactor":0}}"#,
         );
-        let mapped = map_material(Some(&m), &GltfOptions::default()).unwrap();
+        let mapped = map_material(Some(&m), None, &GltfOptions::default()).unwrap();
         assert_eq!(mapped.emission, Vec3::splat(0.25));
         assert_eq!(
             mapped.kind,
@@ -179,9 +201,9 @@ mod tests {
                 "emission",
             ),
         ] {
-            let err = map_material(Some(&m), &GltfOptions::default()).unwrap_err();
+            let err = map_material(Some(&m), None, &GltfOptions::default()).unwrap_err();
             assert!(err.contains(needle), "{err}");
         }
-        assert!(map_material(Some(&strength("1e30")), &GltfOptions::default()).is_ok());
+        assert!(map_material(Some(&strength("1e30")), None, &GltfOptions::default()).is_ok());
     }
 }

@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 use super::material::GltfMaterial;
 use crate::emission::EmissionTexture;
 use crate::sampler::Sampler;
-use crate::scene::metallic_roughness_texture::MetallicRoughnessTexture;
+use crate::scene::material_textures::MaterialTextures;
 use crate::texture::Texture;
 
 /// One mesh primitive placed in the world.
@@ -45,9 +45,10 @@ pub struct GltfMesh {
     /// when the material has one and a non-zero emission factor); it multiplies
     /// [`GltfMaterial::emission`].
     pub emission_texture: Option<EmissionTexture>,
-    /// The decoded metallic-roughness texture (linear texels) with its own texture
-    /// coordinates per vertex (read only when the material is
-    /// [`Material::MetallicRoughness`](crate::material::Material::MetallicRoughness) and has one); it
-    /// multiplies the material's metallic (blue) and roughness (green) factors at each point.
-    pub metallic_roughness_texture: Option<MetallicRoughnessTexture>,
+    /// The decoded material textures, each with its own texture coordinates per vertex: the
+    /// metallic-roughness, specular and specular-colour textures (read only when the material
+    /// is [`Material::MetallicRoughness`](crate::material::Material::MetallicRoughness) and has
+    /// them), multiplying its factors at each point, and the normal map with world-space
+    /// tangents (`TANGENT` or MikkTSpace's).
+    pub material_textures: MaterialTextures,
 }

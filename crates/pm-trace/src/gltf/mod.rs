@@ -61,10 +61,22 @@
 //!   [`ShadingPoint::tint`](crate::bsdf::ShadingPoint::tint) for every BSDF); the
 //!   `metallicRoughnessTexture` (linear values: blue multiplies `metallicFactor`, green
 //!   `roughnessFactor`) reaches [`MetallicRoughness`](crate::bsdf::MetallicRoughness) through
-//!   [`ShadingPoint::factors`](crate::bsdf::ShadingPoint::factors) at each hit; the emissive
-//!   texture is read for emission (below). **Not read yet**: `KHR_materials_specular`'s
-//!   `specularTexture` and `specularColorTexture`, `normalTexture` (normal maps), the
-//!   occlusion texture and `KHR_materials_transmission`'s texture. Each texture keeps a
+//!   [`ShadingPoint::factors`](crate::bsdf::ShadingPoint::factors) at each hit, as do
+//!   `KHR_materials_specular`'s `specularTexture` (its alpha channel, linear, multiplies
+//!   `specularFactor`; an image without alpha reads as 1) and `specularColorTexture` (sRGB,
+//!   multiplies `specularColorFactor`); the emissive texture is read for emission (below).
+//!   The `normalTexture` (linear, times its `scale` in x and y) bends the shading normal
+//!   ([`NormalTexture`](crate::NormalTexture)) in the frame of the primitive's `TANGENT` where
+//!   it has one and `NORMAL` too, else of MikkTSpace tangents made at load
+//!   ([`mikktspace_tangents`](crate::mikktspace_tangents), with glTF's sign convention), for
+//!   every material kind; a mapped normal is kept at least
+//!   [`MIN_MAPPED_COSINE`](crate::MIN_MAPPED_COSINE) above the geometric surface, and no ray
+//!   leaves below it (see [`Scene::shading_normal_at`](crate::Scene::shading_normal_at)). The map shapes whatever reads the
+//!   shading normal: shadow rays, BSDF lobes, the path tracer, mirror and glass bounces and
+//!   photons read through a glossy BSDF; a diffuse photon estimate reads the flux through the
+//!   geometric surface and is not changed by it. **Not read**: the occlusion texture
+//!   (ambient occlusion is what the renderer computes) and `KHR_materials_transmission`'s
+//!   texture. Each texture keeps a
 //!   box-filtered mip chain: the photon-map and shadow-ray modes average it over the camera
 //!   pixel's footprint ([`Scene::albedo_over`]), so a texture seen from afar does not alias;
 //!   photon tracing, the path tracer and the progressive modes look textures up at points
@@ -73,9 +85,6 @@
 //!   and glass bounces. A texture naming a missing image that no material uses is a warning in
 //!   [`GltfContent::warnings`]; one that a material uses is [`GltfError::Image`].
 //!
-//!   The photon-map estimators read a metallic-roughness surface's diffuse lobe only
-//!   ([`Bsdf::diffuse_albedo`](crate::bsdf::Bsdf::diffuse_albedo)) until glossy photon
-//!   estimates land; the path tracer renders the whole BSDF.
 //! - **Emission**: `emissiveFactor × KHR_materials_emissive_strength ×`
 //!   [`LightUnits::emission_factor`] `×` [`GltfOptions::emission_scale`] is the surface's
 //!   radiance in W/(m²·sr), times the `emissiveTexture` (sRGB decoded to linear, at its own
@@ -169,9 +178,10 @@ mod graph;
 mod image;
 mod light;
 mod material;
+mod material_textures;
 mod mesh;
-mod metallic_roughness;
 mod node_transform;
+mod normal_transform;
 mod options;
 mod origin;
 mod place;

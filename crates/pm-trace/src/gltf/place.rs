@@ -1,6 +1,7 @@
 //! A decoded primitive placed by a node: its vertices taken through the node's f64 world
 //! transform, moved by the scene's re-centring offset, and only then rounded to f32; its
-//! normals by the transform's inverse transpose; its winding kept front-facing under mirrors.
+//! normals by the transform's inverse transpose, tangents by the transform; its winding kept
+//! front-facing under mirrors.
 
 use std::path::Path;
 
@@ -10,6 +11,7 @@ use super::decoded::LocalPrimitive;
 use super::error::GltfError;
 use super::mesh::GltfMesh;
 use super::origin::{WorldBounds, unit_f32};
+use crate::scene::material_textures::MaterialTextures;
 
 impl LocalPrimitive {
     /// Adds the world position (f64, before re-centring) of every vertex under `world` to
@@ -79,7 +81,24 @@ impl LocalPrimitive {
             normals,
             base_color_texture: self.base_color_texture.clone(),
             emission_texture: self.emission_texture.clone(),
-            metallic_roughness_texture: self.metallic_roughness_texture.clone(),
+            material_textures: self.placed_material_textures(world),
         })
+    }
+
+    /// The material textures with the normal map's tangents taken to the world by `world`'s
+    /// linear part (tangents are directions on the surface, not normals), and their bitangent
+    /// signs flipped under a mirroring transform (which flips `N × T` against the mapped
+    /// bitangent).
+    fn placed_material_textures(&self, world: DMat4) -> MaterialTextures {
+        let mut textures = self.material_textures.clone();
+        if let Some(normal) = &mut textures.normal {
+            let linear = DMat3::from_mat4(world);
+            let sign = if linear.determinant() < 0.0 { -1.0 } else { 1.0 };
+            for t in &mut normal.tangents {
+                let xyz = unit_f32(linear * t.truncate().as_dvec3()).unwrap_or(Vec3::ZERO);
+                *t = xyz.extend(t.w * sign);
+            }
+        }
+        textures
     }
 }

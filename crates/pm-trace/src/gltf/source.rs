@@ -171,9 +171,16 @@ fn patch_unused_broken_textures(root: &mut json::Root) -> Vec<String> {
         .iter()
         .flat_map(|m| {
             let pbr = &m.pbr_metallic_roughness;
+            let specular = m.extensions.as_ref().and_then(|e| e.specular.as_ref());
             [
                 pbr.base_color_texture.as_ref().map(|t| t.index.value()),
                 pbr.metallic_roughness_texture.as_ref().map(|t| t.index.value()),
+                specular
+                    .and_then(|s| s.specular_texture.as_ref())
+                    .map(|t| t.index.value()),
+                specular
+                    .and_then(|s| s.specular_color_texture.as_ref())
+                    .map(|t| t.index.value()),
                 m.normal_texture.as_ref().map(|t| t.index.value()),
                 m.occlusion_texture.as_ref().map(|t| t.index.value()),
                 m.emissive_texture.as_ref().map(|t| t.index.value()),

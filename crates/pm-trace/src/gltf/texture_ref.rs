@@ -31,6 +31,26 @@ impl TextureRef {
             .extensions
             .as_ref()
             .and_then(|e| e.texture_transform.as_ref());
+        Self::with_transform(info.index.value(), info.tex_coord, extension)
+    }
+
+    /// Reads a material's `normalTexture` and its `scale`, under `extension`, its
+    /// `KHR_texture_transform` (which the gltf crate does not type there: see
+    /// `normal_transform.rs`).
+    pub(super) fn from_normal(
+        normal: &json::material::NormalTexture,
+        extension: Option<&json::extensions::texture::TextureTransform>,
+    ) -> (Self, f32) {
+        let reference = Self::with_transform(normal.index.value(), normal.tex_coord, extension);
+        (reference, normal.scale)
+    }
+
+    /// Texture `index` at `TEXCOORD_tex_coord` under `KHR_texture_transform` `extension`.
+    fn with_transform(
+        index: usize,
+        tex_coord: u32,
+        extension: Option<&json::extensions::texture::TextureTransform>,
+    ) -> Self {
         let transform = extension.map_or(TextureTransform::IDENTITY, |t| {
             TextureTransform {
                 offset: Vec2::from(t.offset.0),
@@ -40,8 +60,8 @@ impl TextureRef {
             .finite_or_identity()
         });
         Self {
-            index: info.index.value(),
-            tex_coord: extension.and_then(|t| t.tex_coord).unwrap_or(info.tex_coord),
+            index,
+            tex_coord: extension.and_then(|t| t.tex_coord).unwrap_or(tex_coord),
             transform,
         }
     }

@@ -3,6 +3,7 @@
 //! a fingerprint of a scene needs beyond its polygons, surfaces and lights.
 
 use super::Scene;
+use super::material_texture::MaterialTexture;
 use super::shading::VertexAttributes;
 use crate::sampler::Sampler;
 use crate::texture::Texture;
@@ -12,8 +13,9 @@ impl Scene {
     /// Feeds `sink` the bytes of every mesh's vertex attributes, mesh by mesh in the scene's
     /// order: each mesh's index and whether it has attributes, then its corners and
     /// triangles as given, its texture coordinates, vertex colours and shading normals (each
-    /// number's bits, little-endian) and its base-colour, emission and metallic-roughness
-    /// textures (size, encoding, every texel, sampler). Equal scenes feed equal bytes; a
+    /// number's bits, little-endian), its base-colour and emission textures and its material's
+    /// parameter textures and normal map (size, encoding, every texel, sampler; the map's
+    /// scale and tangents). Equal scenes feed equal bytes; a
     /// change to any texel or attribute changes them. For fingerprints (a photon cache made
     /// for this scene); the geometry, surfaces and lights are not fed.
     pub fn feed_appearance(&self, sink: &mut dyn FnMut(&[u8])) {
@@ -42,7 +44,7 @@ fn feed_attributes(sink: &mut dyn FnMut(&[u8]), attributes: &VertexAttributes) {
         normals,
         base_color_texture,
         emission_texture,
-        metallic_roughness_texture,
+        material_textures,
     } = attributes;
     feed_optional(sink, uvs.as_deref(), feed_vec2s);
     feed_optional(sink, colors.as_deref(), feed_vec3s);
@@ -54,10 +56,31 @@ fn feed_attributes(sink: &mut dyn FnMut(&[u8]), attributes: &VertexAttributes) {
         feed_vec2s(sink, &e.uvs);
         feed_texture(sink, &e.texture, &e.sampler);
     });
-    feed_optional(sink, metallic_roughness_texture.as_ref(), |sink, m| {
-        feed_vec2s(sink, &m.uvs);
-        feed_texture(sink, &m.texture, &m.sampler);
+    let [metallic_roughness, later @ ..] = material_textures.named();
+    feed_optional(sink, metallic_roughness.1, feed_material_texture);
+    // The textures read since: fed only where a mesh has one, so that the bytes of every
+    // mesh without (and the fingerprints of caches made before) stay as they were.
+    if later.iter().all(|(_, t)| t.is_none()) {
+        return;
+    }
+    sink(b"specular, specular colour, normal map");
+    for (_, texture) in later {
+        feed_optional(sink, texture, feed_material_texture);
+    }
+    feed_optional(sink, material_textures.normal.as_ref(), |sink, n| {
+        sink(&n.scale.to_bits().to_le_bytes());
+        feed_floats(
+            sink,
+            n.tangents.len(),
+            n.tangents.iter().flat_map(|t| t.to_array()),
+        );
     });
+}
+
+/// A material texture's coordinates, texels and sampler.
+fn feed_material_texture(sink: &mut dyn FnMut(&[u8]), texture: &MaterialTexture) {
+    feed_vec2s(sink, &texture.uvs);
+    feed_texture(sink, &texture.texture, &texture.sampler);
 }
 
 /// A marker (0 absent, 1 present) and, when present, `value`'s bytes.

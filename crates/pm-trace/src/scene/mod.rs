@@ -6,15 +6,20 @@ mod assemble;
 pub(crate) mod builder;
 mod checks;
 mod faces_as_given;
+pub(crate) mod material_texture;
+pub(crate) mod material_textures;
 mod mesh_input;
-pub(crate) mod metallic_roughness_texture;
+pub(crate) mod normal_texture;
 pub mod offset;
 mod queries;
 pub(crate) mod shading;
 
 pub use builder::SceneBuilder;
+pub use material_texture::MaterialTexture;
+pub use material_textures::MaterialTextures;
 pub use mesh_input::MAX_SCENE_TRIANGLES;
-pub use metallic_roughness_texture::MetallicRoughnessTexture;
+use normal_texture::above_geometric;
+pub use normal_texture::{MIN_MAPPED_COSINE, NormalTexture, mikktspace_tangents};
 pub use queries::PAIRED_RAYS_MIN_TRIANGLES;
 use shading::MeshShading;
 pub use shading::VertexAttributes;
@@ -304,7 +309,10 @@ impl Scene {
     }
 
     /// The unit normal to shade `hit` with: the mesh's interpolated vertex normals (glTF
-    /// `NORMAL`) where it has them, else the geometric [`Hit::normal`].
+    /// `NORMAL`) where it has them, else the geometric [`Hit::normal`]; where the mesh has a
+    /// normal map ([`NormalTexture`]) that normal bent by it, and then kept at least
+    /// [`MIN_MAPPED_COSINE`] above the geometric surface (tilted towards the geometric normal,
+    /// within the plane of the two, where the map leans it further).
     ///
     /// The result is always on the geometric normal's side (the side the ray came from): an
     /// interpolated normal pointing into the surface is flipped (negated). Geometric normals
@@ -329,11 +337,17 @@ impl Scene {
             return hit.normal;
         };
         let face = mesh.mesh.source_face(FaceId(hit.part.0 - mesh.first_part));
-        let n = shading
-            .normal_at(face, hit.position)
-            .and_then(|n| n.try_normalize())
-            .unwrap_or(hit.normal);
-        if n.dot(hit.normal) < 0.0 { -n } else { n }
+        let front = if hit.front_face { hit.normal } else { -hit.normal };
+        let Some((smooth, mapped)) = shading.normals_at(face, hit.position, front) else {
+            return hit.normal;
+        };
+        let n = smooth.try_normalize().unwrap_or(hit.normal);
+        let flip = n.dot(hit.normal) < 0.0;
+        match mapped {
+            None if flip => -n,
+            None => n,
+            Some(m) => above_geometric(if flip { -m } else { m }, hit.normal),
+        }
     }
 
     /// Radiance emitted towards the ray that made `hit`: the surface's emission, times its

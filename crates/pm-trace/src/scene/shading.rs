@@ -1,12 +1,13 @@
 //! Per-vertex attributes of a mesh (texture coordinates, colours, normals, a base-colour
-//! texture, an emission texture) and their interpolation at a hit, from barycentrics
-//! computed after the hit.
+//! texture, an emission texture, the material's parameter textures and normal map) and their
+//! interpolation at a hit, from barycentrics computed after the hit.
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::metallic_roughness_texture::{MetallicRoughnessTexture, texels_across};
+use super::material_texture::texels_across;
+use super::material_textures::MaterialTextures;
 use crate::bsdf::shading_point::TextureFactors;
 use crate::emission::EmissionTexture;
 use crate::sampler::Sampler;
@@ -32,10 +33,10 @@ pub struct VertexAttributes {
     /// ([`crate::Scene::emission`] reads it at hits; a [`crate::TexturedAreaLight`] over the
     /// same triangles, texture and factor makes the matching light).
     pub emission_texture: Option<EmissionTexture>,
-    /// A texture multiplying a [`crate::bsdf::MetallicRoughness`] surface's metalness (blue)
-    /// and roughness (green) at each point, with its own texture coordinates (glTF's
-    /// `metallicRoughnessTexture`); read into [`crate::ShadingPoint::factors`].
-    pub metallic_roughness_texture: Option<MetallicRoughnessTexture>,
+    /// Textures of the material's parameters (read into [`crate::ShadingPoint::factors`]) and
+    /// its normal map (read into [`crate::Scene::shading_normal_at`]), each with its own
+    /// texture coordinates.
+    pub material_textures: MaterialTextures,
 }
 
 /// A mesh's attributes and the triangles (by source face) to interpolate them over. The
@@ -91,12 +92,19 @@ impl MeshShading {
             "emission texture coordinates",
             self.attributes.emission_texture.as_ref().map(|e| e.uvs.len()),
         )?;
+        for (name, texture) in self.attributes.material_textures.named() {
+            check(
+                &format!("{name} texture coordinates"),
+                texture.map(|t| t.uvs.len()),
+            )?;
+        }
         check(
-            "metallic-roughness texture coordinates",
+            "normal-map tangents",
             self.attributes
-                .metallic_roughness_texture
+                .material_textures
+                .normal
                 .as_ref()
-                .map(|t| t.uvs.len()),
+                .map(|n| n.tangents.len()),
         )?;
         if let Some(bad) = self.triangles.iter().flatten().find(|&&i| i as usize >= n) {
             return Err(format!("corner {bad} out of range for {n} vertices"));
@@ -131,23 +139,21 @@ impl MeshShading {
                 .emission_texture
                 .as_ref()
                 .map_or(0, |e| e.uvs.capacity() * size_of::<Vec2>())
-            + self
-                .attributes
-                .metallic_roughness_texture
-                .as_ref()
-                .map_or(0, |t| t.uvs.capacity() * size_of::<Vec2>())
+            + self.attributes.material_textures.heap_bytes()
     }
 
-    /// The metallic-roughness texture's factors at point `p` of source triangle `face`,
-    /// averaged over `footprint` metres (0: a point lookup), or `None` when the mesh has no
-    /// such texture.
+    /// The material textures' factors at point `p` of source triangle `face`, averaged over
+    /// `footprint` metres (0: a point lookup), or `None` when the mesh has no such texture.
     #[inline]
     pub(crate) fn factors_at(&self, face: usize, p: Vec3, footprint: f32) -> Option<TextureFactors> {
-        let texture = self.attributes.metallic_roughness_texture.as_ref()?;
+        let textures = &self.attributes.material_textures;
+        if !textures.has_factors() {
+            return None;
+        }
         let &corners = self.triangles.get(face)?;
         let positions = corners.map(|i| self.positions[i as usize]);
         let [a, b, c] = positions;
-        Some(texture.factors_at(corners, positions, barycentrics(a, b, c, p), footprint))
+        Some(textures.factors_at(corners, positions, barycentrics(a, b, c, p), footprint))
     }
 
     /// True when the mesh has an emission texture.
@@ -169,22 +175,34 @@ impl MeshShading {
         ))
     }
 
-    /// True when the mesh has per-vertex normals.
+    /// True when the mesh has per-vertex normals or a normal map.
     #[inline]
     pub(crate) fn has_normals(&self) -> bool {
-        self.attributes.normals.is_some()
+        self.attributes.normals.is_some() || self.attributes.material_textures.normal.is_some()
     }
 
-    /// The interpolated vertex normal at point `p` of source triangle `face` (not normalised,
-    /// not oriented), or `None` when the mesh has no normals.
+    /// The normals at point `p` of source triangle `face`, whose face normal (on the front,
+    /// counter-clockwise side) is `face_normal`: the interpolated vertex normal (the face
+    /// normal without them; not normalised, not oriented) and, where the mesh has a normal
+    /// map, that normal bent by it (unit, on the side the first points to). `None` when the
+    /// mesh has neither normals nor a normal map.
     #[inline]
-    pub(crate) fn normal_at(&self, face: usize, p: Vec3) -> Option<Vec3> {
-        let normals = self.attributes.normals.as_ref()?;
+    pub(crate) fn normals_at(&self, face: usize, p: Vec3, face_normal: Vec3) -> Option<(Vec3, Option<Vec3>)> {
         let &corners = self.triangles.get(face)?;
-        let [a, b, c] = corners.map(|i| self.positions[i as usize]);
+        let positions = corners.map(|i| self.positions[i as usize]);
+        let [a, b, c] = positions;
         let w = barycentrics(a, b, c, p);
-        let [na, nb, nc] = corners.map(|i| normals[i as usize]);
-        Some(na * w.x + nb * w.y + nc * w.z)
+        let interpolated = self.attributes.normals.as_ref().map(|normals| {
+            let [na, nb, nc] = corners.map(|i| normals[i as usize]);
+            na * w.x + nb * w.y + nc * w.z
+        });
+        let Some(map) = &self.attributes.material_textures.normal else {
+            return interpolated.map(|n| (n, None));
+        };
+        let normal = interpolated
+            .filter(|n| n.length_squared() > 0.0)
+            .unwrap_or(face_normal);
+        Some((normal, map.bend(corners, positions, w, normal)))
     }
 
     /// The colour factor at point `p` of source triangle `face`: texture × vertex colour, the

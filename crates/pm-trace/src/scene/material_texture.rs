@@ -1,21 +1,18 @@
-//! glTF's `metallicRoughnessTexture` on a mesh: linear texels read at the texture's own
-//! per-vertex coordinates, blue as the metalness factor and green as the roughness factor.
+//! One texture of a material on a mesh, read at its own per-vertex texture coordinates (at a
+//! point or averaged over a footprint).
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use crate::bsdf::shading_point::TextureFactors;
 use crate::sampler::Sampler;
 use crate::texture::Texture;
 
-/// A texture whose blue channel multiplies a [`crate::bsdf::MetallicRoughness`]'s metalness
-/// and whose green channel multiplies its roughness at each point (glTF's
-/// `metallicRoughnessTexture`; red, occlusion in some files, is ignored). Its texels should
-/// be [`crate::TexelEncoding::Linear`]: they are data, not colour.
+/// One texture of a material's parameters, with its own texture coordinates per vertex of the
+/// mesh (glTF convention: v grows down the image).
 #[derive(Clone, Debug, PartialEq)]
-pub struct MetallicRoughnessTexture {
-    /// Texture coordinates per vertex of the mesh (glTF convention: v grows down the image).
+pub struct MaterialTexture {
+    /// Texture coordinates per vertex of the mesh.
     pub uvs: Vec<Vec2>,
     /// The image, shared with every other mesh or material that uses it.
     pub texture: Arc<Texture>,
@@ -23,29 +20,19 @@ pub struct MetallicRoughnessTexture {
     pub sampler: Sampler,
 }
 
-impl MetallicRoughnessTexture {
-    /// The factors at barycentric weights `w` of a triangle with corners `corners` (indices
-    /// of this texture's `uvs`) and positions `positions`, averaged over a footprint
-    /// `footprint` metres across (0: a point lookup).
+impl MaterialTexture {
+    /// The texel at barycentric weights `w` of a triangle with corners `corners` (indices of
+    /// this texture's `uvs`) and positions `positions`, averaged over a footprint `footprint`
+    /// metres across (0: a point lookup).
     #[inline]
-    pub(crate) fn factors_at(
-        &self,
-        corners: [u32; 3],
-        positions: [Vec3; 3],
-        w: Vec3,
-        footprint: f32,
-    ) -> TextureFactors {
+    pub(crate) fn texel_at(&self, corners: [u32; 3], positions: [Vec3; 3], w: Vec3, footprint: f32) -> Vec3 {
         let [ta, tb, tc] = corners.map(|i| self.uvs[i as usize]);
         let uv = ta * w.x + tb * w.y + tc * w.z;
-        let texel = if footprint > 0.0 {
+        if footprint > 0.0 {
             let texels = texels_across(&self.texture, positions, [ta, tb, tc], footprint);
             self.sampler.sample_footprint(&self.texture, uv, texels)
         } else {
             self.sampler.sample(&self.texture, uv)
-        };
-        TextureFactors {
-            metallic: texel.z,
-            roughness: texel.y,
         }
     }
 }
