@@ -45,6 +45,8 @@ mod reference;
 mod report;
 #[path = "convergence/saved.rs"]
 mod saved;
+#[path = "convergence/study_scene.rs"]
+mod study_scene;
 // Counts heap bytes for the memory table (an atomic add per allocation; the render loops do
 // not allocate once warm).
 #[path = "../tests/support/tracking_allocator.rs"]
@@ -106,7 +108,7 @@ struct Args {
     /// multiple of `--size` (500 for 125) is box-filtered down instead of path tracing anew.
     #[arg(long, default_value = "target/pm-references")]
     results_references: PathBuf,
-    /// Scenes, comma-separated.
+    /// Scenes, comma-separated: built-in names or glTF files (filed under their stems).
     #[arg(long, default_value = "cornell-box,lit-unlit-rooms,colored-rooms,accordion")]
     scenes: String,
     /// Worker threads for every renderer.
@@ -331,8 +333,9 @@ fn run(args: &Args) -> Result<(), String> {
         memory: Vec::new(),
         rescored: None,
     };
-    for name in args.scenes.split(',').map(str::trim) {
-        let scene = scenes::build(name).map_err(|e| e.to_string())?;
+    for source in args.scenes.split(',').map(str::trim) {
+        let (scene, name) = study_scene::load(source)?;
+        let name = name.as_str();
         let reference = reference::reference(
             name,
             &scene,
@@ -389,6 +392,7 @@ fn run(args: &Args) -> Result<(), String> {
         }
         study.scenes.push(SceneResult {
             name: name.to_owned(),
+            source: (source != name).then(|| source.to_owned()),
             reference_spp: reference.spp,
             reference_noise: noise,
             coverage: mask.coverage(),

@@ -341,7 +341,15 @@ fn a_kept_run_rescores_the_same_and_against_an_extended_reference() {
     // the reference folder) is refused before any file is opened.
     let absolute = record.replacen("\"name\":\"accordion\"", "\"name\":\"/etc/accordion\"", 1);
     assert_ne!(absolute, record, "the record names its scenes");
-    refused_record(&absolute, "not a built-in scene");
+    refused_record(&absolute, "neither a built-in scene");
+    // A glTF source must name the scene by its plain stem.
+    let sourced = record.replacen(
+        "\"name\":\"accordion\",\"source\":null",
+        "\"name\":\"accordion\",\"source\":\"/etc/evil.gltf\"",
+        1,
+    );
+    assert_ne!(sourced, record, "the record names its scenes' sources");
+    refused_record(&sourced, "neither a built-in scene");
     // A kept image gone, or a reference cut short: refused, naming the file.
     let gone = std::fs::read_dir(kept.join("accordion"))
         .unwrap()

@@ -13,6 +13,9 @@ use std::path::Path;
 #[derive(serde::Serialize, serde::Deserialize)]
 pub struct SceneResult {
     pub name: String,
+    /// The glTF file the scene was read from (`None`: the built-in scene `name`).
+    #[serde(default)]
+    pub source: Option<String>,
     pub reference_spp: u64,
     pub reference_noise: f64,
     /// Share of the pixels the errors are measured over.

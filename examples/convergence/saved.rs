@@ -6,8 +6,8 @@
 
 use super::mask::Mask;
 use super::methods::Sample;
-use super::report::Study;
-use super::{chart, reference};
+use super::report::{SceneResult, Study};
+use super::{chart, reference, study_scene};
 use photon_maps::render::Image;
 use photon_maps::render::image::{read_text_file, write_atomically};
 use photon_maps::trace::scenes;
@@ -102,15 +102,12 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
     // is opened (a FIFO or /dev/zero is refused, never read).
     let text = read_text_file(&path, MAX_RECORD_BYTES).map_err(|e| e.to_string())?;
     let mut study: Study = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    // Every name the record gives becomes part of a path: each must be a built-in scene's
-    // before anything is opened (an absolute name would reach outside the folders).
-    if let Some(scene) = study
-        .scenes
-        .iter()
-        .find(|s| !scenes::NAMES.contains(&s.name.as_str()))
-    {
+    // Every name the record gives becomes part of a path: each must be a built-in scene's, or
+    // a glTF source's plain file stem, before anything is opened (an absolute name would reach
+    // outside the folders).
+    if let Some(scene) = study.scenes.iter().find(|s| !is_safe_name(s)) {
         return Err(format!(
-            "{}: scene {:?} is not a built-in scene ({})",
+            "{}: scene {:?} is neither a built-in scene ({}) nor the plain file stem of its glTF source",
             path.display(),
             scene.name,
             scenes::NAMES.join(", ")
@@ -122,7 +119,7 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
     for scene in &mut study.scenes {
         // The reference first: its files bound the size the record claims.
         let reference = reference::cached(&scene.name, study.size, study.size, to.references)?;
-        let built = scenes::build(&scene.name).map_err(|e| format!("{}: {e}", scene.name))?;
+        let (built, _) = study_scene::load(scene.source.as_deref().unwrap_or(&scene.name))?;
         let mask = if study.all_pixels {
             Mask::all(study.size, study.size)
         } else {
@@ -172,4 +169,20 @@ pub fn rescore(to: &Rescore<'_>) -> Result<(), String> {
         before.join(", ")
     ));
     super::report::write(&to.out_dir.join("convergence.md"), &study)
+}
+
+/// True when `scene`'s name may become part of a path: a built-in scene's name, or the stem of
+/// its glTF source made of letters, digits, `-` and `_` only.
+fn is_safe_name(scene: &SceneResult) -> bool {
+    let name = scene.name.as_str();
+    match &scene.source {
+        None => scenes::NAMES.contains(&name),
+        Some(source) => {
+            Path::new(source).file_stem().and_then(|s| s.to_str()) == Some(name)
+                && !name.is_empty()
+                && name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+        }
+    }
 }

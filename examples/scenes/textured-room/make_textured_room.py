@@ -66,7 +66,32 @@ def quad(corners, uvs=None, normal_to_centre=True):
     return {"positions": corners, "uvs": uvs}
 
 
+MATERIALS = [
+    {"name": "tiled floor", "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 1.0}},
+    {"name": "white", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.75, 0.75, 0.75, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
+    {"name": "red", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.7, 0.12, 0.08, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
+    {"name": "panel", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+     "emissiveFactor": [1.0, 0.9, 0.75],
+     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6.0}}},
+]
+"""Materials by index: the floor (0), white walls and ceiling (1), the red wall (2), the
+emissive panel (3); the right wall uses index 4 when there is one, else the white one."""
+
+
 def build():
+    room(MATERIALS, [{"source": 0, "sampler": 0}], [{"uri": "floor.png"}],
+         ["KHR_materials_emissive_strength"], HERE, "textured-room")
+    with open(os.path.join(HERE, "floor.png"), "wb") as f:
+        f.write(floor_texture())
+
+
+def room(materials, textures, images, extensions_used, out_dir, stem):
+    """Writes out_dir/stem.gltf and out_dir/stem.bin: the room with these materials (indexed as
+    MATERIALS is), textures and images (written by the caller)."""
     floor = [(0, 0, 0), (0, 0, D), (W, 0, D), (W, 0, 0)]
     floor_uv = [(0, 0), (0, 4), (4, 4), (4, 0)]
     # The floor's texture coordinates follow its corners, so set them before any reordering.
@@ -86,22 +111,10 @@ def build():
         ("floor", {"positions": floor_corners, "uvs": floor_uv}, 0),
         ("ceiling", quad([(0, H, 0), (W, H, 0), (W, H, D), (0, H, D)]), 1),
         ("red wall", quad([(0, 0, 0), (0, H, 0), (0, H, D), (0, 0, D)]), 2),
-        ("right wall", quad([(W, 0, 0), (W, 0, D), (W, H, D), (W, H, 0)]), 1),
+        ("right wall", quad([(W, 0, 0), (W, 0, D), (W, H, D), (W, H, 0)]), 4 if len(materials) > 4 else 1),
         ("back wall", quad([(0, 0, 0), (W, 0, 0), (W, H, 0), (0, H, 0)]), 1),
         ("front wall", quad([(0, 0, D), (0, H, D), (W, H, D), (W, 0, D)]), 1),
         ("panel", {"positions": panel, "uvs": None}, 3),
-    ]
-    materials = [
-        {"name": "tiled floor", "pbrMetallicRoughness": {
-            "baseColorTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 1.0}},
-        {"name": "white", "pbrMetallicRoughness": {
-            "baseColorFactor": [0.75, 0.75, 0.75, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
-        {"name": "red", "pbrMetallicRoughness": {
-            "baseColorFactor": [0.7, 0.12, 0.08, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
-        {"name": "panel", "pbrMetallicRoughness": {
-            "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
-         "emissiveFactor": [1.0, 0.9, 0.75],
-         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6.0}}},
     ]
     blob = bytearray()
     views, accessors, meshes, nodes = [], [], [], []
@@ -138,7 +151,7 @@ def build():
                   "rotation": [math.sin(tilt / 2), 0.0, 0.0, math.cos(tilt / 2)]})
     gltf = {
         "asset": {"version": "2.0", "generator": "photon-maps make_textured_room.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "extensionsUsed": extensions_used,
         "scene": 0,
         "scenes": [{"nodes": list(range(len(nodes)))}],
         "nodes": nodes,
@@ -146,18 +159,16 @@ def build():
         "materials": materials,
         "cameras": [{"type": "perspective", "perspective": {
             "yfov": math.radians(80.0), "aspectRatio": 1.0, "znear": 0.01}}],
-        "textures": [{"source": 0, "sampler": 0}],
+        "textures": textures,
         "samplers": [{"wrapS": 10497, "wrapT": 10497, "magFilter": 9729, "minFilter": 9987}],
-        "images": [{"uri": "floor.png"}],
-        "buffers": [{"uri": "textured-room.bin", "byteLength": len(blob)}],
+        "images": images,
+        "buffers": [{"uri": stem + ".bin", "byteLength": len(blob)}],
         "bufferViews": views,
         "accessors": accessors,
     }
-    with open(os.path.join(HERE, "textured-room.bin"), "wb") as f:
+    with open(os.path.join(out_dir, stem + ".bin"), "wb") as f:
         f.write(bytes(blob))
-    with open(os.path.join(HERE, "floor.png"), "wb") as f:
-        f.write(floor_texture())
-    with open(os.path.join(HERE, "textured-room.gltf"), "w") as f:
+    with open(os.path.join(out_dir, stem + ".gltf"), "w") as f:
         json.dump(gltf, f, indent=1)
         f.write("\n")
 
