@@ -27,6 +27,15 @@
 //! chain and path tracer scatter through it. The module docs give its conventions (world
 //! space, `eval` without the cosine, delta lobes) and an example implementation.
 //!
+//! A mesh may carry [`VertexAttributes`]: texture coordinates, colours and normals, a
+//! base-colour and an emission texture, and [`MaterialTextures`]: textures that multiply a
+//! [`bsdf::MetallicRoughness`]'s metalness, roughness, specular strength and specular colour
+//! at each point (read into [`ShadingPoint::factors`](bsdf::ShadingPoint::factors)), and a
+//! normal map ([`NormalTexture`], in glTF's tangent-space convention, with
+//! [`mikktspace_tangents`] for meshes without tangents) that bends
+//! [`Scene::shading_normal_at`], kept at least [`MIN_MAPPED_COSINE`] above the geometric
+//! surface. The glTF loader (module `gltf`, feature `gltf`) fills them from a file's materials.
+//!
 //! # Conventions
 //!
 //! - Units: metres; light *power* is the total emitted flux in watts per RGB channel;
