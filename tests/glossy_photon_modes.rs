@@ -3,16 +3,16 @@
 //! 4 × 4 blocks and each block's mean (all three channels summed) is compared with the path
 //! tracer's, in units of the combined standard error of the two (from independent seeds).
 
-use photon_maps::render::progressive::{
-    ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
-};
+use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{CreaseAngle, Partitioned, Partitioner, Scene, scenes};
+use photon_maps::trace::{CreaseAngle, Partitioner, scenes};
+
+#[path = "support/photon_modes.rs"]
+mod photon_modes;
+use photon_modes::{Sppm, every_mode};
 
 const SIZE: u32 = 24;
 
-/// A mode's name and how it renders the scene for a seed.
-type Case<'a> = (&'static str, Box<dyn Fn(u64) -> Image + 'a>);
 const BLOCKS: u32 = 4;
 
 fn settings(mode: Mode, seed: u64) -> RenderSettings {
@@ -59,28 +59,6 @@ fn over_seeds(render: impl Fn(u64) -> Image, seeds: u64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn one_shot(partitioned: &Partitioned, kind: EstimatorKind, mode: Mode, seed: u64) -> Image {
-    Renderer::new(kind, settings(mode, seed))
-        .render(partitioned, &())
-        .unwrap()
-        .image
-}
-
-fn progressive(partitioned: &Partitioned, kind: EstimatorKind, mode: Mode, seed: u64) -> Image {
-    ProgressiveRenderer::new(kind, ProgressiveSettings::new(settings(mode, seed), 4))
-        .render(partitioned, &())
-        .unwrap()
-        .accumulation
-        .mean()
-}
-
-fn sppm(scene: &Scene, seed: u64) -> Image {
-    SppmRenderer::new(SppmSettings::new(settings(Mode::PhotonMap, seed), 8))
-        .render(scene, &())
-        .unwrap()
-        .image
-}
-
 /// Largest |t| over the blocks and the mean relative difference, against `reference`.
 fn compare(name: &str, modes: &[(f64, f64)], reference: &[(f64, f64)]) -> (f64, f64) {
     let mut worst: f64 = 0.0;
@@ -103,32 +81,11 @@ fn compare(name: &str, modes: &[(f64, f64)], reference: &[(f64, f64)]) -> (f64, 
     (worst, rel)
 }
 
-/// Every photon mode the tests compare, with the estimators they read through: one-shot
-/// photon-map, shadow-rays and final gather, progressive, and SPPM.
-fn every_mode<'a>(crease: &'a Partitioned, scene: &'a Scene) -> Vec<Case<'a>> {
-    use EstimatorKind::{Disc, GeometryBall, GeometryCube};
-    let one = |name, kind, mode| -> Case<'a> { (name, Box::new(move |s| one_shot(crease, kind, mode, s))) };
-    let passes =
-        |name, kind, mode| -> Case<'a> { (name, Box::new(move |s| progressive(crease, kind, mode, s))) };
-    vec![
-        one("photon-map disc", Disc, Mode::PhotonMap),
-        one("photon-map cube", GeometryCube, Mode::PhotonMap),
-        one("shadow-rays cube", GeometryCube, Mode::ShadowRays),
-        one("shadow-rays ball", GeometryBall, Mode::ShadowRays),
-        one("final-gather cube", GeometryCube, Mode::FinalGather),
-        one("final-gather disc", Disc, Mode::FinalGather),
-        passes("progressive cube", GeometryCube, Mode::PhotonMap),
-        passes("progressive shadow-rays disc", Disc, Mode::ShadowRays),
-        passes("progressive final-gather cube", GeometryCube, Mode::FinalGather),
-        ("sppm", Box::new(move |s| sppm(scene, s))),
-    ]
-}
-
 #[test]
 #[ignore = "measurement: prints each mode's block errors against the path tracer"]
 fn measure_every_photon_mode_against_the_path_tracer() {
     let scene = scenes::build("glossy-cornell-box").unwrap();
-    let crease = CreaseAngle::default().partition(scene.clone()).unwrap();
+    let crease = CreaseAngle::default().partition(scene).unwrap();
     let seeds = 4;
     let reference = over_seeds(
         |s| {
@@ -143,7 +100,7 @@ fn measure_every_photon_mode_against_the_path_tracer() {
     );
     let r: Vec<String> = reference.iter().map(|(m, s)| format!("{m:.4}±{s:.4}")).collect();
     eprintln!("path tracer: {}", r.join(" "));
-    let cases = every_mode(&crease, &scene);
+    let cases = every_mode(&crease, &settings, Sppm::Included);
     for (name, render) in cases {
         let t = std::time::Instant::now();
         let blocks = over_seeds(render, seeds);
@@ -166,7 +123,7 @@ const SHORT_BLOCK: usize = 9;
 #[test]
 fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
     let scene = scenes::build("glossy-cornell-box").unwrap();
-    let crease = CreaseAngle::default().partition(scene.clone()).unwrap();
+    let crease = CreaseAngle::default().partition(scene).unwrap();
     let seeds = 3;
     let reference = over_seeds(
         |s| {
@@ -179,7 +136,7 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
         },
         seeds,
     );
-    let cases = every_mode(&crease, &scene);
+    let cases = every_mode(&crease, &settings, Sppm::Included);
     for (name, render) in cases {
         let blocks = over_seeds(render, seeds);
         let (_, rel) = compare(name, &blocks, &reference);
@@ -193,4 +150,137 @@ fn every_photon_mode_reads_the_glossy_lobes_as_the_path_tracer_does() {
             "{name}: the short metal block is off by {short:+.3}"
         );
     }
+}
+
+/// The path tracer's blocks over `seeds` seeds at `spp` samples per pixel.
+fn path_traced(spp: u32, seeds: u64) -> Vec<(f64, f64)> {
+    let crease = CreaseAngle::default()
+        .partition(scenes::build("glossy-cornell-box").unwrap())
+        .unwrap();
+    over_seeds(
+        |s| {
+            let mut settings = settings(Mode::PathTrace, s);
+            settings.samples_per_pixel = spp;
+            Renderer::new(EstimatorKind::Disc, settings)
+                .render(&crease, &())
+                .unwrap()
+                .image
+        },
+        seeds,
+    )
+}
+
+/// The progressive modes at `passes` passes of 15,000 photons, one sample per pixel per pass,
+/// with Knaus & Zwicker's `alpha`: their blocks over `seeds` seeds.
+fn progressive_blocks(
+    kind: EstimatorKind,
+    mode: Mode,
+    passes: u64,
+    alpha: f32,
+    seeds: u64,
+) -> Vec<(f64, f64)> {
+    let crease = CreaseAngle::default()
+        .partition(scenes::build("glossy-cornell-box").unwrap())
+        .unwrap();
+    let settings_for = |s| RenderSettings {
+        photons: 15_000,
+        samples_per_pixel: 1,
+        ..settings(mode, s)
+    };
+    over_seeds(
+        |s| {
+            let mut progressive = ProgressiveSettings::new(settings_for(s), passes);
+            progressive.alpha = alpha;
+            ProgressiveRenderer::new(kind, progressive)
+                .render(&crease, &())
+                .unwrap()
+                .accumulation
+                .mean()
+        },
+        seeds,
+    )
+}
+
+/// The progressive modes the pass tests follow.
+const PROGRESSIVE: [(&str, EstimatorKind, Mode); 3] = [
+    ("progressive cube", EstimatorKind::GeometryCube, Mode::PhotonMap),
+    (
+        "progressive shadow-rays disc",
+        EstimatorKind::Disc,
+        Mode::ShadowRays,
+    ),
+    (
+        "progressive final-gather cube",
+        EstimatorKind::GeometryCube,
+        Mode::FinalGather,
+    ),
+];
+
+/// The progressive modes at 2, 8 and 32 passes of 15,000 photons against the path tracer,
+/// block by block: the progressive mode's bias (from the shrinking volumes) must fall with
+/// passes at region level, not only over the image.
+#[test]
+#[ignore = "measurement: prints the progressive modes' block errors as passes grow"]
+fn measure_the_progressive_bias_as_passes_grow() {
+    let seeds = 4;
+    let reference = path_traced(1024, seeds);
+    for (name, kind, mode) in PROGRESSIVE {
+        for passes in [2, 8, 32] {
+            let t = std::time::Instant::now();
+            let blocks = progressive_blocks(kind, mode, passes, ProgressiveSettings::DEFAULT_ALPHA, seeds);
+            compare(&format!("{name}, {passes} passes"), &blocks, &reference);
+            eprintln!("  ({:.1} s)", t.elapsed().as_secs_f64());
+        }
+    }
+}
+
+/// Measured (4 seeds, the measurement above): the mean |relative error| over the 16 blocks
+/// fell from 2 to 32 passes 0.065 → 0.030 (cube), 0.083 → 0.041 (shadow-rays disc) and
+/// 0.043 → 0.020 (final gather), a ratio of 0.46 to 0.49 (3 seeds: 0.36 to 0.43).
+const MEAN_RATIO: f64 = 0.6;
+
+/// The disc darkens the top right corner's block (t ≈ −60 against the path tracer): a bias,
+/// not noise. It fell 0.194 → 0.122 from 2 to 32 passes, the 16^(−1/6) = 0.63 that the disc's
+/// radius shrinks by at α = 2/3; with α = 0.999 (volumes that barely shrink) it stays.
+const CORNER_RATIO: f64 = 0.8;
+const DISC_CORNER: usize = 3;
+
+#[test]
+fn the_progressive_modes_bias_falls_with_passes_region_by_region() {
+    let seeds = 3;
+    let reference = path_traced(512, seeds);
+    let rel = |blocks: &[(f64, f64)]| -> Vec<f64> {
+        blocks
+            .iter()
+            .zip(&reference)
+            .map(|(&(m, _), &(r, _))| ((m - r) / r).abs())
+            .collect()
+    };
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let alpha = ProgressiveSettings::DEFAULT_ALPHA;
+    for (name, kind, mode) in PROGRESSIVE {
+        let early = mean(&rel(&progressive_blocks(kind, mode, 2, alpha, seeds)));
+        let late = mean(&rel(&progressive_blocks(kind, mode, 32, alpha, seeds)));
+        eprintln!("{name}: mean |rel| {early:.3} at 2 passes, {late:.3} at 32");
+        assert!(
+            late < MEAN_RATIO * early,
+            "{name}: the block error fell only from {early:.3} to {late:.3} from 2 to 32 passes"
+        );
+    }
+    let (_, kind, mode) = PROGRESSIVE[1];
+    let corner =
+        |alpha: f32, passes: u64| rel(&progressive_blocks(kind, mode, passes, alpha, seeds))[DISC_CORNER];
+    let (early, late) = (corner(alpha, 2), corner(alpha, 32));
+    eprintln!("the disc's corner: {early:.3} at 2 passes, {late:.3} at 32");
+    assert!(
+        late < CORNER_RATIO * early,
+        "the disc's corner bias stays: {early:.3} to {late:.3}"
+    );
+    // The test can fail: volumes that keep their size keep the disc's corner bias.
+    let (early, late) = (corner(0.999, 2), corner(0.999, 32));
+    eprintln!("the disc's corner at alpha 0.999: {early:.3} at 2 passes, {late:.3} at 32");
+    assert!(
+        late > CORNER_RATIO * early,
+        "volumes that do not shrink: {early:.3} to {late:.3}"
+    );
 }
