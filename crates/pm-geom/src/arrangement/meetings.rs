@@ -146,7 +146,7 @@ impl CandidatePairs {
             let b = faces[self.live[m as usize].0]
                 .as_ref()
                 .expect("live faces are faces");
-            meet(a, b, tolerance, gap, pair, outcome);
+            meet(faces, a, b, tolerance, gap, pair, outcome);
             if let Some(meeting) = outcome.meeting {
                 met.pairs.push(MetPair {
                     position,
@@ -266,7 +266,15 @@ impl Fold<'_, '_> {
             }
             let j = candidates.live[m as usize].0;
             let b = self.faces[j].as_ref().expect("live faces are faces");
-            meet(a, b, self.tolerance, self.gap, &mut scratch, &mut outcome);
+            meet(
+                self.faces,
+                a,
+                b,
+                self.tolerance,
+                self.gap,
+                &mut scratch,
+                &mut outcome,
+            );
             if let Some(meeting) = outcome.meeting {
                 self.pair(
                     i,

@@ -14,6 +14,7 @@ mod barrier;
 mod budget;
 #[cfg(test)]
 mod contact_tests;
+mod continuation;
 mod copies;
 mod counts;
 mod cut;
@@ -38,6 +39,7 @@ pub use options::ArrangementOptions;
 
 use crate::aabb::Aabb;
 use crate::polygon::polygon_vector_area;
+use continuation::EdgeNeighbours;
 use copies::{covered_by, exact_duplicates};
 use glam::Vec3;
 use meetings::{Meetings, find_meetings};
@@ -97,10 +99,18 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
 ) -> Result<Arrangement, ArrangementError> {
     let (tolerance, gap) = tolerances(polygons, options);
     let duplicate = exact_duplicates(polygons);
+    let neighbours = EdgeNeighbours::new(polygons);
     let faces: Vec<Option<Face>> = polygons
         .iter()
         .zip(&duplicate)
-        .map(|(p, &dup)| if dup { None } else { face_of(p.as_ref(), gap) })
+        .enumerate()
+        .map(|(i, (p, &dup))| {
+            if dup {
+                None
+            } else {
+                face_of(p.as_ref(), neighbours.of(i), gap)
+            }
+        })
         .collect();
     let Meetings {
         cuts,
@@ -202,8 +212,9 @@ fn drop_hidden_copies(
     keep
 }
 
-/// The face of a polygon, `None` when it is degenerate or not finite; bounds padded by `pad`.
-fn face_of(polygon: &[Vec3], pad: f32) -> Option<Face<'_>> {
+/// The face of a polygon with the polygons across its edges, `None` when it is degenerate or
+/// not finite; bounds padded by `pad`.
+fn face_of<'a>(polygon: &'a [Vec3], across: &'a [u32], pad: f32) -> Option<Face<'a>> {
     if polygon.len() < 3 || polygon.iter().any(|p| !p.is_finite()) {
         return None;
     }
@@ -212,6 +223,7 @@ fn face_of(polygon: &[Vec3], pad: f32) -> Option<Face<'_>> {
     let pad = Vec3::splat(pad);
     Some(Face {
         vertices: polygon,
+        across,
         normal,
         offset: normal.dot(polygon[0]),
         bounds: Aabb::new(bounds.min - pad, bounds.max + pad),

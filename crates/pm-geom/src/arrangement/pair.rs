@@ -2,6 +2,7 @@
 //! distances of each face's vertices to the other's plane (piercing, an edge lying in the other
 //! face, an overlap in one plane, or a near-contact closer than the gap tolerance).
 
+use super::continuation::NO_FACE;
 use crate::aabb::Aabb;
 use crate::clip::clip_convex_polygon_by_distance;
 use glam::Vec3;
@@ -9,10 +10,16 @@ use glam::Vec3;
 /// Faces whose normals are closer than this (in `1 − |cos|`, about 0.8°) count as parallel.
 const PARALLEL: f32 = 1e-4;
 
-/// One input face: its vertices, unit normal, plane offset and bounds padded by the gap.
+/// Faces across an edge whose normals are closer than this (cos 30°) continue one surface: a
+/// near-contact is not outlined along the edge between them when both come that close.
+const CONTINUED_COS: f32 = 0.866_025_4;
+
+/// One input face: its vertices, the faces across its edges (indices into the arrangement's
+/// faces, [`NO_FACE`] where none), unit normal, plane offset and bounds padded by the gap.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Face<'a> {
     pub(super) vertices: &'a [Vec3],
+    pub(super) across: &'a [u32],
     pub(super) normal: Vec3,
     pub(super) offset: f32,
     pub(super) bounds: Aabb,
@@ -25,6 +32,12 @@ impl Face<'_> {
 
     fn project(&self, p: Vec3) -> Vec3 {
         p - self.normal * self.distance(p)
+    }
+
+    /// The edge that `p` (in or near the face's plane) lies on within `tolerance`, if any.
+    fn edge_at(&self, p: Vec3, tolerance: f32) -> Option<usize> {
+        let n = self.vertices.len();
+        (0..n).find(|&i| distance_to_segment(p, self.vertices[i], self.vertices[(i + 1) % n]) <= tolerance)
     }
 
     /// Distance from `p` (in or near the face's plane) to the face's border.
@@ -81,9 +94,10 @@ pub(super) struct PairScratch {
     section_b: Vec<Vec3>,
 }
 
-/// Finds how faces `a` and `b` meet, with `tolerance` the distance under which points coincide
-/// and `gap` (≥ `tolerance`) the distance under which faces count as touching.
+/// Finds how faces `a` and `b` (two of `faces`) meet, with `tolerance` the distance under which
+/// points coincide and `gap` (≥ `tolerance`) the distance under which faces count as touching.
 pub(super) fn meet(
+    faces: &[Option<Face>],
     a: &Face,
     b: &Face,
     tolerance: f32,
@@ -115,7 +129,8 @@ pub(super) fn meet(
     let max_a = scratch.da.iter().fold(0.0f32, |m, d| m.max(d.abs()));
     let max_b = scratch.db.iter().fold(0.0f32, |m, d| m.max(d.abs()));
     if 1.0 - cos.abs() <= PARALLEL && max_a <= gap && max_b <= gap {
-        meet_in_plane(a, b, cos, max_a.max(max_b), tolerance, scratch, out);
+        let separation = max_a.max(max_b);
+        meet_in_plane(faces, a, b, cos, separation, tolerance, gap, scratch, out);
         return;
     }
     section(a.vertices, &scratch.da, b, tolerance, &mut scratch.section_a);
@@ -123,6 +138,7 @@ pub(super) fn meet(
     match (scratch.section_a.is_empty(), scratch.section_b.is_empty()) {
         (false, false) => meet_across(a, b, tolerance, scratch, out),
         (true, _) => near_contact(
+            faces,
             a,
             &scratch.da,
             b,
@@ -132,6 +148,7 @@ pub(super) fn meet(
             &mut out.meeting,
         ),
         (false, true) => near_contact(
+            faces,
             b,
             &scratch.db,
             a,
@@ -195,12 +212,15 @@ fn meet_across(a: &Face, b: &Face, tolerance: f32, scratch: &PairScratch, out: &
 
 /// Parallel faces within the gap of each other: their overlap, and the overlap's edges that
 /// run inside each face as cuts of that face.
+#[allow(clippy::too_many_arguments)]
 fn meet_in_plane(
+    faces: &[Option<Face>],
     a: &Face,
     b: &Face,
     cos: f32,
     separation: f32,
     tolerance: f32,
+    gap: f32,
     scratch: &mut PairScratch,
     out: &mut PairOutcome,
 ) {
@@ -247,11 +267,19 @@ fn meet_in_plane(
             continue;
         }
         let middle = (p + q) * 0.5;
-        if b.distance_to_border(middle) > tolerance {
+        // Faces facing each other are outlined where the contact ends, not along the edges
+        // inside a surface that goes on touching (a tessellated box bottom on a floor).
+        let inside_contact = |face: &Face, other: &Face, point: Vec3| {
+            barrier
+                && face
+                    .edge_at(point, tolerance)
+                    .is_some_and(|edge| continued_in_plane(faces, face, edge, other, gap))
+        };
+        if b.distance_to_border(middle) > tolerance && !inside_contact(a, b, a.project(middle)) {
             out.on_second.push(Constraint { a: p, b: q, barrier });
         }
         let (pa, qa) = (a.project(p), a.project(q));
-        if a.distance_to_border(a.project(middle)) > tolerance {
+        if a.distance_to_border(a.project(middle)) > tolerance && !inside_contact(b, a, middle) {
             out.on_first.push(Constraint {
                 a: pa,
                 b: qa,
@@ -287,8 +315,13 @@ fn separated(a: &Face, b: &Face, tolerance: f32) -> bool {
 }
 
 /// Face `far` does not reach `near`'s plane: each of its edges within the gap of that plane is
-/// projected onto it, and the part across `near`'s inside becomes a cut of `near`.
+/// projected onto it, and the part across `near`'s inside becomes a cut of `near` — unless the
+/// face across that edge continues `far`'s surface and comes as close on the same side, so the
+/// edge lies inside the region that comes close, not on its outline (a tessellated panel over a
+/// floor cuts the floor along the panel's outline, not along each of its triangles).
+#[allow(clippy::too_many_arguments)]
 fn near_contact(
+    faces: &[Option<Face>],
     far: &Face,
     distances: &[f32],
     near: &Face,
@@ -303,6 +336,9 @@ fn near_contact(
         if distances[i].abs() > gap || distances[j].abs() > gap {
             continue;
         }
+        if continued_within_gap(faces, far, i, distances[i], near, gap) {
+            continue;
+        }
         let (p, q) = (near.project(far.vertices[i]), near.project(far.vertices[j]));
         if let Some((c0, c1)) = segment_inside(p, q, near, tolerance) {
             cuts.push(Constraint {
@@ -313,6 +349,46 @@ fn near_contact(
             *meeting = Some(Meeting::NearContact);
         }
     }
+}
+
+/// Whether the face across edge `edge` of `far` continues its surface (normals within 30°,
+/// wound alike) and lies within the gap of `near`'s plane on the side of `far` (`side`, the
+/// signed distance of one of `far`'s vertices; `far` does not reach the plane).
+fn continued_within_gap(
+    faces: &[Option<Face>],
+    far: &Face,
+    edge: usize,
+    side: f32,
+    near: &Face,
+    gap: f32,
+) -> bool {
+    let across = far.across[edge];
+    if across == NO_FACE {
+        return false;
+    }
+    let Some(next) = &faces[across as usize] else {
+        return false;
+    };
+    next.normal.dot(far.normal) >= CONTINUED_COS
+        && next.vertices.iter().all(|&v| {
+            let d = near.distance(v);
+            d.abs() <= gap && (d > 0.0) == (side > 0.0)
+        })
+}
+
+/// Whether the face across edge `edge` of `face` continues its surface (normals within 30°,
+/// wound alike) and lies within the gap of `other`'s plane, parallel to it as `face` is.
+fn continued_in_plane(faces: &[Option<Face>], face: &Face, edge: usize, other: &Face, gap: f32) -> bool {
+    let across = face.across[edge];
+    if across == NO_FACE {
+        return false;
+    }
+    let Some(next) = &faces[across as usize] else {
+        return false;
+    };
+    next.normal.dot(face.normal) >= CONTINUED_COS
+        && 1.0 - next.normal.dot(other.normal).abs() <= PARALLEL
+        && next.vertices.iter().all(|&v| other.distance(v).abs() <= gap)
 }
 
 /// The points where `polygon` meets the plane of `other`: vertices within the tolerance of it
