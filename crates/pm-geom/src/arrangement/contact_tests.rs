@@ -417,12 +417,19 @@ fn floor_groups_within_barriers(split: &Arrangement, points: &[Vec3]) -> Vec<usi
 /// Every barrier lies on the border of the floor's middle square (the panel's outline), and
 /// the floor under the panel is one group, apart from the floor around it.
 fn assert_outlined_once(split: &Arrangement) {
+    assert_outlined_once_around(split, 1.0, 2.0);
+}
+
+/// Every barrier lies on the border of the square from `lo` to `hi` in x and z (an outline
+/// around the floor's middle square), and the floor under it is one group, apart from the
+/// floor around it.
+fn assert_outlined_once_around(split: &Arrangement, lo: f32, hi: f32) {
     let on_outline = |p: Vec3| {
-        let d = (p.x - 1.0)
+        let d = (p.x - lo)
             .abs()
-            .min((p.x - 2.0).abs())
-            .min((p.z - 1.0).abs())
-            .min((p.z - 2.0).abs());
+            .min((p.x - hi).abs())
+            .min((p.z - lo).abs())
+            .min((p.z - hi).abs());
         d <= 1e-4 && p.y.abs() <= 1e-4
     };
     for [a, b] in &split.barriers {
@@ -472,4 +479,65 @@ fn a_tilted_tessellated_panel_near_the_floor_is_outlined_not_fragmented() {
         .expect("within bounds");
     assert!(split.counts.near_contact > 0, "{:?}", split.counts);
     assert_outlined_once(&split);
+}
+
+/// A block of raised lettering over the floor's middle square: a cap at `height` tessellated
+/// into `n × n` quads (facing up, as a solid's top), and four walls of `n` quads each that run
+/// down from the cap's border to `foot` above the floor, flaring out by `draft` at the foot.
+/// Cap and walls share their vertices bit for bit; the walls' feet are open, as exports leave
+/// them.
+fn raised_block(n: usize, height: f32, foot: f32, draft: f32) -> Vec<Vec<Vec3>> {
+    let mut polygons: Vec<Vec<Vec3>> = tessellated_panel(n, |_, _| height)
+        .into_iter()
+        .map(|mut t| {
+            t.reverse();
+            t
+        })
+        .collect();
+    let centre = vec3(1.5, 0.0, 1.5);
+    let border = |t: f32, side: usize| match side {
+        0 => vec3(1.0 + t, height, 1.0),
+        1 => vec3(2.0, height, 1.0 + t),
+        2 => vec3(2.0 - t, height, 2.0),
+        _ => vec3(1.0, height, 2.0 - t),
+    };
+    for side in 0..4 {
+        let at = |k: usize| {
+            // The cap's own vertices, computed as `tessellated_panel` computes them.
+            let p = border(k as f32 / n as f32, side);
+            let snap = |x: f32| 1.0 + ((x - 1.0) * n as f32).round() / n as f32;
+            vec3(snap(p.x), height, snap(p.z))
+        };
+        for k in 0..n {
+            let (a, b) = (at(k), at(k + 1));
+            // Flared away from the square's middle, corners along both sides.
+            let flare = |x: f32| (x - 1.5).signum() * draft * ((x - 1.5).abs() >= 0.5) as u8 as f32;
+            let down = |p: Vec3| vec3(p.x + flare(p.x), foot, p.z + flare(p.z));
+            let mut quad = [a, b, down(b), down(a)];
+            let normal = (quad[1] - quad[0]).cross(quad[2] - quad[0]);
+            if normal.dot(quad[0] - centre) < 0.0 {
+                quad.reverse();
+            }
+            polygons.push(vec![quad[0], quad[1], quad[2]]);
+            polygons.push(vec![quad[0], quad[2], quad[3]]);
+        }
+    }
+    polygons
+}
+
+/// Raised lettering or a knob on a panel: a tessellated cap 3 mm up, its walls down to the
+/// floor (resting, or hovering 0.5 mm), upright or flaring out by 0.5 mm. The floor is cut
+/// once, along the walls' feet, not also along the cap's border (before, the cap's border and
+/// the feet each cut the floor, leaving a sliver piece between them behind barriers).
+#[test]
+fn raised_lettering_is_outlined_along_its_foot_only() {
+    for (foot, draft) in [(0.0, 0.0005), (0.0005, 0.0005), (0.0005, 0.0)] {
+        let mut input = vec![floor_with_box().swap_remove(0)];
+        input.extend(raised_block(4, 0.003, foot, draft));
+        let split = split_polygons_at_intersections(&input, &[], &ArrangementOptions::new(1e-5, 0.01))
+            .expect("within bounds");
+        assert!(split.counts.meetings() > 0, "{:?}", split.counts);
+        println!("foot {foot}, draft {draft}"); // names the failing case
+        assert_outlined_once_around(&split, 1.0 - draft, 2.0 + draft);
+    }
 }

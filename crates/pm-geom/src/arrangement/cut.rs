@@ -13,21 +13,24 @@ pub(super) struct Cut {
     pub(super) contacts: Vec<Vec3>,
 }
 
-/// Adds a cut through `c0`–`c1`, merging it with an existing cut along the same line.
-pub(super) fn add_cut(cuts: &mut Vec<Cut>, c0: Vec3, c1: Vec3, tolerance: f32) {
-    let Some(direction) = (c1 - c0).try_normalize() else {
-        return;
-    };
+/// Adds a cut through `c0`–`c1`, merging it with an existing cut along the same line; returns
+/// where the two contact points went (the cut's index, the first point's index in its
+/// contacts), or `None` for a segment too short to have a direction.
+pub(super) fn add_cut(cuts: &mut Vec<Cut>, c0: Vec3, c1: Vec3, tolerance: f32) -> Option<(usize, usize)> {
+    let direction = (c1 - c0).try_normalize()?;
     let on_line =
         |cut: &Cut, p: Vec3| (p - cut.point).reject_from_normalized(cut.direction).length() <= tolerance;
-    if let Some(cut) = cuts.iter_mut().find(|cut| on_line(cut, c0) && on_line(cut, c1)) {
-        cut.contacts.extend([c0, c1]);
+    if let Some(index) = cuts.iter().position(|cut| on_line(cut, c0) && on_line(cut, c1)) {
+        let contacts = &mut cuts[index].contacts;
+        contacts.extend([c0, c1]);
+        Some((index, contacts.len() - 2))
     } else {
         cuts.push(Cut {
             point: c0,
             direction,
             contacts: vec![c0, c1],
         });
+        Some((cuts.len() - 1, 0))
     }
 }
 

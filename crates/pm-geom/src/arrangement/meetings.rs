@@ -6,7 +6,8 @@ use super::counts::IntersectionCounts;
 use super::cut::{Cut, add_cut};
 use super::dedup::dedup_segments;
 use super::options::ArrangementOptions;
-use super::pair::{Constraint, Face, Meeting, PairOutcome, PairScratch, close_barrier_ends, meet};
+use super::pair::{Constraint, Face, Meeting, PairOutcome, PairScratch, meet};
+use super::slits::{PendingBarrier, close_slits};
 use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
@@ -55,6 +56,7 @@ pub(super) fn find_meetings(
         options,
         cut_count: 0,
         pair_count: 0,
+        pending: Vec::new(),
     };
     let candidates = CandidatePairs::new(faces, gap);
     for wave in (0..candidates.live.len()).collect::<Vec<_>>().chunks(WAVE_FACES) {
@@ -68,8 +70,18 @@ pub(super) fn find_meetings(
             fold.face(&candidates, n, face)?;
         }
     }
+    let Fold {
+        mut found, pending, ..
+    } = fold;
+    close_slits(
+        &mut found.cuts,
+        &mut found.barriers,
+        &pending,
+        faces,
+        tolerance,
+        gap,
+    );
     // A piercing or in-plane meeting reports its segment for both faces: keep it once.
-    let mut found = fold.found;
     found.barriers = dedup_segments(std::mem::take(&mut found.barriers), tolerance);
     Ok(found)
 }
@@ -211,6 +223,8 @@ struct Fold<'a, 'f> {
     options: &'a ArrangementOptions,
     cut_count: usize,
     pair_count: usize,
+    /// The barriers whose ends are settled once all are known (see `slits`).
+    pending: Vec<PendingBarrier>,
 }
 
 impl Fold<'_, '_> {
@@ -311,13 +325,10 @@ impl Fold<'_, '_> {
             self.found.hidden_by.push((j, i));
         }
         for (face, list) in [(i, on_first), (j, on_second)] {
-            let Some(target) = &self.faces[face] else { continue };
+            if self.faces[face].is_none() {
+                continue;
+            }
             for &c in list {
-                let c = if c.barrier {
-                    close_barrier_ends(c, target, self.tolerance, self.gap)
-                } else {
-                    c
-                };
                 self.cut_count += 1;
                 if self.cut_count > self.options.max_pieces {
                     return Err(ArrangementError::TooManyPieces {
@@ -325,7 +336,7 @@ impl Fold<'_, '_> {
                     });
                 }
                 let cuts = &mut self.found.cuts[face];
-                add_cut(cuts, c.a, c.b, self.tolerance);
+                let placed = add_cut(cuts, c.a, c.b, self.tolerance);
                 if cuts.len() > self.options.max_cut_lines_per_polygon {
                     return Err(ArrangementError::TooManyCutLines {
                         polygon: face,
@@ -333,6 +344,15 @@ impl Fold<'_, '_> {
                     });
                 }
                 if c.barrier {
+                    // Its ends may still run on to the border, once every barrier is known.
+                    if let Some((cut, contact)) = placed {
+                        self.pending.push(PendingBarrier {
+                            face,
+                            cut,
+                            contact,
+                            barrier: self.found.barriers.len(),
+                        });
+                    }
                     self.found.barriers.push([c.a, c.b]);
                 }
             }

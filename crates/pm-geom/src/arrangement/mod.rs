@@ -28,6 +28,9 @@ mod pair;
 mod parallel_tests;
 mod pieces;
 #[cfg(test)]
+mod slit_tests;
+mod slits;
+#[cfg(test)]
 mod test_stream;
 #[cfg(test)]
 mod tests;
@@ -75,8 +78,15 @@ pub struct Arrangement {
 /// only the first keeps the overlapped part (the later copies' pieces are dropped); a face that
 /// another face's edge comes within `gap` of is cut along that edge's projection, and so is a
 /// face that a parallel face facing it comes within `gap` of. A parallel face facing the same
-/// way a little in front of another (a lamp mounted under a ceiling) is left alone. Cuts run as
-/// full lines across a face, so the pieces stay convex; the meeting segments themselves are
+/// way a little in front of another (a lamp mounted under a ceiling) is left alone. Such a
+/// near-contact is outlined where the near surface stops coming close, not along its inner
+/// edges: an edge whose neighbour across it (sharing both end points bit for bit) continues
+/// the surface within the gap, or goes on past the edge as seen from the face (the cap of
+/// raised lettering and its walls), cuts nothing. A barrier that stops short of the face's
+/// border runs on to it when the slit left is narrower than the gap and than a tenth of its
+/// chain of linked barriers (a wall stopping just short of the floor closes the strip under
+/// it; a letter near a button's border does not cut the button across). Cuts run as full
+/// lines across a face, so the pieces stay convex; the meeting segments themselves are
 /// returned as [`Arrangement::barriers`]. Vertices a cut makes are then inserted into every
 /// edge they lie on, so that welding the output links pieces on both sides of a cut.
 ///

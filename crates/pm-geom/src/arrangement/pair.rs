@@ -336,7 +336,7 @@ fn near_contact(
         if distances[i].abs() > gap || distances[j].abs() > gap {
             continue;
         }
-        if continued_within_gap(faces, far, i, distances[i], near, gap) {
+        if continued_within_gap(faces, far, i, distances[i], near, tolerance, gap) {
             continue;
         }
         let (p, q) = (near.project(far.vertices[i]), near.project(far.vertices[j]));
@@ -351,15 +351,20 @@ fn near_contact(
     }
 }
 
-/// Whether the face across edge `edge` of `far` continues its surface (normals within 30°,
-/// wound alike) and lies within the gap of `near`'s plane on the side of `far` (`side`, the
-/// signed distance of one of `far`'s vertices; `far` does not reach the plane).
+/// Whether edge `edge` of `far` lies inside the region where `far`'s surface comes close to
+/// `near`, not on its outline: the face across it lies within the gap of `near`'s plane on the
+/// side of `far` (`side`, the signed distance of one of `far`'s vertices; `far` does not reach
+/// the plane), and either continues `far`'s surface (normals within 30°) or, seen from `near`,
+/// goes on past the edge rather than folding back over `far` (its shadow on `near`'s plane lies
+/// on the edge's other side, or on the edge's line: the cap of raised lettering and its walls).
+#[allow(clippy::too_many_arguments)]
 fn continued_within_gap(
     faces: &[Option<Face>],
     far: &Face,
     edge: usize,
     side: f32,
     near: &Face,
+    tolerance: f32,
     gap: f32,
 ) -> bool {
     let across = far.across[edge];
@@ -369,11 +374,39 @@ fn continued_within_gap(
     let Some(next) = &faces[across as usize] else {
         return false;
     };
-    next.normal.dot(far.normal) >= CONTINUED_COS
-        && next.vertices.iter().all(|&v| {
-            let d = near.distance(v);
-            d.abs() <= gap && (d > 0.0) == (side > 0.0)
-        })
+    let within_gap = next.vertices.iter().all(|&v| {
+        let d = near.distance(v);
+        d.abs() <= gap && (d > 0.0) == (side > 0.0)
+    });
+    within_gap
+        && (next.normal.dot(far.normal) >= CONTINUED_COS || goes_on_past(far, edge, next, near, tolerance))
+}
+
+/// Whether `next` (across edge `edge` of `far`), projected onto `near`'s plane, lies on the
+/// other side of the projected edge's line than `far` does, or on that line within the
+/// tolerance; false when `far`'s own projection is a sliver along the edge (a wall standing on
+/// `near`), whose edges are the outline.
+fn goes_on_past(far: &Face, edge: usize, next: &Face, near: &Face, tolerance: f32) -> bool {
+    let n = far.vertices.len();
+    let (p, q) = (
+        near.project(far.vertices[edge]),
+        near.project(far.vertices[(edge + 1) % n]),
+    );
+    let Some(outward) = near.normal.cross(q - p).try_normalize() else {
+        return false;
+    };
+    let offset = |v: Vec3| outward.dot(near.project(v) - p);
+    let far_side = far
+        .vertices
+        .iter()
+        .map(|&v| offset(v))
+        .fold(0.0f32, |m, d| if d.abs() > m.abs() { d } else { m });
+    if far_side.abs() <= tolerance {
+        return false;
+    }
+    next.vertices
+        .iter()
+        .all(|&v| offset(v) * far_side.signum() <= tolerance)
 }
 
 /// Whether the face across edge `edge` of `face` continues its surface (normals within 30°,
@@ -455,22 +488,4 @@ pub(super) fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
         0.0
     };
     p.distance(a + ab * t)
-}
-
-/// A barrier that stops within the gap of `face`'s border (along its own line) runs on to the
-/// border: a slit narrower than the gap counts as closed, so no map joins around its end (the
-/// strip of a back wall under a dividing wall that stops just short of the floor).
-pub(super) fn close_barrier_ends(c: Constraint, face: &Face, tolerance: f32, gap: f32) -> Constraint {
-    let Some(direction) = (c.b - c.a).try_normalize() else {
-        return c;
-    };
-    let reach = face.bounds.diagonal();
-    let Some((start, end)) =
-        segment_inside(c.a - direction * reach, c.b + direction * reach, face, tolerance)
-    else {
-        return c;
-    };
-    let a = if c.a.distance(start) <= gap { start } else { c.a };
-    let b = if c.b.distance(end) <= gap { end } else { c.b };
-    Constraint { a, b, ..c }
 }

@@ -25,7 +25,10 @@ use pm_geom::{
 /// [`Partitioner::partition`] first finds every pair of mesh faces that pierce each other,
 /// where an edge of one lies in the other (a wall standing on a floor), that overlap in one
 /// plane (duplicated or stacked floors), or that come closer than the gap tolerance without
-/// meeting, and cuts each such face into convex pieces along those segments; the
+/// meeting, and cuts each such face into convex pieces along those segments (a near-contact
+/// along the outline of the surface that comes close, not along each of its triangles; a slit
+/// between a barrier's end and the face's border closed only where it is narrow next to that
+/// barrier: see `pm_geom::split_polygons_at_intersections`); the
 /// [`Partitioned`] it returns holds that split scene, whose rays still meet the faces as given
 /// (a hit on a cut face is located among its pieces for its part; only hidden copies of
 /// coincident faces, which the split drops, let a ray pass to the copy kept at the same
