@@ -330,17 +330,19 @@ fn near_contact(
     cuts: &mut Vec<Constraint>,
     meeting: &mut Option<Meeting>,
 ) {
+    if separated(far, near, tolerance) {
+        return; // its shadow on the plane misses `near` (most candidate pairs)
+    }
     let n = far.vertices.len();
     for i in 0..n {
         let j = (i + 1) % n;
         if distances[i].abs() > gap || distances[j].abs() > gap {
             continue;
         }
-        if continued_within_gap(faces, far, i, distances[i], near, tolerance, gap) {
-            continue;
-        }
         let (p, q) = (near.project(far.vertices[i]), near.project(far.vertices[j]));
-        if let Some((c0, c1)) = segment_inside(p, q, near, tolerance) {
+        if let Some((c0, c1)) = segment_inside(p, q, near, tolerance)
+            && !continued_within_gap(faces, far, i, distances[i], near, tolerance, gap)
+        {
             cuts.push(Constraint {
                 a: c0,
                 b: c1,
