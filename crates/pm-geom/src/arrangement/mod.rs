@@ -21,6 +21,7 @@ mod cut;
 mod dedup;
 mod inside;
 mod junctions;
+mod linked;
 mod meetings;
 mod options;
 mod pair;

@@ -4,9 +4,9 @@
 //! 3 mm letter on a 2 cm button does not cut the button from border to border.
 
 use super::cut::Cut;
+use super::linked::linked_extents;
 use super::pair::{Constraint, Face, segment_inside};
 use glam::Vec3;
-use std::collections::HashMap;
 
 /// A slit counts as narrow when it is at most this fraction of the size of the barrier chain
 /// that makes it: a wall's footprint is metres long and its slit millimetres wide, while a
@@ -36,7 +36,7 @@ pub(super) fn close_slits(
     tolerance: f32,
     gap: f32,
 ) {
-    let extents = chain_extents(barriers, tolerance);
+    let extents = linked_extents(barriers, tolerance);
     for p in pending {
         let Some(face) = &faces[p.face] else { continue };
         let [a, b] = barriers[p.barrier];
@@ -47,69 +47,6 @@ pub(super) fn close_slits(
         contacts[p.contact] = closed.a;
         contacts[p.contact + 1] = closed.b;
     }
-}
-
-/// For each of `barriers`, the size (bounding-box diagonal) of its chain: the barriers linked to
-/// it end to end. Ends are linked through a grid of cells one tolerance wide: the ends in one
-/// cell and in neighbouring cells are linked, so ends within the tolerance always are and ends
-/// farther apart than about three and a half tolerances never are. The work is one pass over
-/// the ends and one over the occupied cells (27 look-ups each), however the ends crowd.
-pub(super) fn chain_extents(barriers: &[[Vec3; 2]], tolerance: f32) -> Vec<f32> {
-    let n = barriers.len();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    fn link(parent: &mut [usize], i: usize, j: usize) {
-        let (a, b) = (root(parent, i), root(parent, j));
-        // The smaller root wins, so the chains are the same in any order.
-        parent[a.max(b)] = a.min(b);
-    }
-    let cell = tolerance.max(f32::MIN_POSITIVE);
-    let key = |p: Vec3| {
-        let q = (p / cell).floor();
-        [q.x as i64, q.y as i64, q.z as i64]
-    };
-    // Each occupied cell, with the first barrier that has an end in it.
-    let mut first: HashMap<[i64; 3], usize> = HashMap::new();
-    for (i, s) in barriers.iter().enumerate() {
-        for &p in s {
-            let j = *first.entry(key(p)).or_insert(i);
-            link(&mut parent, i, j);
-        }
-    }
-    let mut cells: Vec<([i64; 3], usize)> = first.iter().map(|(&k, &i)| (k, i)).collect();
-    cells.sort_unstable();
-    for &([x, y, z], i) in &cells {
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    if let Some(&j) = first.get(&[x + dx, y + dy, z + dz]) {
-                        link(&mut parent, i, j);
-                    }
-                }
-            }
-        }
-    }
-    let mut bounds: HashMap<usize, (Vec3, Vec3)> = HashMap::new();
-    for (i, s) in barriers.iter().enumerate() {
-        let r = root(&mut parent, i);
-        let b = bounds.entry(r).or_insert((s[0], s[0]));
-        for &p in s {
-            b.0 = b.0.min(p);
-            b.1 = b.1.max(p);
-        }
-    }
-    (0..n)
-        .map(|i| {
-            let (lo, hi) = bounds[&root(&mut parent, i)];
-            lo.distance(hi)
-        })
-        .collect()
 }
 
 /// A barrier that stops within `reach` of `face`'s border (along its own line) runs on to the
@@ -128,84 +65,4 @@ pub(super) fn close_barrier_ends(c: Constraint, face: &Face, tolerance: f32, rea
     let a = if c.a.distance(start) <= reach { start } else { c.a };
     let b = if c.b.distance(end) <= reach { end } else { c.b };
     Constraint { a, b, ..c }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use glam::vec3;
-
-    /// Brute force: chains by repeated linking of all pairs.
-    fn brute(barriers: &[[Vec3; 2]], tolerance: f32) -> Vec<f32> {
-        let n = barriers.len();
-        let mut chain: Vec<usize> = (0..n).collect();
-        loop {
-            let mut changed = false;
-            for i in 0..n {
-                for j in 0..n {
-                    let linked = barriers[i]
-                        .iter()
-                        .any(|&p| barriers[j].iter().any(|&q| p.distance(q) <= tolerance));
-                    if linked && chain[i] != chain[j] {
-                        let m = chain[i].min(chain[j]);
-                        chain[i] = m;
-                        chain[j] = m;
-                        changed = true;
-                    }
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        (0..n)
-            .map(|i| {
-                let members = (0..n).filter(|&j| chain[j] == chain[i]);
-                let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
-                for j in members {
-                    for p in barriers[j] {
-                        lo = lo.min(p);
-                        hi = hi.max(p);
-                    }
-                }
-                lo.distance(hi)
-            })
-            .collect()
-    }
-
-    #[test]
-    fn a_closed_ring_and_a_loose_segment_are_two_chains() {
-        let ring = [
-            [vec3(0.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0)],
-            [vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 1.0)],
-            [vec3(1.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0)],
-            [vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 0.0)],
-        ];
-        let mut barriers = ring.to_vec();
-        // A segment 1 mm off the ring's corner: not linked at a 10 µm tolerance.
-        barriers.push([vec3(1.001, 0.0, 1.0), vec3(2.0, 0.0, 1.0)]);
-        let extents = chain_extents(&barriers, 1e-5);
-        for e in &extents[..4] {
-            assert!((e - 2f32.sqrt()).abs() < 1e-6, "{extents:?}");
-        }
-        assert!((extents[4] - 0.999).abs() < 1e-6, "{extents:?}");
-    }
-
-    #[test]
-    fn chains_match_brute_force_on_random_segments() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            // Coarse coordinates, so that ends often coincide.
-            (state % 8) as f32 * 0.25
-        };
-        for _ in 0..20 {
-            let barriers: Vec<[Vec3; 2]> = (0..40)
-                .map(|_| [vec3(next(), 0.0, next()), vec3(next(), 0.0, next())])
-                .collect();
-            assert_eq!(chain_extents(&barriers, 1e-3), brute(&barriers, 1e-3));
-        }
-    }
 }
