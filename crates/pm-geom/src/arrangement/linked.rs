@@ -6,9 +6,9 @@ use std::collections::HashMap;
 
 /// For each of `items` (segments, polygons), the size (bounding-box diagonal) of the group it is
 /// linked into: items are linked where a point of one lies at a point of another (a chain of
-/// barriers end to end). Points are linked through a grid of cells one tolerance wide: the points in one
-/// cell and in neighbouring cells are linked, so points within the tolerance always are and
-/// points farther apart than about three and a half tolerances never are. The work is one pass
+/// barriers end to end). Points are linked through a grid of cells one tolerance wide: the
+/// points in one cell and in neighbouring cells are linked, so points within the tolerance
+/// always are and points farther apart than about three and a half tolerances never are. The work is one pass
 /// over the points and one over the occupied cells (27 look-ups each), however they crowd.
 pub(super) fn linked_extents<P: AsRef<[Vec3]>>(items: &[P], tolerance: f32) -> Vec<f32> {
     let n = items.len();

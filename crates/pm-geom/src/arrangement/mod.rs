@@ -10,6 +10,8 @@
 //! tolerance is kept far above the rounding of the `f32` coordinates (at least 8 units in the
 //! last place of the largest one), so no sign is decided by rounding noise.
 
+#[cfg(test)]
+mod apart_tests;
 mod barrier;
 mod budget;
 #[cfg(test)]

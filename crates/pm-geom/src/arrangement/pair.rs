@@ -40,6 +40,19 @@ impl Face<'_> {
         (0..n).find(|&i| distance_to_segment(p, self.vertices[i], self.vertices[(i + 1) % n]) <= tolerance)
     }
 
+    /// Whether `p` (in or near the face's plane) lies inside the face or within `tolerance` of
+    /// it, seen along the normal.
+    fn covers(&self, p: Vec3, tolerance: f32) -> bool {
+        let n = self.vertices.len();
+        (0..n).all(|i| {
+            let (a, b) = (self.vertices[i], self.vertices[(i + 1) % n]);
+            self.normal
+                .cross(b - a)
+                .try_normalize()
+                .is_none_or(|inward| inward.dot(p - a) >= -tolerance)
+        })
+    }
+
     /// Distance from `p` (in or near the face's plane) to the face's border.
     fn distance_to_border(&self, p: Vec3) -> f32 {
         let n = self.vertices.len();
@@ -186,6 +199,12 @@ fn meet_across(a: &Face, b: &Face, tolerance: f32, scratch: &PairScratch, out: &
         return;
     }
     let middle = (p0 + p1) * 0.5;
+    if !(a.covers(middle, tolerance) && b.covers(middle, tolerance)) {
+        // Planes a few degrees apart, each face within the tolerance of the other's plane over
+        // a stretch: the two sections overlap along the line but lie side by side, apart (two
+        // letters on one panel, one a sliver whose plane is tilted by rounding).
+        return;
+    }
     let on_border_a = a.distance_to_border(middle) <= tolerance;
     let on_border_b = b.distance_to_border(middle) <= tolerance;
     if on_border_a && on_border_b {
