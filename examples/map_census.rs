@@ -12,6 +12,7 @@ use clap::Parser;
 use photon_maps::trace::glam::Vec3;
 use photon_maps::trace::{Contact, CreaseAngle, PartId, Partitioner, SourceFace};
 use std::collections::HashMap;
+use std::io::Write;
 use std::path::PathBuf;
 
 /// The contact maps of a glTF scene against its crease-angle maps. Prints a report; writes
@@ -30,11 +31,16 @@ struct Args {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args = Args::parse();
+    // Written through a locked handle so that a closed pipe (`| head`) ends the report with
+    // an error instead of a panic.
+    let mut out = std::io::stdout().lock();
     if !(args.contact_gap.is_finite() && args.contact_gap >= 0.0) {
         return Err(format!("--contact-gap {} is not a finite fraction ≥ 0", args.contact_gap).into());
     }
     let scene = photon_maps::trace::gltf::load_scene(&args.scene)?;
+    let crease_start = std::time::Instant::now();
     let crease = CreaseAngle::default().partition(scene.clone())?;
+    let crease_seconds = crease_start.elapsed().as_secs_f64();
     let crease_of: HashMap<SourceFace, u32> = (0..crease.scene().part_count() as u32)
         .filter_map(|p| {
             let face = crease.scene().source_face(PartId(p))?;
@@ -61,24 +67,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             map_surfaces[m].push(*surface);
         }
     }
-    println!(
-        "{}: {} crease maps; contact maps at gap {} of the diagonal: {maps} (split {seconds:.2} s)",
+    writeln!(
+        out,
+        "{}: {} crease maps ({crease_seconds:.2} s); contact maps at gap {} of the diagonal: {maps} \
+         (split {seconds:.2} s)",
         args.scene.display(),
         crease.assignment().map_count(),
         args.contact_gap
-    );
+    )?;
     if let Some(record) = contact.record() {
-        println!("meetings: {:?}", record.counts());
+        writeln!(out, "meetings: {:?}", record.counts())?;
     }
     let total: f64 = map_area.iter().sum();
-    println!("contact maps smaller than (count, their share of the {total:.3} m² of surface):");
+    writeln!(
+        out,
+        "contact maps smaller than (count, their share of the {total:.3} m² of surface):"
+    )?;
     for limit in [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1] {
         let small: Vec<f64> = map_area.iter().copied().filter(|&a| a < limit).collect();
         let share = small.iter().sum::<f64>() / total.max(f64::MIN_POSITIVE);
-        println!("  {limit:>7.0e} m²: {:>7} ({:.3} %)", small.len(), 100.0 * share);
+        writeln!(
+            out,
+            "  {limit:>7.0e} m²: {:>7} ({:.3} %)",
+            small.len(),
+            100.0 * share
+        )?;
     }
     let spanning = map_surfaces.iter().filter(|s| s.len() > 1).count();
-    println!("contact maps spanning more than one crease surface: {spanning}");
+    writeln!(
+        out,
+        "contact maps spanning more than one crease surface: {spanning}"
+    )?;
 
     let mut per_surface: HashMap<u32, Vec<usize>> = HashMap::new();
     for (m, surfaces) in map_surfaces.iter().enumerate() {
@@ -90,12 +109,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     counts.sort_unstable();
     if let Some(&most) = counts.last() {
         let at = |q: f64| counts[((counts.len() - 1) as f64 * q) as usize];
-        println!(
+        writeln!(
+            out,
             "contact maps per crease surface: median {}, 90th percentile {}, 99th {}, most {most}",
             at(0.5),
             at(0.9),
             at(0.99)
-        );
+        )?;
     }
     let mut worst: Vec<(usize, u32)> = per_surface.iter().map(|(&s, m)| (m.len(), s)).collect();
     worst.sort_unstable_by(|a, b| b.cmp(a));
@@ -116,11 +136,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         let mut areas: Vec<f64> = per_surface[&surface].iter().map(|&m| map_area[m]).collect();
         areas.sort_by(f64::total_cmp);
-        println!(
+        writeln!(
+            out,
             "  crease surface {surface}: {count} contact maps (median {:.2e} m²) over {surface_area:.2e} m², \
              from {lo} to {hi}",
             areas[areas.len() / 2]
-        );
+        )?;
     }
     Ok(())
 }

@@ -29,12 +29,9 @@ fn side_by_side(start: f32) -> Vec<Vec<Vec3>> {
 fn faces_side_by_side_in_planes_a_few_degrees_apart_do_not_meet() {
     // 50 µm apart across the line: no meeting, no cut, no barrier (with a 1 mm gap, so that
     // the pair is looked at).
-    let split = split_polygons_at_intersections(
-        &side_by_side(0.00005),
-        &[],
-        &ArrangementOptions::new(1e-5, 1e-3),
-    )
-    .expect("within bounds");
+    let split =
+        split_polygons_at_intersections(&side_by_side(0.00005), &[], &ArrangementOptions::new(1e-5, 1e-3))
+            .expect("within bounds");
     assert_eq!(split.counts.meetings(), 0, "{:?}", split.counts);
     assert_eq!(split.polygons.len(), 2);
     assert!(split.barriers.is_empty(), "{:?}", split.barriers);
@@ -44,11 +41,8 @@ fn faces_side_by_side_in_planes_a_few_degrees_apart_do_not_meet() {
 fn faces_reaching_across_the_common_line_still_meet() {
     // The control: A reaching 0.1 mm to the other side of the line overlaps B's end there (A
     // lies in B's plane within the tolerance), so they still meet.
-    let split = split_polygons_at_intersections(
-        &side_by_side(-0.0001),
-        &[],
-        &ArrangementOptions::new(1e-5, 1e-5),
-    )
-    .expect("within bounds");
+    let split =
+        split_polygons_at_intersections(&side_by_side(-0.0001), &[], &ArrangementOptions::new(1e-5, 1e-5))
+            .expect("within bounds");
     assert!(split.counts.meetings() > 0, "{:?}", split.counts);
 }
