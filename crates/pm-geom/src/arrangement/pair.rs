@@ -146,9 +146,15 @@ pub(super) fn meet(
         meet_in_plane(faces, a, b, cos, separation, tolerance, gap, scratch, out);
         return;
     }
-    section(a.vertices, &scratch.da, b, tolerance, &mut scratch.section_a);
-    section(b.vertices, &scratch.db, a, tolerance, &mut scratch.section_b);
-    match (scratch.section_a.is_empty(), scratch.section_b.is_empty()) {
+    // A face wholly on one side of the other's plane, beyond the tolerance, has no section
+    // there (what `section` would find empty), so most pairs skip the sections.
+    let clear = |d: &[f32]| d.iter().all(|&x| x > tolerance) || d.iter().all(|&x| x < -tolerance);
+    let (a_clear, b_clear) = (clear(&scratch.da), clear(&scratch.db));
+    if !a_clear && !b_clear {
+        section(a.vertices, &scratch.da, b, tolerance, &mut scratch.section_a);
+        section(b.vertices, &scratch.db, a, tolerance, &mut scratch.section_b);
+    }
+    match (a_clear, b_clear) {
         (false, false) => meet_across(a, b, tolerance, scratch, out),
         (true, _) => near_contact(
             faces,
