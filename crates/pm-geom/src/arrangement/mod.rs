@@ -26,6 +26,8 @@ mod junctions;
 mod linked;
 mod meetings;
 mod options;
+#[cfg(test)]
+mod outline_tests;
 mod pair;
 #[cfg(test)]
 mod parallel_tests;
