@@ -4,32 +4,19 @@
 //! tracer's, in units of the combined standard error of the two (from independent seeds).
 
 use photon_maps::render::progressive::{ProgressiveRenderer, ProgressiveSettings};
-use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{CreaseAngle, Partitioner, scenes};
 
 #[path = "support/photon_modes.rs"]
 mod photon_modes;
-use photon_modes::{Sppm, every_mode};
+use photon_modes::{Sppm, every_mode, small_settings};
 
 const SIZE: u32 = 24;
 
 const BLOCKS: u32 = 4;
 
 fn settings(mode: Mode, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: SIZE,
-        height: SIZE,
-        photons: 60_000,
-        samples_per_pixel: 4,
-        mode,
-        seed,
-        threads: 2,
-        final_gather: FinalGatherOptions {
-            gather_rays: 4,
-            ..FinalGatherOptions::default()
-        },
-        ..RenderSettings::default()
-    }
+    small_settings((SIZE, SIZE), 60_000, 4, mode, seed)
 }
 
 /// The mean of each of the 4 × 4 blocks, channels summed.

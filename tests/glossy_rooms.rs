@@ -6,7 +6,7 @@
 //! - `glossy-cornell-box` renders bit for bit alike on 1 and 3 threads in every photon mode,
 //!   SPPM included, and in the path tracer.
 
-use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
+use photon_maps::render::{EstimatorKind, Mode, RenderSettings, Renderer};
 use photon_maps::trace::bsdf::MetallicRoughness;
 use photon_maps::trace::glam::Vec3;
 use photon_maps::trace::scenes::box_mesh::{Facing, box_mesh};
@@ -16,7 +16,7 @@ use photon_maps::trace::{Camera, Contact, CreaseAngle, Partitioner, PointLight, 
 mod dark_room;
 #[path = "support/photon_modes.rs"]
 mod photon_modes;
-use photon_modes::{Sppm, every_mode};
+use photon_modes::{Sppm, every_mode, image_bits, small_settings};
 
 const W: u32 = 48;
 const H: u32 = 24;
@@ -61,20 +61,7 @@ fn glossy_lit_unlit_rooms() -> Scene {
 }
 
 fn settings(mode: Mode, seed: u64) -> RenderSettings {
-    RenderSettings {
-        width: W,
-        height: H,
-        photons: 20_000,
-        samples_per_pixel: 2,
-        mode,
-        seed,
-        threads: 2,
-        final_gather: FinalGatherOptions {
-            gather_rays: 4,
-            ..FinalGatherOptions::default()
-        },
-        ..RenderSettings::default()
-    }
+    small_settings((W, H), 20_000, 2, mode, seed)
 }
 
 #[test]
@@ -118,14 +105,6 @@ fn one_map_lets_light_into_the_unlit_glossy_room() {
     assert!(lit > 0, "one map should leak near the dividing wall");
 }
 
-fn bits(image: &Image) -> Vec<u32> {
-    image
-        .pixels()
-        .iter()
-        .flat_map(|p| p.to_array().map(f32::to_bits))
-        .collect()
-}
-
 #[test]
 fn the_glossy_cornell_box_renders_alike_on_any_thread_count() {
     let crease = CreaseAngle::default()
@@ -159,6 +138,10 @@ fn the_glossy_cornell_box_renders_alike_on_any_thread_count() {
         Box::new(move |s| path_trace(three(Mode::PathTrace, s))),
     ));
     for ((name, a), (_, b)) in cases_one.iter().zip(&cases_three) {
-        assert_eq!(bits(&a(9)), bits(&b(9)), "{name}: 1 and 3 threads differ");
+        assert_eq!(
+            image_bits(&a(9)),
+            image_bits(&b(9)),
+            "{name}: 1 and 3 threads differ"
+        );
     }
 }

@@ -7,8 +7,42 @@
 use photon_maps::render::progressive::{
     ProgressiveRenderer, ProgressiveSettings, SppmRenderer, SppmSettings,
 };
-use photon_maps::render::{EstimatorKind, Image, Mode, RenderSettings, Renderer};
+use photon_maps::render::{EstimatorKind, FinalGatherOptions, Image, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{Partitioned, Scene};
+
+/// The glossy tests' settings: a `width × height` image of `samples_per_pixel`, `photons`
+/// photon paths, 2 threads and 4 gather rays per final-gather point.
+pub fn small_settings(
+    (width, height): (u32, u32),
+    photons: u32,
+    samples_per_pixel: u32,
+    mode: Mode,
+    seed: u64,
+) -> RenderSettings {
+    RenderSettings {
+        width,
+        height,
+        photons,
+        samples_per_pixel,
+        mode,
+        seed,
+        threads: 2,
+        final_gather: FinalGatherOptions {
+            gather_rays: 4,
+            ..FinalGatherOptions::default()
+        },
+        ..RenderSettings::default()
+    }
+}
+
+/// An image's bits, to compare two images bit for bit.
+pub fn image_bits(image: &Image) -> Vec<u32> {
+    image
+        .pixels()
+        .iter()
+        .flat_map(|p| p.to_array().map(f32::to_bits))
+        .collect()
+}
 
 /// A mode's name and how it renders the scene for a seed.
 pub type Case<'a> = (&'static str, Box<dyn Fn(u64) -> Image + 'a>);
