@@ -79,7 +79,7 @@ impl BarrierSet {
             let off_line = |x: Vec3| (x - a).reject_from_normalized(direction).length();
             covered = off_line(p) <= self.tolerance
                 && off_line(q) <= self.tolerance
-                && super::pair::distance_to_segment(middle, a, b) <= self.tolerance;
+                && super::face::distance_to_segment(middle, a, b) <= self.tolerance;
         });
         covered
     }

@@ -1,7 +1,7 @@
 //! Copies of one face: exact copies found by sorting hashes of their vertices, and the test of
 //! whether a piece lies under another face in the same plane (a later copy's hidden part).
 
-use super::pair::Face;
+use super::face::Face;
 use glam::Vec3;
 
 /// For each polygon, whether an earlier one has the same vertices in the same cyclic order

@@ -4,7 +4,7 @@
 //! is tested, and so is every uncut face within the bounds of another outward solid: a face
 //! wholly inside a solid meets none of its faces, so it is never cut.
 
-use super::pair::Face;
+use super::face::Face;
 use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use crate::polygon::polygon_area;

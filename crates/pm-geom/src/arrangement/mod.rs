@@ -21,6 +21,7 @@ mod copies;
 mod counts;
 mod cut;
 mod dedup;
+mod face;
 mod inside;
 mod junctions;
 mod linked;
@@ -49,9 +50,9 @@ use crate::aabb::Aabb;
 use crate::polygon::polygon_vector_area;
 use continuation::EdgeNeighbours;
 use copies::{covered_by, exact_duplicates};
+use face::Face;
 use glam::Vec3;
 use meetings::{Meetings, find_meetings};
-use pair::Face;
 use pieces::{Pieces, cut_faces};
 
 /// The result of [`split_polygons_at_intersections`].

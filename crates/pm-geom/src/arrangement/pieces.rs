@@ -8,9 +8,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use super::budget::{ArrangementError, Budget};
 use super::counts::IntersectionCounts;
 use super::cut::{Cut, cut_face};
+use super::face::Face;
 use super::junctions::resolve_t_junctions;
 use super::options::ArrangementOptions;
-use super::pair::Face;
 use glam::Vec3;
 use rayon::prelude::*;
 

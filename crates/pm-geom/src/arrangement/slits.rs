@@ -4,8 +4,9 @@
 //! 3 mm letter on a 2 cm button does not cut the button from border to border.
 
 use super::cut::Cut;
+use super::face::{Face, segment_inside};
 use super::linked::linked_extents;
-use super::pair::{Constraint, Face, segment_inside};
+use super::pair::Constraint;
 use glam::Vec3;
 
 /// A slit counts as narrow when it is at most this fraction of the size of the barrier chain

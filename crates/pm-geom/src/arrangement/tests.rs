@@ -311,7 +311,7 @@ fn is_edge_of_pieces(split: &Arrangement, source: usize, p: Vec3, q: Vec3) -> bo
         split.polygons.iter().zip(&split.source).any(|(poly, &s)| {
             s == source
                 && (0..poly.len())
-                    .any(|i| pair::distance_to_segment(x, poly[i], poly[(i + 1) % poly.len()]) <= 1e-4)
+                    .any(|i| face::distance_to_segment(x, poly[i], poly[(i + 1) % poly.len()]) <= 1e-4)
         })
     })
 }
