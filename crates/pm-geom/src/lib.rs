@@ -71,6 +71,7 @@ pub mod ball;
 mod bounds_bvh;
 pub mod clip;
 pub mod error;
+mod fast_hash;
 pub mod merge;
 pub mod mesh;
 pub mod plane;

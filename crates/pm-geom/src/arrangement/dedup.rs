@@ -1,8 +1,8 @@
 //! Barrier segments reported once: a segment whose ends lie within the tolerance of an
 //! earlier one's (either way round) is the same meeting line seen from the other face.
 
+use crate::fast_hash::FastHashMap;
 use glam::Vec3;
-use std::collections::HashMap;
 
 /// `segments` without repeats, in order of first appearance. Two segments are the same when
 /// each end of one lies within `tolerance` of an end of the other (either way round); ends are
@@ -18,7 +18,7 @@ pub(super) fn dedup_segments(segments: Vec<[Vec3; 2]>, tolerance: f32) -> Vec<[V
         let near = |a: Vec3, b: Vec3| a.distance(b) <= tolerance;
         (near(s[0], t[0]) && near(s[1], t[1])) || (near(s[0], t[1]) && near(s[1], t[0]))
     };
-    let mut seen: HashMap<([i64; 3], [i64; 3]), Vec<usize>> = HashMap::new();
+    let mut seen: FastHashMap<([i64; 3], [i64; 3]), Vec<usize>> = FastHashMap::default();
     let mut out: Vec<[Vec3; 2]> = Vec::with_capacity(segments.len());
     for s in segments {
         let (a, b) = (key(s[0]), key(s[1]));

@@ -1,8 +1,8 @@
 //! Groups of items linked where their points meet, and each group's size: the chains of
 //! barriers whose size decides which slits close (`slits`).
 
+use crate::fast_hash::FastHashMap;
 use glam::Vec3;
-use std::collections::HashMap;
 
 /// For each of `items` (segments, polygons), the size (bounding-box diagonal) of the group it is
 /// linked into: items are linked where a point of one lies at a point of another (a chain of
@@ -31,7 +31,7 @@ pub(super) fn linked_extents<P: AsRef<[Vec3]>>(items: &[P], tolerance: f32) -> V
         [q.x as i64, q.y as i64, q.z as i64]
     };
     // Each occupied cell, with the first barrier that has an end in it.
-    let mut first: HashMap<[i64; 3], usize> = HashMap::new();
+    let mut first: FastHashMap<[i64; 3], usize> = FastHashMap::default();
     for (i, s) in items.iter().enumerate() {
         for &p in s.as_ref() {
             let j = *first.entry(key(p)).or_insert(i);
@@ -51,7 +51,7 @@ pub(super) fn linked_extents<P: AsRef<[Vec3]>>(items: &[P], tolerance: f32) -> V
             }
         }
     }
-    let mut bounds: HashMap<usize, (Vec3, Vec3)> = HashMap::new();
+    let mut bounds: FastHashMap<usize, (Vec3, Vec3)> = FastHashMap::default();
     for (i, s) in items.iter().enumerate() {
         let r = root(&mut parent, i);
         let Some(&start) = s.as_ref().first() else {

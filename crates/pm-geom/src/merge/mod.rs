@@ -12,41 +12,12 @@ mod greedy;
 mod outline;
 
 use crate::aabb::Aabb;
+use crate::fast_hash::{FastHashMap, fast_map_with_capacity};
 use crate::polygon::polygon_vector_area;
 use glam::{DVec3, Vec3};
 use greedy::SharedEdge;
 use outline::{VertexKey, accepts, simplify_outline};
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
-/// A multiply-rotate hash (as in rustc's FxHash) for vertex keys: merging hashes every edge
-/// twice, and SipHash's resistance to chosen keys buys nothing on mesh coordinates.
-type FastHash = BuildHasherDefault<FxHasher>;
-
-#[derive(Default)]
-struct FxHasher(u64);
-
-impl Hasher for FxHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(4) {
-            let mut word = [0u8; 4];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u32(u32::from_le_bytes(word));
-        }
-    }
-
-    fn write_u32(&mut self, i: u32) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_usize(&mut self, i: usize) {
-        self.0 = (self.0.rotate_left(5) ^ i as u64).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
 
 /// Tolerances of [`CoplanarMerger`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -253,8 +224,7 @@ impl CoplanarMerger {
     /// way; [`NONE`] otherwise.
     fn edge_neighbours(&self) -> Vec<u32> {
         let n = self.len() as u32;
-        let mut owner: HashMap<(VertexKey, VertexKey), u32, FastHash> =
-            HashMap::with_capacity_and_hasher(self.vertices.len(), FastHash::default());
+        let mut owner: FastHashMap<(VertexKey, VertexKey), u32> = fast_map_with_capacity(self.vertices.len());
         for i in 0..n {
             for (a, b) in self.edges(i) {
                 owner
@@ -383,8 +353,7 @@ impl CoplanarMerger {
         for &p in members {
             boundary.extend(boundary_of(p));
         }
-        let mut from: HashMap<VertexKey, usize, FastHash> =
-            HashMap::with_capacity_and_hasher(boundary.len(), FastHash::default());
+        let mut from: FastHashMap<VertexKey, usize> = fast_map_with_capacity(boundary.len());
         for (e, &(a, _)) in boundary.iter().enumerate() {
             if from.insert(VertexKey::of(a), e).is_some() {
                 return None;

@@ -4,10 +4,10 @@
 use super::weld::weld;
 use super::{HalfEdgeMesh, MeshOptions, NO_TWIN, NON_MANIFOLD};
 use crate::error::MeshError;
+use crate::fast_hash::{FastHashMap, fast_map_with_capacity};
 use crate::polygon::polygon_vector_area;
 use glam::Vec3;
 use std::cmp::Ordering::Greater;
-use std::collections::HashMap;
 
 /// The half-edges seen on one undirected edge: the first two, and how many in all.
 #[derive(Clone, Copy)]
@@ -123,7 +123,7 @@ impl HalfEdgeMesh {
     fn link_twins(&mut self) {
         let count = self.he_origin.len();
         self.he_twin = vec![NO_TWIN; count];
-        let mut edges: HashMap<(u32, u32), EdgeUse> = HashMap::with_capacity(count);
+        let mut edges: FastHashMap<(u32, u32), EdgeUse> = fast_map_with_capacity(count);
         for he in 0..count as u32 {
             let (a, b) = self.endpoints(he);
             edges

@@ -4,8 +4,8 @@
 use super::build::face_normal_and_area;
 use super::{FaceId, HalfEdgeId, HalfEdgeMesh};
 use crate::error::MeshError;
+use crate::fast_hash::FastHashMap;
 use glam::Vec3;
-use std::collections::HashMap;
 
 impl HalfEdgeMesh {
     /// Checks every invariant: table sizes agree; each face has ≥ 3 half-edges whose face is
@@ -79,7 +79,7 @@ impl HalfEdgeMesh {
     }
 
     fn validate_edges(&self) -> Result<(), MeshError> {
-        let mut uses: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+        let mut uses: FastHashMap<(u32, u32), Vec<u32>> = FastHashMap::default();
         for he in 0..self.he_origin.len() as u32 {
             let (a, b) = self.endpoints(he);
             uses.entry((a.min(b), a.max(b))).or_default().push(he);

@@ -1,8 +1,8 @@
 //! Vertex welding through a spatial hash grid: exporters split vertices along seams, and
 //! twins can only be found once the copies are one vertex again.
 
+use crate::fast_hash::{FastHashMap, fast_map_with_capacity};
 use glam::Vec3;
-use std::collections::HashMap;
 
 const NONE: u32 = u32::MAX;
 
@@ -22,7 +22,7 @@ pub(crate) fn weld(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) 
 }
 
 fn weld_exact(positions: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut ids: FastHashMap<[u32; 3], u32> = fast_map_with_capacity(positions.len());
     let mut welded = Vec::new();
     let remap = positions
         .iter()
@@ -42,14 +42,14 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     let inv_cell = 1.0 / tolerance;
     let tolerance2 = tolerance * tolerance;
     // Head of each cell's chain of representatives; `next` links the chain.
-    let mut heads: HashMap<[i64; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut heads: FastHashMap<[i64; 3], u32> = fast_map_with_capacity(positions.len());
     let mut next: Vec<u32> = Vec::new();
     let mut welded: Vec<Vec3> = Vec::new();
     let mut remap = Vec::with_capacity(positions.len());
     // Points whose cells do not fit an i64: there one float step is far larger than the
     // tolerance, so only identical points can weld. Keyed by their bits, not crammed into
     // the outermost cells, where a long chain would make welding quadratic.
-    let mut huge: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut huge: FastHashMap<[u32; 3], u32> = FastHashMap::default();
     for &p in positions {
         let cell = (p * inv_cell).floor();
         if cell.abs().max_element() >= 4.0e18 {
