@@ -88,8 +88,7 @@ pub(super) fn find_meetings(
 }
 
 /// The pairs of faces whose bounds come within `gap` of each other, found through a
-/// bounding-volume hierarchy over the padded bounds; each pair once, `i < j`, in an order
-/// fixed by the faces and the tree, whatever the machine.
+/// bounding-volume hierarchy over the padded bounds; each pair once, `i < j`, in index order.
 struct CandidatePairs {
     /// The faces that take part (index into the input, padded bounds).
     live: Vec<(usize, Aabb)>,
@@ -119,7 +118,7 @@ impl CandidatePairs {
     }
 
     /// The later live faces (tree indices `m > n`) whose padded bounds overlap live face `n`'s
-    /// own bounds, in the tree's order, into `partners`; stops adding past `cap` of them.
+    /// own bounds, in index order, into `partners`; stops adding past `cap` of them.
     fn partners(&self, n: usize, cap: usize, partners: &mut Vec<u32>) {
         let padded = self.live[n].1;
         let own = Aabb::new(padded.min + self.pad, padded.max - self.pad);
@@ -129,6 +128,9 @@ impl CandidatePairs {
                 partners.push(m);
             }
         });
+        // In index order, not the tree's: which pairs are candidates is then all that the
+        // cuts depend on, and a better broad phase cannot change the pieces.
+        partners.sort_unstable();
     }
 
     /// Live face `n` met with each of its partners, or [`FaceMeetings::Crowded`] when it has
