@@ -2,6 +2,7 @@
 //! padded bounds) and how each pair meets, gathered into the cuts each face must take.
 
 use super::budget::ArrangementError;
+use super::candidates::CandidatePairs;
 use super::counts::IntersectionCounts;
 use super::cut::{Cut, add_cut};
 use super::dedup::dedup_segments;
@@ -9,8 +10,6 @@ use super::face::Face;
 use super::options::ArrangementOptions;
 use super::pair::{Constraint, Meeting, PairOutcome, PairScratch, meet};
 use super::slits::{PendingBarrier, close_slits};
-use crate::aabb::Aabb;
-use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -59,7 +58,7 @@ pub(super) fn find_meetings(
         pair_count: 0,
         pending: Vec::new(),
     };
-    let candidates = CandidatePairs::new(faces, gap);
+    let candidates = CandidatePairs::new(faces, tolerance, gap);
     for wave in (0..candidates.live.len()).collect::<Vec<_>>().chunks(WAVE_FACES) {
         let met: Vec<FaceMeetings> = wave
             .par_iter()
@@ -87,52 +86,7 @@ pub(super) fn find_meetings(
     Ok(found)
 }
 
-/// The pairs of faces whose bounds come within `gap` of each other, found through a
-/// bounding-volume hierarchy over the padded bounds; each pair once, `i < j`, in index order.
-struct CandidatePairs {
-    /// The faces that take part (index into the input, padded bounds).
-    live: Vec<(usize, Aabb)>,
-    /// Their padded bounds, in the tree's index space.
-    boxes: Vec<Aabb>,
-    bvh: BoundsBvh,
-    pad: Vec3,
-}
-
 impl CandidatePairs {
-    fn new(faces: &[Option<Face>], gap: f32) -> Self {
-        let live: Vec<(usize, Aabb)> = faces
-            .iter()
-            .enumerate()
-            .filter_map(|(i, face)| face.as_ref().map(|face| (i, face.bounds)))
-            .collect();
-        let boxes: Vec<Aabb> = live.iter().map(|&(_, b)| b).collect();
-        // Every face queries the tree once: leaves of 12 halve the levels each query walks
-        // (82 against 97 ms on split-rooms-100's 120,000 quads with leaves of 4).
-        let bvh = BoundsBvh::build_with_leaves(&boxes, 12);
-        CandidatePairs {
-            live,
-            boxes,
-            bvh,
-            pad: Vec3::splat(gap),
-        }
-    }
-
-    /// The later live faces (tree indices `m > n`) whose padded bounds overlap live face `n`'s
-    /// own bounds, in index order, into `partners`; stops adding past `cap` of them.
-    fn partners(&self, n: usize, cap: usize, partners: &mut Vec<u32>) {
-        let padded = self.live[n].1;
-        let own = Aabb::new(padded.min + self.pad, padded.max - self.pad);
-        partners.clear();
-        self.bvh.for_each_candidate(&own, |m| {
-            if m as usize > n && own.overlaps(&self.boxes[m as usize]) && partners.len() <= cap {
-                partners.push(m);
-            }
-        });
-        // In index order, not the tree's: which pairs are candidates is then all that the
-        // cuts depend on, and a better broad phase cannot change the pieces.
-        partners.sort_unstable();
-    }
-
     /// Live face `n` met with each of its partners, or [`FaceMeetings::Crowded`] when it has
     /// more than [`PARTNER_CAP`].
     fn meet_partners(
@@ -156,9 +110,9 @@ impl CandidatePairs {
             candidates: partners.len(),
             ..Met::default()
         };
-        let a = faces[self.live[n].0].as_ref().expect("live faces are faces");
+        let a = faces[self.live[n]].as_ref().expect("live faces are faces");
         for (position, &m) in partners.iter().enumerate() {
-            let b = faces[self.live[m as usize].0]
+            let b = faces[self.live[m as usize]]
                 .as_ref()
                 .expect("live faces are faces");
             meet(faces, a, b, tolerance, gap, pair, outcome);
@@ -238,7 +192,7 @@ impl Fold<'_, '_> {
         n: usize,
         met: FaceMeetings,
     ) -> Result<(), ArrangementError> {
-        let i = candidates.live[n].0;
+        let i = candidates.live[n];
         let met = match met {
             FaceMeetings::Met(met) => met,
             FaceMeetings::Crowded => return self.crowded_face(candidates, n),
@@ -254,7 +208,7 @@ impl Fold<'_, '_> {
             let (first, rest) = constraints.split_at(pair.on_first);
             let (second, rest) = rest.split_at(pair.on_second);
             constraints = rest;
-            let j = candidates.live[pair.partner as usize].0;
+            let j = candidates.live[pair.partner as usize];
             self.pair(i, j, pair.meeting, pair.second_hidden, first, second)?;
         }
         if met.candidates > allowed {
@@ -268,7 +222,7 @@ impl Fold<'_, '_> {
 
     /// A face with more partners than a wave may hold, met pair by pair here.
     fn crowded_face(&mut self, candidates: &CandidatePairs, n: usize) -> Result<(), ArrangementError> {
-        let i = candidates.live[n].0;
+        let i = candidates.live[n];
         let mut partners = Vec::new();
         candidates.partners(n, usize::MAX, &mut partners);
         let mut scratch = PairScratch::default();
@@ -281,7 +235,7 @@ impl Fold<'_, '_> {
                     limit: self.options.max_pairs,
                 });
             }
-            let j = candidates.live[m as usize].0;
+            let j = candidates.live[m as usize];
             let b = self.faces[j].as_ref().expect("live faces are faces");
             meet(
                 self.faces,

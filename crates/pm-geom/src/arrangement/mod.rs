@@ -14,6 +14,7 @@
 mod apart_tests;
 mod barrier;
 mod budget;
+mod candidates;
 #[cfg(test)]
 mod contact_tests;
 mod continuation;
