@@ -12,6 +12,8 @@ use crate::photon::Photon;
 use crate::photon::{CompactPhoton, kind_code_of_bits};
 use crate::power_code::PowerScale;
 use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Most photons in a leaf.
 pub const LEAF_CAPACITY: usize = 32;
@@ -276,27 +278,46 @@ pub(crate) fn depth_for(n: usize) -> u32 {
 }
 
 /// Checks positions, picks the power scale and encodes: (photons, scale, channels below range).
+/// Above [`PARALLEL_MIN`] photons the check and the encoding run on rayon; the first bad
+/// photon is the one reported, and every photon encodes on its own, so the result is the
+/// same on any number of threads.
 fn encode_all(photons: &[Photon]) -> Result<(Vec<CompactPhoton>, PowerScale, u64), BuildError> {
-    for (index, p) in photons.iter().enumerate() {
-        let position = p.position.to_array();
-        if !position.iter().all(|c| c.is_finite()) {
-            return Err(BuildError::NonFinitePosition { index, position });
-        }
-        if !position.iter().all(|c| c.abs() <= MAX_COORDINATE) {
-            return Err(BuildError::PositionOutOfRange { index, position });
-        }
+    let bad = if photons.len() >= PARALLEL_MIN {
+        photons.par_iter().position_first(|p| !position_in_range(p))
+    } else {
+        photons.iter().position(|p| !position_in_range(p))
+    };
+    if let Some(index) = bad {
+        let position = photons[index].position.to_array();
+        return Err(if position.iter().all(|c| c.is_finite()) {
+            BuildError::PositionOutOfRange { index, position }
+        } else {
+            BuildError::NonFinitePosition { index, position }
+        });
     }
     let scale = PowerScale::for_photons(photons);
-    let mut below_range = 0u64;
-    let compact = photons
+    let below_range = AtomicU64::new(0);
+    let encode = |p: &Photon| {
+        let (c, below) = CompactPhoton::encode_counting(p, scale);
+        if below > 0 {
+            below_range.fetch_add(u64::from(below), Ordering::Relaxed);
+        }
+        c
+    };
+    let compact = if photons.len() >= PARALLEL_MIN {
+        photons.par_iter().map(encode).collect()
+    } else {
+        photons.iter().map(encode).collect()
+    };
+    Ok((compact, scale, below_range.into_inner()))
+}
+
+/// Whether a photon's position is finite and within [`MAX_COORDINATE`] on every axis.
+fn position_in_range(p: &Photon) -> bool {
+    p.position
+        .to_array()
         .iter()
-        .map(|p| {
-            let (c, below) = CompactPhoton::encode_counting(p, scale);
-            below_range += u64::from(below);
-            c
-        })
-        .collect();
-    Ok((compact, scale, below_range))
+        .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
 }
 
 /// Builds the subtree of heap node `node` over `photons` with `levels` inner levels below

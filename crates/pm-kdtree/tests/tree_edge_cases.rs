@@ -201,3 +201,56 @@ fn build_keeps_every_photon() {
     let bytes = tree.memory_bytes() as f64 / tree.len() as f64;
     assert!(bytes <= 20.5, "{bytes} bytes per photon");
 }
+
+/// Above the parallel threshold the positions are checked and the photons encoded on rayon:
+/// the first bad photon is still the one reported, and 1 and 3 threads build the same tree
+/// bit for bit, with the same count of channels below the power code's range.
+#[test]
+fn large_builds_report_the_first_bad_photon_and_match_on_any_thread_count() {
+    let mut rng = Rng::new(seed());
+    let points = box_walls(&mut rng, 70_000);
+    let mut photons = photons_at(&mut rng, &points);
+    // Powers across 80 octaves, so some channels fall below the code's range.
+    for (i, p) in photons.iter_mut().enumerate() {
+        p.power = Vec3::new(1.0, 2f32.powi(-((i % 80) as i32)), 0.5);
+        p.direction = Vec3::new(rng.vec3().x - 0.5, 0.3, 1.0);
+    }
+    let build_on = |threads: usize, photons: &[Photon]| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        pool.install(|| PhotonTree::from_photons(photons))
+    };
+    let one = build_on(1, &photons).expect("builds");
+    let three = build_on(3, &photons).expect("builds");
+    assert!(
+        one.channels_below_range() > 0,
+        "the test needs channels below range"
+    );
+    assert_eq!(one.channels_below_range(), three.channels_below_range());
+    let bits = |t: &PhotonTree| {
+        (0..t.len() as u32)
+            .map(|i| {
+                let p = t.photon(i);
+                let word = |v: Vec3| v.to_array().map(f32::to_bits);
+                (word(p.position), word(p.power), word(p.direction), p.kind as u8)
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&one), bits(&three));
+
+    photons[65_000].position = Vec3::new(f32::NAN, 0.0, 0.0);
+    photons[40_000].position = Vec3::new(0.0, 1e30, 0.0);
+    for threads in [1, 3] {
+        match build_on(threads, &photons) {
+            Err(BuildError::PositionOutOfRange { index, .. }) => assert_eq!(index, 40_000),
+            other => panic!("{threads} threads: unexpected {other:?}"),
+        }
+    }
+    photons[40_000].position = Vec3::ZERO;
+    match build_on(3, &photons) {
+        Err(BuildError::NonFinitePosition { index, .. }) => assert_eq!(index, 65_000),
+        other => panic!("unexpected {other:?}"),
+    }
+}
