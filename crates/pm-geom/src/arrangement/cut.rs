@@ -217,9 +217,19 @@ fn crossed_by_contacts(piece: &[Vec3], normal: Vec3, contacts: &[Vec3], toleranc
 /// Inserts each point of `points` that lies strictly inside an edge of `polygon` (within the
 /// tolerance) into that edge, in order along it; points at existing vertices are skipped.
 pub(super) fn insert_points_on_edges(polygon: &mut Vec<Vec3>, points: &[Vec3], tolerance: f32) {
-    let mut result = Vec::with_capacity(polygon.len() + points.len());
-    let mut on_edge: Vec<(f32, Vec3)> = Vec::new();
+    insert_points_by_edge(polygon, |_| points, tolerance);
+}
+
+/// [`insert_points_on_edges`] with each edge's own candidates: `points_near(i)` are the
+/// points that may lie on edge `i` (from vertex `i` to the next); the others are not tested.
+pub(super) fn insert_points_by_edge<'p>(
+    polygon: &mut Vec<Vec3>,
+    points_near: impl Fn(usize) -> &'p [Vec3],
+    tolerance: f32,
+) {
     let n = polygon.len();
+    let mut result = Vec::with_capacity(n + (0..n).map(|i| points_near(i).len()).max().unwrap_or(0));
+    let mut on_edge: Vec<(f32, Vec3)> = Vec::new();
     for i in 0..n {
         let (a, b) = (polygon[i], polygon[(i + 1) % n]);
         result.push(a);
@@ -229,7 +239,7 @@ pub(super) fn insert_points_on_edges(polygon: &mut Vec<Vec3>, points: &[Vec3], t
         }
         let direction = (b - a) / length;
         on_edge.clear();
-        for &p in points {
+        for &p in points_near(i) {
             let t = (p - a).dot(direction);
             if t > tolerance
                 && t < length - tolerance

@@ -4,7 +4,7 @@
 //! folded in order: the same result, and the same error, for any number of threads.
 
 use super::budget::{ArrangementError, Budget};
-use super::cut::insert_points_on_edges;
+use super::cut::insert_points_by_edge;
 use crate::aabb::Aabb;
 use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
@@ -46,14 +46,14 @@ pub(super) fn resolve_t_junctions(
         // discards every piece, so pieces grown past the one that failed do not matter).
         let grown: Vec<Grown> = wave
             .par_iter_mut()
-            .map_init(Vec::new, |found, piece| {
+            .map_init(Found::default, |found, piece| {
                 near.along_edges(piece, POINT_CAP, found);
-                if found.len() > POINT_CAP {
+                if found.points.len() > POINT_CAP {
                     return Grown::Crowded;
                 }
                 let before = piece.len();
-                if !found.is_empty() {
-                    insert_points_on_edges(piece, found, tolerance);
+                if !found.points.is_empty() {
+                    found.insert_into(piece, tolerance);
                 }
                 Grown::By(piece.len() - before)
             })
@@ -64,9 +64,9 @@ pub(super) fn resolve_t_junctions(
                 Grown::By(added) => added,
                 Grown::Crowded => {
                     let before = piece.len();
-                    let mut found = Vec::new();
+                    let mut found = Found::default();
                     near.along_edges(piece, usize::MAX, &mut found);
-                    insert_points_on_edges(piece, &found, tolerance);
+                    found.insert_into(piece, tolerance);
                     piece.len() - before
                 }
             };
@@ -96,24 +96,58 @@ struct NearPoints {
 }
 
 impl NearPoints {
-    /// The points whose padded boxes meet the padded bounds of one of `piece`'s edges (a point
-    /// once per edge it is near), into `found`; stops adding past `cap` of them.
-    fn along_edges(&self, piece: &[Vec3], cap: usize, found: &mut Vec<Vec3>) {
-        found.clear();
+    /// The points whose padded boxes meet the padded bounds of each of `piece`'s edges (a
+    /// point once per edge it is near), by edge, into `found`; stops adding past `cap` of them.
+    /// One query of the hierarchy with the piece's bounds, then each edge's box against what
+    /// it found: most pieces lie far from every cut and cost one query, not one per edge.
+    fn along_edges(&self, piece: &[Vec3], cap: usize, found: &mut Found) {
+        found.points.clear();
+        found.starts.clear();
+        found.starts.push(0);
+        found.near.clear();
         let bounds = Aabb::from_points(piece);
         let bounds = Aabb::new(bounds.min - self.pad, bounds.max + self.pad);
-        if !bounds.overlaps(&self.all) {
-            return;
-        }
-        let n = piece.len();
-        for i in 0..n {
-            let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
-            let edge = Aabb::new(edge.min - self.pad, edge.max + self.pad);
-            self.bvh.for_each_candidate(&edge, |k| {
-                if self.boxes[k as usize].overlaps(&edge) && found.len() <= cap {
-                    found.push(self.points[k as usize]);
+        if bounds.overlaps(&self.all) {
+            self.bvh.for_each_candidate(&bounds, |k| {
+                if self.boxes[k as usize].overlaps(&bounds) {
+                    found.near.push(k);
                 }
             });
         }
+        let n = piece.len();
+        for i in 0..n {
+            if !found.near.is_empty() {
+                let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
+                let edge = Aabb::new(edge.min - self.pad, edge.max + self.pad);
+                for &k in &found.near {
+                    if self.boxes[k as usize].overlaps(&edge) && found.points.len() <= cap {
+                        found.points.push(self.points[k as usize]);
+                    }
+                }
+            }
+            found.starts.push(found.points.len());
+        }
+    }
+}
+
+/// The cut vertices near a piece's edges, by edge, and the hierarchy's answer they came from;
+/// reused from piece to piece.
+#[derive(Default)]
+struct Found {
+    /// The points near edge `i` are `points[starts[i]..starts[i + 1]]`.
+    points: Vec<Vec3>,
+    starts: Vec<usize>,
+    /// The points (by index) whose padded boxes meet the piece's padded bounds.
+    near: Vec<u32>,
+}
+
+impl Found {
+    /// Inserts the points into the edges of `piece` they lie on.
+    fn insert_into(&self, piece: &mut Vec<Vec3>, tolerance: f32) {
+        insert_points_by_edge(
+            piece,
+            |i| &self.points[self.starts[i]..self.starts[i + 1]],
+            tolerance,
+        );
     }
 }
