@@ -39,16 +39,17 @@ pub(super) struct Pilot {
 }
 
 impl Pilot {
-    /// Picks each map's sites and computes their extents with `estimator` (in parallel; the
-    /// result does not depend on the thread count).
+    /// Picks each map's sites and computes their extents with `estimator` (in parallel over
+    /// maps and over each map's sites; the result, and the error reported, do not depend on
+    /// the thread count).
     pub(super) fn new<E: FixedVolumeEstimator>(
         maps: PhotonMaps,
         estimator: &E,
         options: &EstimatorOptions,
     ) -> Result<Self, RenderError> {
-        let sites = maps
+        let sites: Vec<Result<Sites, RenderError>> = maps
             .maps()
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(m, map)| {
                 let pilot = map.tree();
@@ -76,7 +77,9 @@ impl Pilot {
                     .collect();
                 Ok(Sites { tree, extents })
             })
-            .collect::<Result<Vec<_>, RenderError>>()?;
+            .collect();
+        // The first map's error in map order, as one thread would meet it.
+        let sites = sites.into_iter().collect::<Result<Vec<_>, _>>()?;
         Ok(Pilot { maps, sites })
     }
 
