@@ -105,7 +105,7 @@ impl Contact {
         let tolerance = self.tolerance(&scene);
         let options = ArrangementOptions::new(tolerance, self.gap(&scene));
         let faces = mesh_faces(&scene);
-        let split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
+        let mut split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
         let counts = split.counts;
         if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
             let record = ContactRecord {
@@ -126,10 +126,12 @@ impl Contact {
         let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
         let mut piece_index: Vec<Vec<usize>> = vec![Vec::new(); mesh_count];
         let mut piece_sources: Vec<Vec<SourceFace>> = vec![Vec::new(); mesh_count];
-        for (index, (piece, &source)) in split.polygons.iter().zip(&split.source).enumerate() {
+        // Each piece is freed once copied, so the pieces are not held twice.
+        let pieces = std::mem::take(&mut split.polygons);
+        for (index, (piece, &source)) in pieces.into_iter().zip(&split.source).enumerate() {
             let m = faces.mesh_of[source];
             let start = positions[m].len() as u32;
-            positions[m].extend_from_slice(piece);
+            positions[m].extend_from_slice(&piece);
             polygons[m].push((start..start + piece.len() as u32).collect());
             face_surfaces[m].push(faces.surfaces[source]);
             piece_faces[m].push(faces.face_of[source]);
@@ -179,7 +181,7 @@ impl Contact {
             }
         }
         let barriers = BarrierSet::new(split.barriers, tolerance);
-        drop((split.polygons, piece_index, piece_sources));
+        drop((piece_index, piece_sources));
         rebuilt.trace_faces_as_given(&original, &source_faces, tolerance);
         let record = ContactRecord {
             barriers,
