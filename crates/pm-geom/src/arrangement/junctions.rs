@@ -33,14 +33,16 @@ pub(super) fn resolve_t_junctions(
         .flat_map(|(p, _)| p.iter().copied())
         .collect();
     let pad = Vec3::splat(tolerance);
+    // The padded boxes are needed to build the hierarchy only; queries remake them from the
+    // points (the same bits), so they are not held while the pieces grow.
     let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p - pad, p + pad)).collect();
     let near = NearPoints {
         all: boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x)),
         bvh: BoundsBvh::build(&boxes),
-        boxes,
         points,
         pad,
     };
+    drop(boxes);
     for wave in pieces.chunks_mut(WAVE_PIECES) {
         // Each piece grows in place; the fold then counts the growth in order (an error
         // discards every piece, so pieces grown past the one that failed do not matter).
@@ -89,13 +91,19 @@ enum Grown {
 /// The vertices of the cut faces' pieces, padded by the tolerance, in a hierarchy.
 struct NearPoints {
     points: Vec<Vec3>,
-    boxes: Vec<Aabb>,
     all: Aabb,
     bvh: BoundsBvh,
     pad: Vec3,
 }
 
 impl NearPoints {
+    /// Point `k`'s box, padded by the tolerance.
+    #[inline]
+    fn padded(&self, k: u32) -> Aabb {
+        let p = self.points[k as usize];
+        Aabb::new(p - self.pad, p + self.pad)
+    }
+
     /// The points whose padded boxes meet the padded bounds of each of `piece`'s edges (a
     /// point once per edge it is near), by edge, into `found`; stops adding past `cap` of them.
     /// One query of the hierarchy with the piece's bounds, then each edge's box against what
@@ -109,7 +117,7 @@ impl NearPoints {
         let bounds = Aabb::new(bounds.min - self.pad, bounds.max + self.pad);
         if bounds.overlaps(&self.all) {
             self.bvh.for_each_candidate(&bounds, |k| {
-                if self.boxes[k as usize].overlaps(&bounds) {
+                if self.padded(k).overlaps(&bounds) {
                     found.near.push(k);
                 }
             });
@@ -120,7 +128,7 @@ impl NearPoints {
                 let edge = Aabb::from_points(&[piece[i], piece[(i + 1) % n]]);
                 let edge = Aabb::new(edge.min - self.pad, edge.max + self.pad);
                 for &k in &found.near {
-                    if self.boxes[k as usize].overlaps(&edge) && found.points.len() <= cap {
+                    if self.padded(k).overlaps(&edge) && found.points.len() <= cap {
                         found.points.push(self.points[k as usize]);
                     }
                 }
