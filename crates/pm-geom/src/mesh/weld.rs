@@ -9,9 +9,10 @@ const NONE: u32 = u32::MAX;
 /// Welds `positions` (all finite): returns the welded positions and, for each input
 /// position, the index of its welded vertex.
 ///
-/// Greedy: each position joins the first earlier representative within `tolerance`
-/// (Euclidean), or becomes a representative itself. With a positive tolerance the grid has
-/// cells of that size, so only the 27 cells around a point are searched (O(n) expected).
+/// Greedy: each position joins the vertex an identical earlier position joined, else the
+/// first earlier representative within `tolerance` (Euclidean) it finds, else becomes a
+/// representative itself. With a positive tolerance the grid has cells of that size, so
+/// only the 27 cells around a point are searched (O(n) expected).
 /// A zero, negative or non-finite tolerance welds only bit-identical positions (`-0 = +0`).
 pub(crate) fn weld(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     if tolerance > 0.0 && tolerance.is_finite() {
@@ -43,56 +44,76 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     let tolerance2 = tolerance * tolerance;
     // Head of each cell's chain of representatives; `next` links the chain.
     let mut heads: FastHashMap<[i64; 3], u32> = fast_map_with_capacity(positions.len());
+    // The vertex of each position seen, by its bits: a copy of a position joins the vertex the
+    // first copy joined (the search below could find a representative made in between, within
+    // the tolerance too, and split the copies), and exported meshes repeat most positions, so
+    // most points are settled by one lookup instead of 27.
+    let mut copies: FastHashMap<[u32; 3], u32> = fast_map_with_capacity(positions.len());
     let mut next: Vec<u32> = Vec::new();
     let mut welded: Vec<Vec3> = Vec::new();
     let mut remap = Vec::with_capacity(positions.len());
-    // Points whose cells do not fit an i64: there one float step is far larger than the
-    // tolerance, so only identical points can weld. Keyed by their bits, not crammed into
-    // the outermost cells, where a long chain would make welding quadratic.
-    let mut huge: FastHashMap<[u32; 3], u32> = FastHashMap::default();
     for &p in positions {
-        let cell = (p * inv_cell).floor();
-        if cell.abs().max_element() >= 4.0e18 {
-            let q = p + Vec3::ZERO; // -0.0 + 0.0 = +0.0
-            let id = *huge
-                .entry([q.x.to_bits(), q.y.to_bits(), q.z.to_bits()])
-                .or_insert_with(|| {
-                    welded.push(p);
-                    next.push(NONE);
-                    (welded.len() - 1) as u32
-                });
+        let q = p + Vec3::ZERO; // -0.0 + 0.0 = +0.0
+        let bits = [q.x.to_bits(), q.y.to_bits(), q.z.to_bits()];
+        if let Some(&id) = copies.get(&bits) {
             remap.push(id);
             continue;
         }
-        let key = [cell.x as i64, cell.y as i64, cell.z as i64];
-        let mut found = NONE;
-        'search: for dx in -1..=1i64 {
-            for dy in -1..=1i64 {
-                for dz in -1..=1i64 {
-                    let k = [
-                        key[0].wrapping_add(dx),
-                        key[1].wrapping_add(dy),
-                        key[2].wrapping_add(dz),
-                    ];
-                    let mut rep = heads.get(&k).copied().unwrap_or(NONE);
-                    while rep != NONE {
-                        if welded[rep as usize].distance_squared(p) <= tolerance2 {
-                            found = rep;
-                            break 'search;
-                        }
-                        rep = next[rep as usize];
-                    }
+        let cell = (p * inv_cell).floor();
+        // Points whose cells do not fit an i64: there one float step is far larger than the
+        // tolerance, so only identical points can weld (the copies above), rather than being
+        // crammed into the outermost cells, where a long chain would make welding quadratic.
+        let found = if cell.abs().max_element() < 4.0e18 {
+            let key = [cell.x as i64, cell.y as i64, cell.z as i64];
+            match nearest_in_cells(&heads, &next, &welded, key, p, tolerance2) {
+                NONE => {
+                    let id = welded.len() as u32;
+                    welded.push(p);
+                    next.push(heads.insert(key, id).unwrap_or(NONE));
+                    id
                 }
+                rep => rep,
             }
-        }
-        if found == NONE {
-            found = welded.len() as u32;
+        } else {
             welded.push(p);
-            next.push(heads.insert(key, found).unwrap_or(NONE));
-        }
+            next.push(NONE);
+            (welded.len() - 1) as u32
+        };
+        copies.insert(bits, found);
         remap.push(found);
     }
     (welded, remap)
+}
+
+/// The first representative within the tolerance (`tolerance2`, squared) of `p` in the 27
+/// cells around `key`, or [`NONE`].
+fn nearest_in_cells(
+    heads: &FastHashMap<[i64; 3], u32>,
+    next: &[u32],
+    welded: &[Vec3],
+    key: [i64; 3],
+    p: Vec3,
+    tolerance2: f32,
+) -> u32 {
+    for dx in -1..=1i64 {
+        for dy in -1..=1i64 {
+            for dz in -1..=1i64 {
+                let k = [
+                    key[0].wrapping_add(dx),
+                    key[1].wrapping_add(dy),
+                    key[2].wrapping_add(dz),
+                ];
+                let mut rep = heads.get(&k).copied().unwrap_or(NONE);
+                while rep != NONE {
+                    if welded[rep as usize].distance_squared(p) <= tolerance2 {
+                        return rep;
+                    }
+                    rep = next[rep as usize];
+                }
+            }
+        }
+    }
+    NONE
 }
 
 #[cfg(test)]
@@ -125,6 +146,18 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Copies of one position weld to one vertex, even when a representative made between them
+    /// lies within the tolerance too (here 0.9 t on either side of the copies): the second
+    /// copy used to find the later representative first and split the vertex.
+    #[test]
+    fn copies_of_a_position_weld_to_the_same_vertex() {
+        let t = 1e-3;
+        let x = |v: f32| Vec3::new(v, 0.5, 0.5);
+        let (welded, remap) = weld(&[x(0.9 * t), x(0.0), x(-0.9 * t), x(0.0)], t);
+        assert_eq!(welded.len(), 2);
+        assert_eq!(remap[1], remap[3], "{remap:?}");
     }
 
     #[test]
