@@ -22,7 +22,8 @@ impl HalfEdgeMesh {
     ///
     /// Steps: every position must be finite and every face must have ≥ 3 in-range indices
     /// (else an error naming the culprit); vertices within `options.weld_tolerance` (at most
-    /// [`MeshOptions::MAX_RELATIVE_WELD`] of the mesh's own size) are welded; in each face, consecutive duplicate vertices are removed; faces left with
+    /// [`MeshOptions::MAX_RELATIVE_WELD`] of the mesh's own size) are welded, copies of one
+    /// position always into one vertex; in each face, consecutive duplicate vertices are removed; faces left with
     /// fewer than 3 vertices or (near) zero area are dropped and counted
     /// ([`HalfEdgeMesh::dropped_face_count`]); a face in which welding brought two vertices
     /// that are not neighbours together (a pinch) is kept as its simple loops that have area,
