@@ -87,8 +87,23 @@ mod tests {
     /// cut to the tolerance margin (no gap along the normal) the near-contacts go missing.
     #[test]
     fn every_pair_that_meets_is_a_candidate() {
+        every_pair_that_meets_is_a_candidate_at(1.0, Vec3::ZERO);
+    }
+
+    /// The same at the ends of the operating range: the box a micrometre wide at the origin,
+    /// and ten kilometres wide ten thousand kilometres from it, where a float step is a metre
+    /// and the tolerance is raised to eight of them, as the arrangement raises it.
+    #[test]
+    fn every_pair_that_meets_is_a_candidate_at_micrometres_and_far_from_the_origin() {
+        every_pair_that_meets_is_a_candidate_at(1e-6, Vec3::ZERO);
+        every_pair_that_meets_is_a_candidate_at(1e4, Vec3::new(1e7, -6e6, 3e6));
+    }
+
+    fn every_pair_that_meets_is_a_candidate_at(scale: f32, origin: Vec3) {
         let mut next = stream();
-        let (tolerance, gap) = (1e-4, 0.03);
+        let largest = (origin.abs() + Vec3::splat(scale)).max_element();
+        let tolerance = (1e-4 * scale).max(largest * 8.0 * f32::EPSILON);
+        let gap = 0.03 * scale;
         let mut polygons: Vec<Vec<Vec3>> = Vec::new();
         for i in 0..1200 {
             let centre = Vec3::new(next(), next(), next()) * 0.6;
@@ -105,7 +120,7 @@ mod tests {
             );
             let corner = |k: usize| {
                 let a = start + 2.1 * k as f32;
-                centre + 0.08 * sizes[k] * (u * a.cos() + v * a.sin())
+                origin + scale * (centre + 0.08 * sizes[k] * (u * a.cos() + v * a.sin()))
             };
             polygons.push(vec![corner(0), corner(1), corner(2)]);
         }
@@ -128,11 +143,14 @@ mod tests {
                     met[usize::from(matches!(outcome.meeting, Some(Meeting::NearContact)))] += 1;
                     assert!(
                         partners.binary_search(&(m as u32)).is_ok(),
-                        "faces {n} and {m} meet but are not candidates"
+                        "scale {scale}, origin {origin}: faces {n} and {m} meet but are not candidates"
                     );
                 }
             }
         }
-        assert!(met[0] > 100 && met[1] > 100, "too few meetings to test: {met:?}");
+        assert!(
+            met[0] > 100 && met[1] > 100,
+            "scale {scale}, origin {origin}: too few meetings to test: {met:?}"
+        );
     }
 }
