@@ -161,6 +161,12 @@ impl PieceIndex {
         Some(PartId(PIECES | index))
     }
 
+    /// Frees the room the lists grew into: the index lives as long as the scene.
+    pub(crate) fn shrink_to_fit(&mut self) {
+        self.lists.shrink_to_fit();
+        self.triangles.shrink_to_fit();
+    }
+
     /// The part of the piece of list `list` (a record's part without [`PIECES`]) that
     /// contains `p` (the larger, on an edge two share; `p` lies in the face's plane), else the
     /// nearest; `None` when part of the face was dropped ([`Coverage::Dropped`]) and `p` lies

@@ -120,19 +120,31 @@ impl Contact {
 
         // One rebuilt mesh per original mesh, holding that mesh's pieces.
         let mesh_count = scene.meshes().len();
-        let mut positions: Vec<Vec<Vec3>> = vec![Vec::new(); mesh_count];
-        let mut polygons: Vec<Vec<Vec<u32>>> = vec![Vec::new(); mesh_count];
-        let mut face_surfaces: Vec<Vec<Surface>> = vec![Vec::new(); mesh_count];
-        let mut piece_faces: Vec<Vec<FaceId>> = vec![Vec::new(); mesh_count];
-        let mut piece_index: Vec<Vec<usize>> = vec![Vec::new(); mesh_count];
-        let mut piece_sources: Vec<Vec<SourceFace>> = vec![Vec::new(); mesh_count];
+        // Each mesh's vectors are sized exactly first (doubling growth would leave up to half
+        // of them unused at the split's peak).
+        let mut sizes = vec![(0usize, 0usize); mesh_count];
+        for (piece, &source) in split.polygons.iter().zip(&split.source) {
+            let size = &mut sizes[faces.mesh_of[source]];
+            *size = (size.0 + piece.len(), size.1 + 1);
+        }
+        fn with_pieces<T>(sizes: &[(usize, usize)], extra: usize) -> Vec<Vec<T>> {
+            sizes.iter().map(|s| Vec::with_capacity(s.1 + extra)).collect()
+        }
+        let mut positions: Vec<Vec<Vec3>> = sizes.iter().map(|s| Vec::with_capacity(s.0)).collect();
+        let mut starts: Vec<Vec<usize>> = with_pieces(&sizes, 1);
+        for s in &mut starts {
+            s.push(0);
+        }
+        let mut face_surfaces: Vec<Vec<Surface>> = with_pieces(&sizes, 0);
+        let mut piece_faces: Vec<Vec<FaceId>> = with_pieces(&sizes, 0);
+        let mut piece_index: Vec<Vec<usize>> = with_pieces(&sizes, 0);
+        let mut piece_sources: Vec<Vec<SourceFace>> = with_pieces(&sizes, 0);
         // Each piece is freed once copied, so the pieces are not held twice.
         let pieces = std::mem::take(&mut split.polygons);
         for (index, (piece, &source)) in pieces.into_iter().zip(&split.source).enumerate() {
             let m = faces.mesh_of[source];
-            let start = positions[m].len() as u32;
             positions[m].extend_from_slice(&piece);
-            polygons[m].push((start..start + piece.len() as u32).collect());
+            starts[m].push(positions[m].len());
             face_surfaces[m].push(faces.surfaces[source]);
             piece_faces[m].push(faces.face_of[source]);
             piece_index[m].push(index);
@@ -158,18 +170,18 @@ impl Contact {
             .into_builder_without_meshes()
             .mesh_options(weld)
             .defer_ray_triangles();
+        drop(piece_faces);
         let mut built_meshes = Vec::new();
-        for (m, shading) in shading.into_iter().enumerate() {
-            if !polygons[m].is_empty() {
-                builder =
-                    builder.mesh_per_face_shaded(&positions[m], &polygons[m], &face_surfaces[m], shading);
+        let meshes = positions.into_iter().zip(starts).zip(face_surfaces).zip(shading);
+        for (m, (((positions, starts), surfaces), shading)) in meshes.enumerate() {
+            if !surfaces.is_empty() {
+                // The builder takes the pieces over: they are held once while it builds.
+                builder = builder.mesh_of_listed_polygons(positions, starts, surfaces, shading);
                 built_meshes.push(m);
             }
         }
         let mut rebuilt = builder.build()?;
-        // The pieces' copies are the rebuilt scene's now: freed before the ray structure's
-        // tables are made, so the peak holds one of them.
-        drop((positions, polygons, face_surfaces, piece_faces, faces));
+        drop(faces);
         let mut sealed_parts = vec![false; rebuilt.part_count()];
         let mut source_faces = vec![None; rebuilt.part_count()];
         for (mesh, &m) in rebuilt.meshes().iter().zip(&built_meshes) {

@@ -124,16 +124,21 @@ impl SceneBuilder {
         self
     }
 
-    /// [`Self::mesh_per_face`] with the vertex attributes `shading` (already made for these
-    /// faces: see `SceneMesh::shading_for_pieces`).
-    pub(crate) fn mesh_per_face_shaded<F: AsRef<[u32]>>(
+    /// A mesh of polygons whose vertices are listed one polygon after another, each its own
+    /// (polygon `f` is `positions[starts[f]..starts[f + 1]]`, `starts` rising from 0 to
+    /// `positions.len()`), with one surface per polygon and the vertex attributes `shading`
+    /// (already made for these polygons: see `SceneMesh::shading_for_pieces`). Takes the
+    /// vectors without copying them: the contact split hands over its pieces this way, so
+    /// that they are not held twice while the scene is built.
+    pub(crate) fn mesh_of_listed_polygons(
         mut self,
-        positions: &[Vec3],
-        faces: &[F],
-        surfaces: &[Surface],
+        positions: Vec<Vec3>,
+        starts: Vec<usize>,
+        surfaces: Vec<Surface>,
         shading: Option<Box<MeshShading>>,
     ) -> Self {
-        let mut input = MeshInput::new(positions, faces, FaceSurfaces::PerFace(surfaces.to_vec()));
+        let indices = (0..positions.len() as u32).collect();
+        let mut input = MeshInput::from_flat(positions, indices, starts, FaceSurfaces::PerFace(surfaces));
         input.shading = shading;
         self.meshes.push(input);
         self

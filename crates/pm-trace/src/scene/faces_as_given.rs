@@ -13,10 +13,9 @@ use glam::Vec3;
 use std::sync::Arc;
 
 impl Scene {
-    /// Each mesh face's triangles (the fan of its polygon, as the ray queries take them) with
-    /// the face's part and surface, mesh by mesh.
-    pub(crate) fn mesh_triangles(&self) -> Vec<([Vec3; 3], PartSurface)> {
-        let mut out = Vec::new();
+    /// Calls `visit` with each mesh face's triangles (the fan of its polygon, as the ray
+    /// queries take them) and the face's part and surface, mesh by mesh.
+    fn for_each_mesh_triangle(&self, mut visit: impl FnMut([Vec3; 3], PartSurface)) {
         let mut polygon = Vec::new();
         for mesh in &self.meshes {
             for face in mesh.mesh.faces() {
@@ -25,13 +24,23 @@ impl Scene {
                 polygon.clear();
                 polygon.extend(mesh.mesh.face_polygon(face));
                 for i in 1..polygon.len().saturating_sub(1) {
-                    out.push((
+                    visit(
                         [polygon[0], polygon[i], polygon[i + 1]],
                         PartSurface { part, surface },
-                    ));
+                    );
                 }
             }
         }
+    }
+
+    /// The mesh triangles `keep` gives an entry for, as it gives them, in a vector of exactly
+    /// their number (counted first: these tables are large, and doubling growth would hold up
+    /// to twice their size at the split's peak).
+    fn collect_mesh_triangles<T>(&self, keep: impl Fn([Vec3; 3], PartSurface) -> Option<T>) -> Vec<T> {
+        let mut count = 0;
+        self.for_each_mesh_triangle(|v, part| count += usize::from(keep(v, part).is_some()));
+        let mut out = Vec::with_capacity(count);
+        self.for_each_mesh_triangle(|v, part| out.extend(keep(v, part)));
         out
     }
 
@@ -50,12 +59,14 @@ impl Scene {
         tolerance: f32,
     ) {
         // The pieces' triangles, grouped by their face (stable: in part order within one).
-        let mut pieces: Vec<(SourceFace, [Vec3; 3], PartSurface)> = self
-            .mesh_triangles()
-            .into_iter()
-            .filter_map(|(v, part)| Some((sources.get(part.part.0 as usize).copied().flatten()?, v, part)))
-            .collect();
-        pieces.sort_by_key(|&(face, _, _)| face);
+        let mut pieces: Vec<(SourceFace, [Vec3; 3], PartSurface)> = self.collect_mesh_triangles(|v, part| {
+            Some((sources.get(part.part.0 as usize).copied().flatten()?, v, part))
+        });
+        // Sorted through their indices (a stable sort of the triangles themselves would hold
+        // half as many again in its buffer).
+        let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
+        order.sort_by_key(|&i| pieces[i as usize].0);
+        gather_in_place(&mut pieces, order);
         // A point rounded off a piece by the scene's own rounding still lies on it, where that
         // is coarser than the partition's tolerance (far from the origin).
         let mut index = PieceIndex::new(tolerance.max(4.0 * self.epsilon()));
@@ -76,16 +87,34 @@ impl Scene {
             }
             start = end;
         }
+        index.shrink_to_fit();
         self.bvh = Arc::new(self.bvh.with_triangles(triangles, parts, index));
     }
 
     /// Each mesh triangle of this scene with the face the user gave it belongs to
     /// ([`Scene::source_face`]).
     pub(crate) fn mesh_triangle_sources(&self) -> Vec<([Vec3; 3], SourceFace)> {
-        self.mesh_triangles()
-            .into_iter()
-            .filter_map(|(v, part)| Some((v, self.source_face(PartId(part.part.0))?)))
-            .collect()
+        self.collect_mesh_triangles(|v, part| Some((v, self.source_face(PartId(part.part.0))?)))
+    }
+}
+
+/// Reorders `items` so that item `i` becomes the one at `order[i]` (`order` a permutation of
+/// the indices), following the permutation's cycles without a second copy of the items.
+fn gather_in_place<T>(items: &mut [T], mut order: Vec<u32>) {
+    debug_assert_eq!(items.len(), order.len());
+    const DONE: u32 = u32::MAX;
+    for start in 0..items.len() {
+        let mut i = start;
+        // Each step moves one item into its place, so a cycle ends within `items.len()` steps.
+        while order[i] != DONE {
+            let j = order[i] as usize;
+            order[i] = DONE;
+            if j == start {
+                break;
+            }
+            items.swap(i, j);
+            i = j;
+        }
     }
 }
 
@@ -133,4 +162,24 @@ fn face_part(
             part: list,
             surface: first.surface,
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::gather_in_place;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Against the copy it replaces: item `i` becomes the one at `order[i]`.
+        #[test]
+        fn gather_in_place_matches_a_gathering_copy(keys in proptest::collection::vec(0u32..1000, 0..200)) {
+            let items: Vec<(u32, usize)> = keys.iter().copied().zip(0..).collect();
+            let mut order: Vec<u32> = (0..items.len() as u32).collect();
+            order.sort_by_key(|&i| items[i as usize].0);
+            let copied: Vec<(u32, usize)> = order.iter().map(|&i| items[i as usize]).collect();
+            let mut in_place = items.clone();
+            gather_in_place(&mut in_place, order);
+            prop_assert_eq!(in_place, copied);
+        }
+    }
 }

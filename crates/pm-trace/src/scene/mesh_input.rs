@@ -77,6 +77,45 @@ impl MeshInput {
         }
     }
 
+    /// A mesh whose faces are already flat (face `f` is `indices[starts[f]..starts[f + 1]]`,
+    /// `starts` beginning at 0 and rising to `indices.len()`), taken without a copy. The same
+    /// bounds as [`MeshInput::new`]: past [`MAX_SCENE_TRIANGLES`] no face is kept, else faces
+    /// up to the first one with fewer than 3 vertices.
+    pub(super) fn from_flat(
+        positions: Vec<Vec3>,
+        mut indices: Vec<u32>,
+        mut starts: Vec<usize>,
+        surfaces: FaceSurfaces,
+    ) -> Self {
+        debug_assert!(starts.first() == Some(&0) && starts.last() == Some(&indices.len()));
+        let face_count = starts.len().saturating_sub(1);
+        let triangle_count = starts
+            .windows(2)
+            .fold(0usize, |n, w| n.saturating_add((w[1] - w[0]).saturating_sub(2)));
+        let kept = if triangle_count > MAX_SCENE_TRIANGLES {
+            0
+        } else {
+            starts
+                .windows(2)
+                .position(|w| w[1] - w[0] < 3)
+                .map_or(face_count, |short| short + 1)
+        };
+        starts.truncate(kept + 1);
+        if starts.is_empty() {
+            starts.push(0);
+        }
+        indices.truncate(starts[kept.min(starts.len() - 1)]);
+        MeshInput {
+            positions,
+            indices,
+            starts,
+            face_count,
+            triangle_count,
+            surfaces,
+            shading: None,
+        }
+    }
+
     pub(super) fn face_count(&self) -> usize {
         self.face_count
     }
