@@ -13,9 +13,9 @@ use glam::Vec3;
 use std::sync::Arc;
 
 impl Scene {
-    /// Calls `visit` with each mesh face's triangles (the fan of its polygon, as the ray
-    /// queries take them) and the face's part and surface, mesh by mesh.
-    fn for_each_mesh_triangle(&self, mut visit: impl FnMut([Vec3; 3], PartSurface)) {
+    /// Calls `visit` with each mesh face's polygon and the face's part and surface, mesh by
+    /// mesh.
+    fn for_each_mesh_polygon(&self, mut visit: impl FnMut(&[Vec3], PartSurface)) {
         let mut polygon = Vec::new();
         for mesh in &self.meshes {
             for face in mesh.mesh.faces() {
@@ -23,14 +23,19 @@ impl Scene {
                 let surface = self.part_surface_ids[part.0 as usize];
                 polygon.clear();
                 polygon.extend(mesh.mesh.face_polygon(face));
-                for i in 1..polygon.len().saturating_sub(1) {
-                    visit(
-                        [polygon[0], polygon[i], polygon[i + 1]],
-                        PartSurface { part, surface },
-                    );
-                }
+                visit(&polygon, PartSurface { part, surface });
             }
         }
+    }
+
+    /// Calls `visit` with each mesh face's triangles (the fan of its polygon, as the ray
+    /// queries take them) and the face's part and surface, mesh by mesh.
+    fn for_each_mesh_triangle(&self, mut visit: impl FnMut([Vec3; 3], PartSurface)) {
+        self.for_each_mesh_polygon(|polygon, part| {
+            for i in 1..polygon.len().saturating_sub(1) {
+                visit([polygon[0], polygon[i], polygon[i + 1]], part);
+            }
+        });
     }
 
     /// The mesh triangles `keep` gives an entry for, as it gives them, in a vector of exactly
@@ -58,15 +63,7 @@ impl Scene {
         sources: &[Option<SourceFace>],
         tolerance: f32,
     ) {
-        // The pieces' triangles, grouped by their face (stable: in part order within one).
-        let mut pieces: Vec<(SourceFace, [Vec3; 3], PartSurface)> = self.collect_mesh_triangles(|v, part| {
-            Some((sources.get(part.part.0 as usize).copied().flatten()?, v, part))
-        });
-        // Sorted through their indices (a stable sort of the triangles themselves would hold
-        // half as many again in its buffer).
-        let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
-        order.sort_by_key(|&i| pieces[i as usize].0);
-        gather_in_place(&mut pieces, order);
+        let pieces = SourcePolygons::collect(self, sources);
         // A point rounded off a piece by the scene's own rounding still lies on it, where that
         // is coarser than the partition's tolerance (far from the origin).
         let mut index = PieceIndex::new(tolerance.max(4.0 * self.epsilon()));
@@ -79,9 +76,9 @@ impl Scene {
             let face = original[start].1;
             let end = start + original[start..].iter().take_while(|&&(_, f)| f == face).count();
             let run = &original[start..end];
-            let from = pieces.partition_point(|&(f, _, _)| f < face);
-            let to = pieces.partition_point(|&(f, _, _)| f <= face);
-            if let Some(part) = face_part(run, &pieces[from..to], &mut index) {
+            let from = pieces.outlines.partition_point(|o| o.face < face);
+            let to = pieces.outlines.partition_point(|o| o.face <= face);
+            if let Some(part) = face_part(run, &pieces, from..to, &mut index) {
                 triangles.extend(run.iter().map(|&(v, _)| v));
                 parts.extend(std::iter::repeat_n(part, run.len()));
             }
@@ -98,23 +95,58 @@ impl Scene {
     }
 }
 
-/// Reorders `items` so that item `i` becomes the one at `order[i]` (`order` a permutation of
-/// the indices), following the permutation's cycles without a second copy of the items.
-fn gather_in_place<T>(items: &mut [T], mut order: Vec<u32>) {
-    debug_assert_eq!(items.len(), order.len());
-    const DONE: u32 = u32::MAX;
-    for start in 0..items.len() {
-        let mut i = start;
-        // Each step moves one item into its place, so a cycle ends within `items.len()` steps.
-        while order[i] != DONE {
-            let j = order[i] as usize;
-            order[i] = DONE;
-            if j == start {
-                break;
+/// One mesh face of a rebuilt scene: the face as given it is a piece of, its outline's range
+/// in [`SourcePolygons::vertices`], and its part.
+#[derive(Clone, Copy, Debug)]
+struct PieceOutline {
+    face: SourceFace,
+    start: usize,
+    end: usize,
+    part: PartSurface,
+}
+
+/// A rebuilt scene's mesh faces (the pieces), grouped by the face as given they are pieces of
+/// (stable: in mesh order within one), their outlines in one vertex table.
+struct SourcePolygons {
+    vertices: Vec<Vec3>,
+    outlines: Vec<PieceOutline>,
+}
+
+impl SourcePolygons {
+    /// The pieces of `scene` whose part `p` has a face as given `sources[p]`, in tables of
+    /// exactly their size (counted first: they are large, and doubling growth would hold up to
+    /// twice their size at the split's peak).
+    fn collect(scene: &Scene, sources: &[Option<SourceFace>]) -> Self {
+        let source = |part: PartSurface| sources.get(part.part.0 as usize).copied().flatten();
+        let (mut vertex_count, mut outline_count) = (0, 0);
+        scene.for_each_mesh_polygon(|polygon, part| {
+            if polygon.len() >= 3 && source(part).is_some() {
+                vertex_count += polygon.len();
+                outline_count += 1;
             }
-            items.swap(i, j);
-            i = j;
-        }
+        });
+        let mut vertices = Vec::with_capacity(vertex_count);
+        let mut outlines = Vec::with_capacity(outline_count);
+        scene.for_each_mesh_polygon(|polygon, part| {
+            let Some(face) = source(part).filter(|_| polygon.len() >= 3) else {
+                return;
+            };
+            let start = vertices.len();
+            vertices.extend_from_slice(polygon);
+            outlines.push(PieceOutline {
+                face,
+                start,
+                end: vertices.len(),
+                part,
+            });
+        });
+        outlines.sort_by_key(|o| o.face);
+        SourcePolygons { vertices, outlines }
+    }
+
+    /// The outline of `piece`.
+    fn outline(&self, piece: &PieceOutline) -> &[Vec3] {
+        &self.vertices[piece.start..piece.end]
     }
 }
 
@@ -128,14 +160,24 @@ const COVERED: f64 = 1e-4;
 /// dropped (a ray passes there), `None` when nothing of it is left.
 fn face_part(
     run: &[([Vec3; 3], SourceFace)],
-    pieces: &[(SourceFace, [Vec3; 3], PartSurface)],
+    pieces: &SourcePolygons,
+    range: std::ops::Range<usize>,
     index: &mut PieceIndex,
 ) -> Option<PartSurface> {
-    let &(_, _, first) = pieces.first()?;
+    let outlines = &pieces.outlines[range];
+    let first = outlines.first()?.part;
     let area = |v: &[Vec3; 3]| f64::from((v[1] - v[0]).cross(v[2] - v[0]).length()) * 0.5;
     let face_area: f64 = run.iter().map(|(v, _)| area(v)).sum();
-    let piece_area: f64 = pieces.iter().map(|(_, v, _)| area(v)).sum();
-    let one_part = pieces.iter().all(|&(_, _, p)| p.part == first.part);
+    // Over the outlines' fan triangles in order, as the rays take them.
+    let piece_area: f64 = outlines
+        .iter()
+        .flat_map(|o| {
+            let v = pieces.outline(o);
+            (1..v.len() - 1).map(move |i| [v[0], v[i], v[i + 1]])
+        })
+        .map(|v| area(&v))
+        .sum();
+    let one_part = outlines.iter().all(|o| o.part.part == first.part);
     let coverage = if piece_area >= face_area * (1.0 - COVERED) {
         Coverage::Whole
     } else {
@@ -157,29 +199,13 @@ fn face_part(
         })
         .try_normalize()?;
     index
-        .push(normal, coverage, pieces.iter().map(|&(_, v, p)| (v, p)))
+        .push(
+            normal,
+            coverage,
+            outlines.iter().map(|o| (pieces.outline(o), o.part)),
+        )
         .map(|list| PartSurface {
             part: list,
             surface: first.surface,
         })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::gather_in_place;
-    use proptest::prelude::*;
-
-    proptest! {
-        /// Against the copy it replaces: item `i` becomes the one at `order[i]`.
-        #[test]
-        fn gather_in_place_matches_a_gathering_copy(keys in proptest::collection::vec(0u32..1000, 0..200)) {
-            let items: Vec<(u32, usize)> = keys.iter().copied().zip(0..).collect();
-            let mut order: Vec<u32> = (0..items.len() as u32).collect();
-            order.sort_by_key(|&i| items[i as usize].0);
-            let copied: Vec<(u32, usize)> = order.iter().map(|&i| items[i as usize]).collect();
-            let mut in_place = items.clone();
-            gather_in_place(&mut in_place, order);
-            prop_assert_eq!(in_place, copied);
-        }
-    }
 }
