@@ -50,7 +50,7 @@ fn split_rooms_maps_merge_to_one_polygon_per_wall_with_the_same_area_in_any_volu
             .wrapping_add(1_442_695_040_888_963_407);
         (state >> 40) as f32 / (1u64 << 24) as f32
     };
-    for (m, (a, b)) in merged.maps().iter().zip(per_face.maps()).enumerate() {
+    for (m, (a, b)) in merged.iter().zip(per_face.iter()).enumerate() {
         let (a_set, b_set) = (a.geometry(), b.geometry());
         assert_eq!(b_set.len(), 100, "map {m}: one wall of 10 × 10 quads");
         assert_eq!(a_set.len(), 1, "map {m}: the wall merges to one polygon");

@@ -335,7 +335,7 @@ fn bad_final_gather_settings_are_typed_errors() {
     }
     // The cache built for the render: where none of the photons stored became a point, the
     // one-shot renderer refuses rather than draw the image without its indirect light.
-    let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    let stored: usize = maps.iter().map(|m| m.tree().len()).sum();
     let sparse = RenderSettings {
         photons: 1_000,
         final_gather: FinalGatherOptions {

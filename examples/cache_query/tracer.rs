@@ -172,9 +172,7 @@ impl<E: Estimator> CacheTracer<'_, E> {
         let Some(map) = self.cache.map_of(hit.part) else {
             return Vec3::ZERO;
         };
-        let (Some(tree), Some(photon_map)) =
-            (self.cache.caustic_tree(map), self.maps.maps().get(map as usize))
-        else {
+        let (Some(tree), Some(photon_map)) = (self.cache.caustic_tree(map), self.maps.get(map)) else {
             return Vec3::ZERO;
         };
         let at = SurfacePoint {

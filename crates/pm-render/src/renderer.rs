@@ -53,7 +53,7 @@ impl PhotonCache {
     /// `k`, and the irradiance cache's points and bytes (no timings).
     pub fn record_figures(&self, k: usize, stats: &mut RenderStats) {
         stats.photons_emitted = self.photons_emitted;
-        stats.photons_stored = self.maps.maps().iter().map(|m| m.tree().len() as u64).sum();
+        stats.photons_stored = self.maps.iter().map(|m| m.tree().len() as u64).sum();
         stats.near_light_fraction = self.near_light_fraction;
         stats.map_count = self.maps.len() as u32;
         stats.photon_channels_below_range = self.maps.channels_below_range();
@@ -256,7 +256,7 @@ impl<E: Estimator> Renderer<E> {
         .without_photons();
         // The one-shot gather reads nothing else: with no point (every photon stored was
         // set aside as an estimate's), its image would silently lose the indirect light.
-        let stored: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+        let stored: usize = maps.iter().map(|m| m.tree().len()).sum();
         if cache.is_empty() && stored > 0 {
             return Err(RenderError::BadFinalGather(format!(
                 "no cache point among the {stored} photons stored (one in {} was asked for): \

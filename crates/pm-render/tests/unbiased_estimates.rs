@@ -224,7 +224,7 @@ fn cache_lookups_average_to_the_exact_radiance() {
         .map(|seed| {
             let maps = furnace_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
-            let trees: Vec<_> = maps.maps().iter().map(|m| m.tree()).collect();
+            let trees: Vec<_> = maps.trees().iter().collect();
             let counting_points = RadianceCache::build_with(
                 &scene,
                 &trees,
@@ -282,7 +282,7 @@ fn a_cache_point_in_every_photon_is_refused_and_the_sparsest_cache_is_empty() {
     }
     // The other end: one point in 2 holds about half the photons; one in u32::MAX holds
     // none (an empty cache answers nothing), with the others all kept to estimate from.
-    let photons: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    let photons: usize = maps.iter().map(|m| m.tree().len()).sum();
     let half = RadianceCache::build(&scene, &maps, &GeometryCube, &options, 2).unwrap();
     assert!(
         half.len().abs_diff(photons / 2) < photons / 10,
@@ -292,7 +292,7 @@ fn a_cache_point_in_every_photon_is_refused_and_the_sparsest_cache_is_empty() {
     assert_eq!(half.set_aside(), 2.0);
     let none = RadianceCache::build(&scene, &maps, &GeometryCube, &options, u32::MAX).unwrap();
     assert!(none.is_empty());
-    let kept: usize = (0..maps.maps().len() as u32)
+    let kept: usize = (0..maps.len() as u32)
         .filter_map(|m| none.photons(m))
         .map(|t| t.len())
         .sum();
@@ -319,7 +319,7 @@ fn fresh_estimates_where_no_point_is_near_use_the_other_photons() {
             let maps = furnace_maps(&scene, 20_000, seed);
             let cache = RadianceCache::build(&scene, &maps, &Disc, &options, every).unwrap();
             // About 2 photons (one cache point) per disc of this radius on the sphere's 4π m².
-            let photons = maps.maps().iter().map(|m| m.tree().len()).sum::<usize>() as f32;
+            let photons = maps.iter().map(|m| m.tree().len()).sum::<usize>() as f32;
             let radius = (2.0 * 4.0 * PI / photons / PI).sqrt();
             let mut rng = Rand(seed + 7);
             let (mut a, mut b, mut n) = (0.0, 0.0, 0);
@@ -403,7 +403,7 @@ fn check_power_kept(
             let maps = furnace_maps(scene, paths, seed);
             let cache = RadianceCache::build(scene, &maps, &Disc, options, 4).unwrap();
             let (mut kept, mut whole) = (0.0, 0.0);
-            for (m, map) in maps.maps().iter().enumerate() {
+            for (m, map) in maps.iter().enumerate() {
                 whole += power(map.tree());
                 kept += power(cache.photons(m as u32).unwrap());
             }

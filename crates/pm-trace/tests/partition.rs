@@ -163,10 +163,7 @@ fn photons_land_in_the_map_of_the_surface_they_hit_in_every_built_in_scene() {
             let built = PhotonMaps::build(&scene, &maps, traced).unwrap();
             built.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
             assert_eq!(built.len(), maps.map_count() as usize);
-            assert_eq!(
-                built.maps().iter().map(|m| m.tree().len() as u64).sum::<u64>(),
-                stored
-            );
+            assert_eq!(built.iter().map(|m| m.tree().len() as u64).sum::<u64>(), stored);
             // Every map holds its parts' polygons: the geometry estimator needs them.
             for (m, parts) in maps.parts_per_map().iter().enumerate() {
                 let mut area = 0.0;

@@ -58,7 +58,7 @@ impl<E: FixedVolumeEstimator> Renderer<E> {
             chosen.settings().validate()?;
             stats.trace = start.elapsed();
             stats.photons_emitted = u64::from(report.photons);
-            stats.photons_stored = maps.maps().iter().map(|m| m.tree().len() as u64).sum();
+            stats.photons_stored = maps.iter().map(|m| m.tree().len() as u64).sum();
             stats.near_light_fraction = near_light;
             stats.map_count = assignment.map_count();
             stats.photon_channels_below_range = maps.channels_below_range();

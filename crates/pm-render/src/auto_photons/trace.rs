@@ -118,10 +118,10 @@ fn choose_probes<E: FixedVolumeEstimator>(
     estimator: &E,
     options: &EstimatorOptions,
 ) -> Vec<Probe> {
-    let total: usize = maps.maps().iter().map(|m| m.tree().len()).sum();
+    let total: usize = maps.iter().map(|m| m.tree().len()).sum();
     let stride = (total / count as usize).max(1);
     let mut probes = Vec::new();
-    for (m, map) in maps.maps().iter().enumerate() {
+    for (m, map) in maps.iter().enumerate() {
         let view = MapView {
             tree: map.tree(),
             polygons: map.geometry(),

@@ -121,7 +121,7 @@ impl RadianceCache {
             leave_out_boundary: true,
             ..*options
         };
-        let trees: Vec<&PhotonTree> = maps.maps().iter().map(|m| m.tree()).collect();
+        let trees: Vec<&PhotonTree> = maps.trees().iter().collect();
         Self::build_with(
             scene,
             &trees,
@@ -232,7 +232,7 @@ impl RadianceCache {
                 maps.len()
             )));
         }
-        let trees: Vec<&PhotonTree> = maps.maps().iter().map(|m| m.tree()).collect();
+        let trees: Vec<&PhotonTree> = maps.trees().iter().collect();
         Ok(RadianceCache {
             points,
             map_of_part: map_of_parts(maps.assignment()),

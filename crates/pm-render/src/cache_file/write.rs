@@ -19,7 +19,7 @@ pub(crate) fn payload(cache: &PhotonCache, identity: &CacheIdentity) -> Vec<u8> 
     put_u64(&mut out, cache.photons_emitted);
     out.extend_from_slice(&cache.near_light_fraction.to_le_bytes());
     put_u32(&mut out, cache.maps.len() as u32);
-    for map in cache.maps.maps() {
+    for map in cache.maps.iter() {
         put_tree(&mut out, map.tree());
     }
     match &cache.radiance {

@@ -329,7 +329,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             options.max_distance,
             |point, scratch| {
                 let map = point.map;
-                let Some(pilot_map) = pilot.maps.maps().get(map) else {
+                let Some(pilot_map) = pilot.maps.get(map as u32) else {
                     return Vec3::ZERO;
                 };
                 let Some(extent) = pilot.extent(map, point.at.position, options, scratch) else {

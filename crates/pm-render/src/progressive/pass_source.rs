@@ -67,7 +67,7 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
         weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        let (Some(tree), Some(pilot)) = (tree, self.pilot.maps.maps().get(map_id as usize)) else {
+        let (Some(tree), Some(pilot)) = (tree, self.pilot.maps.get(map_id)) else {
             return Vec3::ZERO;
         };
         let at = SurfacePoint {

@@ -47,10 +47,9 @@ impl Pilot {
         estimator: &E,
         options: &EstimatorOptions,
     ) -> Result<Self, RenderError> {
-        let sites: Vec<Result<Sites, RenderError>> = maps
-            .maps()
-            .par_iter()
-            .enumerate()
+        let sites: Vec<Result<Sites, RenderError>> = (0..maps.len() as u32)
+            .into_par_iter()
+            .map(|m| (m as usize, maps.map(m)))
             .map(|(m, map)| {
                 let pilot = map.tree();
                 let picked = (0..pilot.len() as u32)
@@ -86,7 +85,7 @@ impl Pilot {
     /// Heap bytes of the pilot's photon trees and of the sites (trees and extents); the
     /// maps' polygons are the scene's and not counted.
     pub(super) fn heap_bytes(&self) -> usize {
-        let trees: usize = self.maps.maps().iter().map(|m| m.tree().heap_bytes()).sum();
+        let trees: usize = self.maps.iter().map(|m| m.tree().heap_bytes()).sum();
         let sites: usize = self
             .sites
             .iter()
@@ -156,7 +155,7 @@ mod tests {
         let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;
-        for (m, map) in pilot.maps.maps().iter().enumerate() {
+        for (m, map) in pilot.maps.iter().enumerate() {
             let tree = map.tree();
             let accepted: Vec<Vec3> = (0..tree.len() as u32)
                 .filter(|&i| options.kinds.accepts(tree.get(i).kind()))

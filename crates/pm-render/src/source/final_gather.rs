@@ -163,10 +163,7 @@ impl<E: Estimator> GatherReads for CacheReads<'_, E> {
 
     fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let map_id = self.maps.map_of(hit.part);
-        let (Some(tree), Some(map)) = (
-            self.cache.caustic_tree(map_id),
-            self.maps.maps().get(map_id as usize),
-        ) else {
+        let (Some(tree), Some(map)) = (self.cache.caustic_tree(map_id), self.maps.get(map_id)) else {
             return Vec3::ZERO;
         };
         let options = EstimatorOptions {

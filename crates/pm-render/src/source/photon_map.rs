@@ -38,7 +38,7 @@ pub(crate) fn map_estimate<E: Estimator + ?Sized>(
     hit: &Hit,
     scratch: &mut EstimatorScratch,
 ) -> Vec3 {
-    let Some(map) = maps.maps().get(maps.map_of(hit.part) as usize) else {
+    let Some(map) = maps.get(maps.map_of(hit.part)) else {
         return Vec3::ZERO;
     };
     let view = MapView {

@@ -23,36 +23,45 @@ pub enum MapGeometry {
     PerFace,
 }
 
-/// One photon map: its photons and its geometry.
-#[derive(Clone, Debug)]
-pub struct PhotonMap {
-    tree: PhotonTree,
-    geometry: PolygonSet,
-    bounds: Aabb,
+/// One photon map: its photons and its geometry, borrowed from its [`PhotonMaps`].
+#[derive(Clone, Copy, Debug)]
+pub struct PhotonMap<'a> {
+    tree: &'a PhotonTree,
+    geometry: &'a MapPolygons,
 }
 
-impl PhotonMap {
+impl<'a> PhotonMap<'a> {
     /// The photons.
-    pub fn tree(&self) -> &PhotonTree {
-        &self.tree
+    pub fn tree(&self) -> &'a PhotonTree {
+        self.tree
     }
 
     /// The map's polygons (mesh faces with coplanar neighbours merged, analytic parts as fine
     /// proxies), indexed.
-    pub fn geometry(&self) -> &PolygonSet {
-        &self.geometry
+    pub fn geometry(&self) -> &'a PolygonSet {
+        &self.geometry.polygons
     }
 
     /// Bounds of the map's polygons.
     pub fn bounds(&self) -> Aabb {
-        self.bounds
+        self.geometry.bounds
     }
 }
 
-/// All photon maps of a scene and the map of each part.
+/// One map's polygons and their bounds.
+#[derive(Clone, Debug)]
+struct MapPolygons {
+    polygons: PolygonSet,
+    bounds: Aabb,
+}
+
+/// All photon maps of a scene and the map of each part: the maps' photon trees and their
+/// polygons in two tables (the trees as they were built, never copied), read as
+/// [`PhotonMap`]s.
 #[derive(Clone, Debug)]
 pub struct PhotonMaps {
-    maps: Vec<PhotonMap>,
+    trees: Vec<PhotonTree>,
+    geometry: Vec<MapPolygons>,
     assignment: MapAssignment,
     geometry_kind: MapGeometry,
 }
@@ -102,7 +111,7 @@ impl PhotonMaps {
         scene: &Scene,
         assignment: &MapAssignment,
         trees: Vec<PhotonTree>,
-        geometry: MapGeometry,
+        geometry_kind: MapGeometry,
     ) -> Result<Self, MapError> {
         check_assignment(scene, assignment)?;
         if trees.len() != assignment.map_count() as usize {
@@ -113,15 +122,15 @@ impl PhotonMaps {
             .into());
         }
         let parts = assignment.parts_per_map();
-        let maps = trees
-            .into_par_iter()
-            .zip(parts.par_iter())
-            .map(|(tree, parts)| build_map(scene, tree, parts, geometry))
+        let geometry = parts
+            .par_iter()
+            .map(|parts| map_polygons(scene, parts, geometry_kind))
             .collect();
         Ok(PhotonMaps {
-            maps,
+            trees,
+            geometry,
             assignment: assignment.clone(),
-            geometry_kind: geometry,
+            geometry_kind,
         })
     }
 
@@ -138,40 +147,62 @@ impl PhotonMaps {
 
     /// Map `id`. Panics when `id` is not below [`PhotonMaps::len`], like slice indexing.
     #[inline]
-    pub fn map(&self, id: u32) -> &PhotonMap {
-        &self.maps[id as usize]
+    pub fn map(&self, id: u32) -> PhotonMap<'_> {
+        PhotonMap {
+            tree: &self.trees[id as usize],
+            geometry: &self.geometry[id as usize],
+        }
     }
 
-    /// All maps.
-    pub fn maps(&self) -> &[PhotonMap] {
-        &self.maps
+    /// Map `id`, or `None` when there is no such map.
+    #[inline]
+    pub fn get(&self, id: u32) -> Option<PhotonMap<'_>> {
+        Some(PhotonMap {
+            tree: self.trees.get(id as usize)?,
+            geometry: self.geometry.get(id as usize)?,
+        })
+    }
+
+    /// All maps, in order of their ids.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = PhotonMap<'_>> + '_ {
+        self.trees
+            .iter()
+            .zip(&self.geometry)
+            .map(|(tree, geometry)| PhotonMap { tree, geometry })
+    }
+
+    /// Every map's photon tree, in order of the maps' ids.
+    pub fn trees(&self) -> &[PhotonTree] {
+        &self.trees
     }
 
     /// Number of maps.
     pub fn len(&self) -> usize {
-        self.maps.len()
+        self.trees.len()
     }
 
     /// True when there are no maps.
     pub fn is_empty(&self) -> bool {
-        self.maps.is_empty()
+        self.trees.is_empty()
     }
 
     /// Checks every map: its kd-tree's invariants, and that every photon lies within the
     /// map's geometry bounds (grown by 1 % of their diagonal for the proxies of analytic
     /// parts), i.e. photons were stored in the map of the surface they hit.
     pub fn validate(&self) -> Result<(), MapError> {
-        if self.maps.len() != self.assignment.map_count() as usize {
+        if self.trees.len() != self.assignment.map_count() as usize || self.geometry.len() != self.trees.len()
+        {
             return Err(MapError::Invalid {
-                map: self.maps.len() as u32,
+                map: self.trees.len() as u32,
                 what: format!(
-                    "{} maps for an assignment of {}",
-                    self.maps.len(),
+                    "{} trees and {} polygon sets for an assignment of {} maps",
+                    self.trees.len(),
+                    self.geometry.len(),
                     self.assignment.map_count()
                 ),
             });
         }
-        for (m, map) in self.maps.iter().enumerate() {
+        for (m, map) in self.iter().enumerate() {
             let m = m as u32;
             map.tree.validate().map_err(|e| MapError::Invalid {
                 map: m,
@@ -180,8 +211,9 @@ impl PhotonMaps {
             if map.tree.is_empty() {
                 continue;
             }
-            let grow = Vec3::splat(0.01 * map.bounds.diagonal() + 1e-4);
-            let bounds = Aabb::new(map.bounds.min - grow, map.bounds.max + grow);
+            let bounds = map.bounds();
+            let grow = Vec3::splat(0.01 * bounds.diagonal() + 1e-4);
+            let bounds = Aabb::new(bounds.min - grow, bounds.max + grow);
             for i in 0..map.tree.len() as u32 {
                 let p = map.tree.get(i).position();
                 if !bounds.contains_point(p) {
@@ -200,7 +232,7 @@ impl PhotonMaps {
     /// smaller than the map's brightest photon channel. Zero in any ordinary scene; see
     /// [`PhotonTree::channels_below_range`].
     pub fn channels_below_range(&self) -> u64 {
-        self.maps.iter().map(|m| m.tree.channels_below_range()).sum()
+        self.trees.iter().map(|t| t.channels_below_range()).sum()
     }
 
     /// The assignment the maps were built with.
@@ -209,7 +241,8 @@ impl PhotonMaps {
     }
 }
 
-fn build_map(scene: &Scene, tree: PhotonTree, parts: &[PartId], kind: MapGeometry) -> PhotonMap {
+/// The polygons of a map of `parts`, stored as `kind` says.
+fn map_polygons(scene: &Scene, parts: &[PartId], kind: MapGeometry) -> MapPolygons {
     let mut geometry = PolygonSet::new();
     let bounds = match kind {
         MapGeometry::PerFace => {
@@ -238,9 +271,8 @@ fn build_map(scene: &Scene, tree: PhotonTree, parts: &[PartId], kind: MapGeometr
         }
     };
     geometry.build_index();
-    PhotonMap {
-        tree,
-        geometry,
+    MapPolygons {
+        polygons: geometry,
         bounds,
     }
 }

@@ -50,7 +50,7 @@ impl PhotonMaps {
             maps: self.len(),
             ..MapOccupancy::default()
         };
-        for map in self.maps() {
+        for map in self.iter() {
             let n = map.tree().len() as u64;
             let geometry = map.geometry();
             let area: f64 = (0..geometry.len() as u32)
@@ -100,8 +100,8 @@ mod tests {
         };
         let traced = trace_photons(scene, assignment, &options).unwrap();
         let maps = PhotonMaps::build(scene, assignment, traced).unwrap();
-        let stored: u64 = maps.maps().iter().map(|m| m.tree().len() as u64).sum();
-        let by_hand_below = |k: u64| maps.maps().iter().filter(|m| (m.tree().len() as u64) < k).count();
+        let stored: u64 = maps.iter().map(|m| m.tree().len() as u64).sum();
+        let by_hand_below = |k: u64| maps.iter().filter(|m| (m.tree().len() as u64) < k).count();
         for k in [1, 50, 1_000_000] {
             let o = maps.occupancy(k);
             assert_eq!(o.maps, maps.len());
