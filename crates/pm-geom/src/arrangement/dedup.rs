@@ -30,5 +30,7 @@ pub(super) fn dedup_segments(segments: Vec<[Vec3; 2]>, tolerance: f32) -> Vec<[V
         kept.push(out.len());
         out.push(s);
     }
+    // Kept as long as the partition's record: at the size found, not the size given.
+    out.shrink_to_fit();
     out
 }

@@ -10,6 +10,11 @@ use crate::bounds_bvh::BoundsBvh;
 use glam::Vec3;
 use rayon::prelude::*;
 
+/// Points per leaf of the cut vertices' hierarchy: each piece queries it once with its bounds
+/// and tests what it finds against each edge, so wider leaves cost little there and halve the
+/// nodes held at the split's peak (which points are found does not depend on the leaves).
+const POINT_LEAF: usize = 8;
+
 /// Pieces worked on together between two folds.
 const WAVE_PIECES: usize = 1024;
 
@@ -26,23 +31,31 @@ pub(super) fn resolve_t_junctions(
     tolerance: f32,
     budget: &mut Budget,
 ) -> Result<(), ArrangementError> {
-    let points: Vec<Vec3> = pieces
-        .iter()
-        .zip(source)
-        .filter(|(_, s)| was_cut[**s])
-        .flat_map(|(p, _)| p.iter().copied())
-        .collect();
+    let cut = || {
+        pieces
+            .iter()
+            .zip(source)
+            .filter(|(_, s)| was_cut[**s])
+            .map(|(p, _)| p)
+    };
+    // Counted first, so that the table is not grown by doubling at the split's peak.
+    let mut points: Vec<Vec3> = Vec::with_capacity(cut().map(Vec::len).sum());
+    cut().for_each(|p| points.extend_from_slice(p));
     let pad = Vec3::splat(tolerance);
-    // The padded boxes are needed to build the hierarchy only; queries remake them from the
-    // points (the same bits), so they are not held while the pieces grow.
-    let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p - pad, p + pad)).collect();
+    // The hierarchy is built over the points' padded boxes made when needed, never held as
+    // a table; queries remake them from the points (the same bits).
+    let padded = |k: u32| {
+        let p = points[k as usize];
+        Aabb::new(p - pad, p + pad)
+    };
+    let all = (0..points.len() as u32).fold(Aabb::EMPTY, |b, k| b.union(padded(k)));
+    let bvh = BoundsBvh::build_by(points.len(), padded, POINT_LEAF);
     let near = NearPoints {
-        all: boxes.iter().fold(Aabb::EMPTY, |b, &x| b.union(x)),
-        bvh: BoundsBvh::build(&boxes),
         points,
+        all,
+        bvh,
         pad,
     };
-    drop(boxes);
     for wave in pieces.chunks_mut(WAVE_PIECES) {
         // Each piece grows in place; the fold then counts the growth in order (an error
         // discards every piece, so pieces grown past the one that failed do not matter).

@@ -14,10 +14,25 @@ use glam::Vec3;
 use pm_geom::{Aabb, HalfEdgeMesh, MeshError, MeshOptions};
 use rayon::prelude::*;
 
+/// Which triangles the built scene's ray queries search.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum RayTriangles {
+    /// Its own meshes' triangles.
+    #[default]
+    Own,
+    /// None yet: the caller puts others in (the contact partition's faces as given,
+    /// `Scene::trace_faces_as_given`), so the split scene's own are never searched.
+    Deferred,
+}
+
 /// The parts as they are numbered: each part's surface id (surfaces stored once), the
 /// triangles with their part for the BVH, and the analytic shapes' primitives.
 pub(super) struct PartTable {
     count: u32,
+    /// Whether the triangles are kept for the ray queries.
+    ray_triangles: RayTriangles,
+    /// Triangles numbered, kept or not.
+    triangle_count: usize,
     pub(super) surfaces: SurfaceTable,
     pub(super) surface_ids: Vec<u32>,
     pub(super) triangles: Vec<[Vec3; 3]>,
@@ -26,9 +41,17 @@ pub(super) struct PartTable {
 }
 
 impl PartTable {
-    pub(super) fn with_capacity(parts: usize, triangles: usize) -> Self {
+    /// A table with room for `parts` parts and, when `ray_triangles` keeps them, `triangles`
+    /// triangles (a scene whose ray triangles are put in later holds none of its own).
+    pub(super) fn with_capacity(parts: usize, triangles: usize, ray_triangles: RayTriangles) -> Self {
+        let triangles = match ray_triangles {
+            RayTriangles::Own => triangles,
+            RayTriangles::Deferred => 0,
+        };
         PartTable {
             count: 0,
+            ray_triangles,
+            triangle_count: 0,
             surfaces: SurfaceTable::default(),
             surface_ids: Vec::with_capacity(parts),
             triangles: Vec::with_capacity(triangles),
@@ -53,13 +76,26 @@ impl PartTable {
         part
     }
 
+    /// Numbers the fan triangles of `polygon`, a face of `part`, and keeps them for the ray
+    /// queries when the table does.
+    fn add_fan(&mut self, polygon: &[Vec3], part: PartSurface) {
+        let fan = polygon.len().saturating_sub(2);
+        self.triangle_count += fan;
+        if self.ray_triangles == RayTriangles::Own {
+            for i in 1..=fan {
+                self.triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
+                self.triangle_parts.push(part);
+            }
+        }
+    }
+
     /// The table with its spare room (left by dropped, degenerate faces) given back; a scene
     /// without a triangle or a shape is refused.
     pub(super) fn finish(mut self) -> Result<Self, SceneError> {
         self.triangles.shrink_to_fit();
         self.triangle_parts.shrink_to_fit();
         self.surface_ids.shrink_to_fit();
-        if self.triangles.is_empty() && self.shape_prims.is_empty() {
+        if self.triangle_count == 0 && self.shape_prims.is_empty() {
             return Err(SceneError::NoGeometry);
         }
         Ok(self)
@@ -146,10 +182,7 @@ fn add_mesh(
         let part = parts.add(surface);
         polygon.clear();
         polygon.extend(mesh.face_polygon(face));
-        for i in 1..polygon.len().saturating_sub(1) {
-            parts.triangles.push([polygon[0], polygon[i], polygon[i + 1]]);
-            parts.triangle_parts.push(part);
-        }
+        parts.add_fan(&polygon, part);
     }
     out.meshes.push(SceneMesh {
         mesh,

@@ -2,7 +2,7 @@
 //! parts with surfaces and the ray-query structure.
 
 use super::Scene;
-use super::assemble::{PartTable, add_shapes, build_meshes, scene_bounds};
+use super::assemble::{PartTable, RayTriangles, add_shapes, build_meshes, scene_bounds};
 use super::checks::{check_lights, default_camera};
 use super::mesh_input::{FaceSurfaces, MAX_SCENE_TRIANGLES, MeshInput};
 use super::shading::{MeshShading, VertexAttributes};
@@ -76,17 +76,6 @@ pub struct SceneBuilder {
     pub(super) max_triangles: Option<usize>,
     pub(super) origin_offset: DVec3,
     pub(super) ray_triangles: RayTriangles,
-}
-
-/// Which triangles the built scene's ray queries search.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) enum RayTriangles {
-    /// Its own meshes' triangles.
-    #[default]
-    Own,
-    /// None yet: the caller puts others in (the contact partition's faces as given,
-    /// `Scene::trace_faces_as_given`), so the split scene's own are never searched.
-    Deferred,
 }
 
 impl std::fmt::Debug for SceneBuilder {
@@ -322,6 +311,7 @@ impl SceneBuilder {
         let mut parts = PartTable::with_capacity(
             face_count + RingSide::ALL.len() * self.shapes.len(),
             triangle_count,
+            self.ray_triangles,
         );
         let meshes = build_meshes(self.meshes, &self.mesh_options, &mut parts)?;
         let mesh_part_count = parts.count();

@@ -85,6 +85,8 @@ impl Scene {
             start = end;
         }
         index.shrink_to_fit();
+        // The pieces' outlines are in the index now: not held while the hierarchy is built.
+        drop(pieces);
         self.bvh = Arc::new(self.bvh.with_triangles(triangles, parts, index));
     }
 
