@@ -11,9 +11,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 /// Points per leaf of the cut vertices' hierarchy: each piece queries it once with its bounds
-/// and tests what it finds against each edge, so wider leaves cost little there and halve the
+/// and tests what it finds against each edge, so wide leaves cost little there and quarter the
 /// nodes held at the split's peak (which points are found does not depend on the leaves).
-const POINT_LEAF: usize = 8;
+const POINT_LEAF: usize = 16;
 
 /// Pieces worked on together between two folds.
 const WAVE_PIECES: usize = 1024;

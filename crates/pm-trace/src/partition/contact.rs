@@ -145,7 +145,7 @@ impl Contact {
             let m = faces.mesh_of[source];
             positions[m].extend_from_slice(&piece);
             starts[m].push(positions[m].len());
-            face_surfaces[m].push(faces.surfaces[source]);
+            face_surfaces[m].push(*scene.part_surface(faces.parts[source]));
             piece_faces[m].push(faces.face_of[source]);
             piece_index[m].push(index);
             piece_sources[m].push(SourceFace {
@@ -325,7 +325,8 @@ impl UnionFind {
 /// Every mesh face of a scene as a polygon, in part order, with what the split needs of it.
 struct MeshFaces {
     polygons: Vec<Vec<Vec3>>,
-    surfaces: Vec<Surface>,
+    /// The face's part (its surface is the scene's, looked up when a piece needs it).
+    parts: Vec<PartId>,
     mesh_of: Vec<usize>,
     face_of: Vec<FaceId>,
     /// The face's index in its mesh's face list as the user gave it.
@@ -335,20 +336,27 @@ struct MeshFaces {
 }
 
 fn mesh_faces(scene: &Scene) -> MeshFaces {
+    // Sized once: the tables are as long as the scene's faces, and doubling growth would hold
+    // up to twice that through the split.
+    let count: usize = scene
+        .meshes()
+        .iter()
+        .map(|m| m.half_edge_mesh().face_count())
+        .sum();
     let mut out = MeshFaces {
-        polygons: Vec::new(),
-        surfaces: Vec::new(),
-        mesh_of: Vec::new(),
-        face_of: Vec::new(),
-        user_face: Vec::new(),
-        solids: Vec::new(),
+        polygons: Vec::with_capacity(count),
+        parts: Vec::with_capacity(count),
+        mesh_of: Vec::with_capacity(count),
+        face_of: Vec::with_capacity(count),
+        user_face: Vec::with_capacity(count),
+        solids: Vec::with_capacity(count),
     };
     for (m, mesh) in scene.meshes().iter().enumerate() {
         let half_edges = mesh.half_edge_mesh();
         let closed = half_edges.boundary_edge_count() == 0 && half_edges.non_manifold_edge_count() == 0;
         for face in half_edges.faces() {
             out.polygons.push(half_edges.face_polygon(face).collect());
-            out.surfaces.push(*scene.part_surface(mesh.part_of_face(face)));
+            out.parts.push(mesh.part_of_face(face));
             out.mesh_of.push(m);
             out.face_of.push(face);
             out.user_face.push(half_edges.source_face(face) as u32);
