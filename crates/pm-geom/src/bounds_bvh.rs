@@ -41,6 +41,12 @@ impl BoundsBvh {
         Self::build_by(boxes.len(), |i| boxes[i as usize], leaf)
     }
 
+    /// As [`Self::build`] over `count` items whose boxes `box_of` gives (see
+    /// [`Self::build_by`]).
+    pub(crate) fn build_over(count: usize, box_of: impl Fn(u32) -> Aabb) -> Self {
+        Self::build_by(count, box_of, MAX_LEAF)
+    }
+
     /// As [`Self::build_with_leaves`] over `count` items whose boxes `box_of` gives, asked
     /// again each time one is needed (it must give the same box each time): for boxes made
     /// from other data (padded points), so that no table of them is held. The same hierarchy,

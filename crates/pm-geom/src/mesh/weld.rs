@@ -1,7 +1,7 @@
 //! Vertex welding through a spatial hash grid: exporters split vertices along seams, and
 //! twins can only be found once the copies are one vertex again.
 
-use crate::fast_hash::{FastHashMap, fast_map_with_capacity};
+use crate::fast_hash::FastHashMap;
 use glam::Vec3;
 
 const NONE: u32 = u32::MAX;
@@ -23,7 +23,9 @@ pub(crate) fn weld(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) 
 }
 
 fn weld_exact(positions: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
-    let mut ids: FastHashMap<[u32; 3], u32> = fast_map_with_capacity(positions.len());
+    // Grown as vertices are found, not sized by the positions: exported meshes repeat each
+    // position up to five times, and room for every one would hold four times what is used.
+    let mut ids: FastHashMap<[u32; 3], u32> = FastHashMap::default();
     let mut welded = Vec::new();
     let remap = positions
         .iter()
@@ -43,12 +45,15 @@ fn weld_within(positions: &[Vec3], tolerance: f32) -> (Vec<Vec3>, Vec<u32>) {
     let inv_cell = 1.0 / tolerance;
     let tolerance2 = tolerance * tolerance;
     // Head of each cell's chain of representatives; `next` links the chain.
-    let mut heads: FastHashMap<[i64; 3], u32> = fast_map_with_capacity(positions.len());
+    // Both maps grow as they fill, not sized by the positions: exported meshes repeat each
+    // position up to five times, and room for every one would hold four times what is used
+    // (13 MB of the contact split's peak on the obvhs kitchen).
+    let mut heads: FastHashMap<[i64; 3], u32> = FastHashMap::default();
     // The vertex of each position seen, by its bits: a copy of a position joins the vertex the
     // first copy joined (the search below could find a representative made in between, within
     // the tolerance too, and split the copies), and exported meshes repeat most positions, so
     // most points are settled by one lookup instead of 27.
-    let mut copies: FastHashMap<[u32; 3], u32> = fast_map_with_capacity(positions.len());
+    let mut copies: FastHashMap<[u32; 3], u32> = FastHashMap::default();
     let mut next: Vec<u32> = Vec::new();
     let mut welded: Vec<Vec3> = Vec::new();
     let mut remap = Vec::with_capacity(positions.len());
