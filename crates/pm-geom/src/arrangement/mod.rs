@@ -13,6 +13,8 @@
 #[cfg(test)]
 mod apart_tests;
 mod barrier;
+#[cfg(test)]
+mod bounds_tests;
 mod budget;
 mod candidates;
 #[cfg(test)]

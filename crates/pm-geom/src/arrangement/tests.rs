@@ -1,20 +1,21 @@
 //! The arrangement against brute force and closed forms: piercing faces, coplanar overlaps,
 //! near-contacts, solids, random boxes and quads (pieces tile their faces, meeting segments are
-//! edges on both sides, no piece crosses another face), and the bounds on overlapping copies.
+//! edges on both sides, no piece crosses another face); the bounds on overlapping copies are
+//! in `bounds_tests.rs`.
 
 use super::*;
 use crate::polygon_area;
 use glam::vec3;
 use proptest::prelude::*;
 
-const TOL: f32 = 1e-5;
+pub(super) const TOL: f32 = 1e-5;
 
-fn options(gap: f32) -> ArrangementOptions {
+pub(super) fn options(gap: f32) -> ArrangementOptions {
     ArrangementOptions::new(TOL, gap)
 }
 
 /// The six outward quads of the box `[lo, hi]`.
-fn box_faces(lo: Vec3, hi: Vec3) -> Vec<Vec<Vec3>> {
+pub(super) fn box_faces(lo: Vec3, hi: Vec3) -> Vec<Vec<Vec3>> {
     Aabb::new(lo, hi)
         .face_quads()
         .iter()
@@ -228,71 +229,6 @@ fn gap_below_the_tolerance_cuts_and_above_it_does_not() {
             assert_eq!(split.counts.near_contact, 1);
         }
     }
-}
-
-#[test]
-fn fifty_overlapping_triangles_end_fast_within_bounds() {
-    // Copies of one triangle, each turned a little about its centre: every pair overlaps.
-    let turned = |copies: usize| -> Vec<Vec<Vec3>> {
-        (0..copies)
-            .map(|i| {
-                let angle = i as f32 * 0.013;
-                (0..3)
-                    .map(|k| {
-                        let a = angle + k as f32 * std::f32::consts::TAU / 3.0;
-                        vec3(a.cos(), 0.0, a.sin())
-                    })
-                    .collect()
-            })
-            .collect()
-    };
-    // Twelve cut each other into slivers, and only the first copy and the parts of later ones
-    // outside all earlier ones survive.
-    let split = split_polygons_at_intersections(&turned(12), &[], &options(TOL)).unwrap();
-    assert_eq!(split.counts.coplanar_overlap, 12 * 11 / 2);
-    let total: f32 = split.polygons.iter().map(|p| polygon_area(p)).sum();
-    assert!(total < 2.0, "{total}");
-    // Fifty cut each other into hundreds of thousands (11 s of work before the limit per
-    // input polygon): refused while they are cut.
-    let input = turned(50);
-    assert!(matches!(
-        split_polygons_at_intersections(&input, &[], &options(TOL)),
-        Err(ArrangementError::TooManyPieces {
-            limit: ArrangementOptions::MIN_PIECE_LIMIT
-        })
-    ));
-    let tight = ArrangementOptions {
-        max_pieces: 1000,
-        ..options(TOL)
-    };
-    assert!(matches!(
-        split_polygons_at_intersections(&input, &[], &tight),
-        Err(ArrangementError::TooManyPieces { limit: 1000 })
-    ));
-}
-
-#[test]
-fn thousand_copies_of_a_small_mesh() {
-    // Exact copies are dropped before any pair is examined; shifted copies pass the pair bound.
-    let cube = box_faces(Vec3::ZERO, Vec3::ONE);
-    let copies: Vec<Vec<Vec3>> = (0..1000).flat_map(|_| cube.clone()).collect();
-    let split = split_polygons_at_intersections(&copies, &[], &options(TOL)).unwrap();
-    assert_eq!(split.polygons.len(), 6);
-    let shifted: Vec<Vec<Vec3>> = (0..1000)
-        .flat_map(|i| {
-            let offset = Vec3::splat(i as f32 * 1e-3);
-            cube.iter()
-                .map(move |f| f.iter().map(|p| *p + offset).collect::<Vec<Vec3>>())
-        })
-        .collect();
-    let bounded = ArrangementOptions {
-        max_pairs: 100_000,
-        ..options(TOL)
-    };
-    assert!(matches!(
-        split_polygons_at_intersections(&shifted, &[], &bounded),
-        Err(ArrangementError::TooManyPairs { limit: 100_000 })
-    ));
 }
 
 #[test]
