@@ -47,17 +47,7 @@ pub(super) struct MeshInput {
 
 impl MeshInput {
     pub(super) fn new<F: AsRef<[u32]>>(positions: &[Vec3], faces: &[F], surfaces: FaceSurfaces) -> Self {
-        let triangle_count = faces.iter().fold(0usize, |n, f| {
-            n.saturating_add(f.as_ref().len().saturating_sub(2))
-        });
-        let kept = if triangle_count > MAX_SCENE_TRIANGLES {
-            0
-        } else {
-            faces
-                .iter()
-                .position(|f| f.as_ref().len() < 3)
-                .map_or(faces.len(), |short| short + 1)
-        };
+        let (triangle_count, kept) = kept_faces(faces.iter().map(|f| f.as_ref().len()));
         let faces_kept = &faces[..kept];
         let mut starts = Vec::with_capacity(kept + 1);
         starts.push(0);
@@ -78,9 +68,8 @@ impl MeshInput {
     }
 
     /// A mesh whose faces are already flat (face `f` is `indices[starts[f]..starts[f + 1]]`,
-    /// `starts` beginning at 0 and rising to `indices.len()`), taken without a copy. The same
-    /// bounds as [`MeshInput::new`]: past [`MAX_SCENE_TRIANGLES`] no face is kept, else faces
-    /// up to the first one with fewer than 3 vertices.
+    /// `starts` beginning at 0 and rising to `indices.len()`), taken without a copy, keeping
+    /// the faces [`MeshInput::new`] would ([`kept_faces`]).
     pub(super) fn from_flat(
         positions: Vec<Vec3>,
         mut indices: Vec<u32>,
@@ -89,17 +78,7 @@ impl MeshInput {
     ) -> Self {
         debug_assert!(starts.first() == Some(&0) && starts.last() == Some(&indices.len()));
         let face_count = starts.len().saturating_sub(1);
-        let triangle_count = starts
-            .windows(2)
-            .fold(0usize, |n, w| n.saturating_add((w[1] - w[0]).saturating_sub(2)));
-        let kept = if triangle_count > MAX_SCENE_TRIANGLES {
-            0
-        } else {
-            starts
-                .windows(2)
-                .position(|w| w[1] - w[0] < 3)
-                .map_or(face_count, |short| short + 1)
-        };
+        let (triangle_count, kept) = kept_faces(starts.windows(2).map(|w| w[1] - w[0]));
         starts.truncate(kept + 1);
         if starts.is_empty() {
             starts.push(0);
@@ -132,4 +111,26 @@ impl MeshInput {
     pub(super) fn triangle_count(&self) -> usize {
         self.triangle_count
     }
+}
+
+/// The triangles faces of vertex counts `lengths` make, and how many faces a mesh input keeps:
+/// none past [`MAX_SCENE_TRIANGLES`] (the scene builder refuses the mesh by its count), else the
+/// faces up to and including the first with fewer than 3 vertices (which the mesh build then
+/// refuses, naming it). Counted from the lengths alone, so that nothing unbounded is copied
+/// before it is checked.
+fn kept_faces(lengths: impl Iterator<Item = usize> + Clone) -> (usize, usize) {
+    let triangle_count = lengths
+        .clone()
+        .fold(0usize, |n, length| n.saturating_add(length.saturating_sub(2)));
+    if triangle_count > MAX_SCENE_TRIANGLES {
+        return (triangle_count, 0);
+    }
+    let mut kept = 0;
+    for length in lengths {
+        kept += 1;
+        if length < 3 {
+            break;
+        }
+    }
+    (triangle_count, kept)
 }
