@@ -61,19 +61,20 @@ impl BoundsBvh {
         if count == 0 {
             return bvh;
         }
-        // The items are sorted into the leaves' order in place; their boxes' centres are
-        // remade from `box_of` when compared rather than held beside them (four bytes an
-        // item, not sixteen, at the split's peak).
-        let mut items: Vec<u32> = (0..count as u32).collect();
+        // The items are sorted into the leaves' order in place, each beside one coordinate of
+        // its box's centre: the one the split of the node it is in sorts by, remade from
+        // `box_of` for each node (eight bytes an item, not sixteen, at the split's peak, and
+        // one centre an item per level, not one a comparison).
+        let mut items: Vec<(f32, u32)> = (0..count as u32).map(|i| (0.0, i)).collect();
         bvh.build_node(&box_of, &mut items, 0);
-        bvh.order = items;
+        bvh.order = items.iter().map(|&(_, i)| i).collect();
         bvh
     }
 
     /// Appends the subtree over `items` (which start at `offset` in the final order) and
     /// returns its node index.
-    fn build_node(&mut self, box_of: &impl Fn(u32) -> Aabb, items: &mut [u32], offset: usize) -> u32 {
-        let bounds = items.iter().fold(Aabb::EMPTY, |b, &i| b.union(box_of(i)));
+    fn build_node(&mut self, box_of: &impl Fn(u32) -> Aabb, items: &mut [(f32, u32)], offset: usize) -> u32 {
+        let bounds = items.iter().fold(Aabb::EMPTY, |b, &(_, i)| b.union(box_of(i)));
         let index = self.nodes.len();
         self.nodes.push(Node {
             min: bounds.min,
@@ -85,10 +86,13 @@ impl BoundsBvh {
             return index as u32;
         }
         let centre = |i: u32| box_of(i).center();
-        let centroids = items.iter().fold(Aabb::EMPTY, |b, &i| b.grow(centre(i)));
+        let centroids = items.iter().fold(Aabb::EMPTY, |b, &(_, i)| b.grow(centre(i)));
         let axis = centroids.size().max_position();
+        for item in items.iter_mut() {
+            item.0 = centre(item.1)[axis];
+        }
         let mid = items.len() / 2;
-        items.select_nth_unstable_by(mid, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+        items.select_nth_unstable_by(mid, |a, b| a.0.total_cmp(&b.0));
         let (left, right) = items.split_at_mut(mid);
         self.build_node(box_of, left, offset);
         let right_index = self.build_node(box_of, right, offset + mid);

@@ -41,6 +41,11 @@ pub(super) fn resolve_t_junctions(
     // Counted first, so that the table is not grown by doubling at the split's peak.
     let mut points: Vec<Vec3> = Vec::with_capacity(cut().map(Vec::len).sum());
     cut().for_each(|p| points.extend_from_slice(p));
+    // A corner shared by several pieces is one point: kept once, each edge finds it once (what
+    // an edge gains does not change: its points are sorted and merged along it).
+    points.par_sort_unstable_by_key(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]);
+    points.dedup();
+    points.shrink_to_fit();
     let pad = Vec3::splat(tolerance);
     // The hierarchy is built over the points' padded boxes made when needed, never held as
     // a table; queries remake them from the points (the same bits).
