@@ -5,9 +5,8 @@
 //! `cargo run --release --example render -- --scene cornell-box --maps crease --estimator cube`
 
 use clap::{CommandFactory, FromArgMatches, Parser};
-use indicatif::{ProgressBar, ProgressStyle};
 use photon_maps::render::image::{check_image_size, write_atomically};
-use photon_maps::render::{EstimatorKind, Image, Progress, RenderError, RenderSettings, Renderer};
+use photon_maps::render::{EstimatorKind, Image, RenderError, RenderSettings, Renderer};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -36,6 +35,8 @@ mod progressive;
 mod report;
 #[path = "render/shard.rs"]
 mod shard;
+#[path = "render/tile_bar.rs"]
+mod tile_bar;
 // Counts heap bytes so that progressive runs can report their peak (an atomic add per
 // allocation; the render loops do not allocate once warm).
 #[path = "../tests/support/tracking_allocator.rs"]
@@ -47,6 +48,7 @@ use report::{
     Record, contacts_json, contacts_summary, json_number, json_object, json_string, origin_json,
     origin_summary, summary,
 };
+use tile_bar::TileBar;
 
 /// Photon-mapped rendering without light leaks (multiple photon maps, geometry-based area).
 #[derive(Parser, Debug)]
@@ -425,31 +427,5 @@ fn refuse_compare_conflicts(args: &Args) -> Result<(), String> {
         mode => Err(format!(
             "--compare needs a photon-map mode (photon-map or shadow-rays): in {mode} mode its four panels would not differ as the report's do"
         )),
-    }
-}
-
-/// An indicatif bar fed by the renderer's progress callbacks (hidden when stderr is no TTY).
-struct TileBar(ProgressBar);
-
-impl TileBar {
-    fn new(label: &str) -> Self {
-        let bar = ProgressBar::new(0);
-        if let Ok(style) = ProgressStyle::with_template("{msg:>24} [{bar:40}] {pos}/{len} tiles {elapsed}") {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar.set_message(label.to_owned());
-        TileBar(bar)
-    }
-}
-
-impl Progress for TileBar {
-    fn phase(&self, name: &'static str) {
-        self.0.set_message(name);
-    }
-    fn tiles_done(&self, _done: usize, total: usize) {
-        if self.0.length() != Some(total as u64) {
-            self.0.set_length(total as u64);
-        }
-        self.0.inc(1);
     }
 }
