@@ -5,7 +5,7 @@ use crate::aabb::Aabb;
 use glam::Vec3;
 
 /// Items per leaf; small leaves suit the few-polygons-per-query pattern of the estimator.
-const MAX_LEAF: usize = 4;
+pub(crate) const MAX_LEAF: usize = 4;
 /// Traversal stack depth. Median splits give depth ≤ log2(n / MAX_LEAF) + 1 < 32 for any
 /// `u32` item count, and at most one sibling per level waits on the stack.
 const STACK: usize = 64;
@@ -39,12 +39,6 @@ impl BoundsBvh {
     /// small queries of a whole set against itself (the arrangement's candidate pairs).
     pub(crate) fn build_with_leaves(boxes: &[Aabb], leaf: usize) -> Self {
         Self::build_by(boxes.len(), |i| boxes[i as usize], leaf)
-    }
-
-    /// As [`Self::build`] over `count` items whose boxes `box_of` gives (see
-    /// [`Self::build_by`]).
-    pub(crate) fn build_over(count: usize, box_of: impl Fn(u32) -> Aabb) -> Self {
-        Self::build_by(count, box_of, MAX_LEAF)
     }
 
     /// As [`Self::build_with_leaves`] over `count` items whose boxes `box_of` gives, asked
@@ -179,20 +173,24 @@ mod tests {
                 Aabb::new(c, c + Vec3::new(r(), r(), r()) * 0.5)
             })
             .collect();
-        let bvh = BoundsBvh::build(&boxes);
-        for _ in 0..200 {
-            let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
-            let mut got = Vec::new();
-            bvh.for_each_candidate(&q, |i| {
-                if boxes[i as usize].overlaps(&q) {
-                    got.push(i)
-                }
-            });
-            got.sort_unstable();
-            let want: Vec<u32> = (0..boxes.len() as u32)
-                .filter(|&i| boxes[i as usize].overlaps(&q))
-                .collect();
-            assert_eq!(got, want);
+        // Every leaf size the crate builds with (the estimator's, the broad phase's, the
+        // T-junction points'), and one item a leaf.
+        for leaf in [1, MAX_LEAF, 12, 16] {
+            let bvh = BoundsBvh::build_with_leaves(&boxes, leaf);
+            for _ in 0..200 {
+                let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
+                let mut got = Vec::new();
+                bvh.for_each_candidate(&q, |i| {
+                    if boxes[i as usize].overlaps(&q) {
+                        got.push(i)
+                    }
+                });
+                got.sort_unstable();
+                let want: Vec<u32> = (0..boxes.len() as u32)
+                    .filter(|&i| boxes[i as usize].overlaps(&q))
+                    .collect();
+                assert_eq!(got, want, "leaves of {leaf}");
+            }
         }
     }
 

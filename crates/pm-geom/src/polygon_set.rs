@@ -2,7 +2,7 @@
 //! index answering "which polygons overlap this box" (the per-map geometry of the estimator).
 
 use crate::aabb::Aabb;
-use crate::bounds_bvh::BoundsBvh;
+use crate::bounds_bvh::{BoundsBvh, MAX_LEAF};
 use crate::polygon::polygon_vector_area;
 use glam::Vec3;
 
@@ -29,9 +29,9 @@ struct PolygonRecord {
     bounds: Aabb,
 }
 
-/// Sets of at most this many polygons are scanned rather than indexed (an index over them
-/// would be one leaf, tested in the same order).
-const SCANNED: usize = 4;
+/// Sets of at most this many polygons are scanned rather than indexed: an index over them
+/// would be one leaf, tested in the same order.
+const SCANNED: usize = MAX_LEAF;
 
 impl PolygonSet {
     /// An empty set.
@@ -77,7 +77,7 @@ impl PolygonSet {
             return;
         }
         let polygons = &self.polygons;
-        self.index = BoundsBvh::build_over(polygons.len(), |i| polygons[i as usize].bounds);
+        self.index = BoundsBvh::build_by(polygons.len(), |i| polygons[i as usize].bounds, MAX_LEAF);
         self.indexed = self.polygons.len();
     }
 

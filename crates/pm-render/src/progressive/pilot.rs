@@ -49,18 +49,15 @@ impl Pilot {
     ) -> Result<Self, RenderError> {
         let sites: Vec<Result<Sites, RenderError>> = (0..maps.len() as u32)
             .into_par_iter()
-            .map(|m| (m as usize, maps.map(m)))
-            .map(|(m, map)| {
+            .map(|m| {
+                let map = maps.map(m);
                 let pilot = map.tree();
                 let picked = (0..pilot.len() as u32)
                     .filter(|&i| options.kinds.accepts(pilot.get(i).kind()))
                     .step_by(SITE_STRIDE)
                     .map(|i| pilot.photon(i))
                     .collect();
-                let tree = PhotonTree::build(picked).map_err(|source| MapError::Tree {
-                    map: m as u32,
-                    source,
-                })?;
+                let tree = PhotonTree::build(picked).map_err(|source| MapError::Tree { map: m, source })?;
                 let view = MapView {
                     tree: pilot,
                     polygons: map.geometry(),

@@ -43,13 +43,14 @@ struct PiecePolygon {
 /// anywhere, and edge planes about it would take in points far off): wound counter-clockwise
 /// about `n`, repeated corners and the T-junction corners the split inserted along an edge
 /// dropped ([`drop_corners_on_edges`]).
-/// Fills `edges`; `false` when the outline has no area about `n`, fewer than three corners,
-/// or an edge with no direction.
-fn outline_edges(polygon: &[Vec3], n: Vec3, tolerance: f32, edges: &mut Vec<PieceEdge>) -> bool {
+/// Fills `edges` and gives the outline's area; `None` when it has no area about `n`, fewer
+/// than three corners, or an edge with no direction.
+fn outline_edges(polygon: &[Vec3], n: Vec3, tolerance: f32, edges: &mut Vec<PieceEdge>) -> Option<f32> {
     edges.clear();
-    let winding = polygon_vector_area(polygon).dot(n);
+    let vector_area = polygon_vector_area(polygon);
+    let winding = vector_area.dot(n);
     if !(winding != 0.0 && winding.is_finite()) {
-        return false;
+        return None;
     }
     let mut corners: Vec<Vec3> = Vec::with_capacity(polygon.len());
     let push_corner = |corners: &mut Vec<Vec3>, v: Vec3| {
@@ -66,7 +67,7 @@ fn outline_edges(polygon: &[Vec3], n: Vec3, tolerance: f32, edges: &mut Vec<Piec
         corners.pop();
     }
     if corners.len() < 3 {
-        return false;
+        return None;
     }
     let corners = drop_corners_on_edges(&corners, n, tolerance);
     let k = corners.len();
@@ -74,7 +75,7 @@ fn outline_edges(polygon: &[Vec3], n: Vec3, tolerance: f32, edges: &mut Vec<Piec
         let (a, b) = (corners[i], corners[(i + 1) % k]);
         let Some(inward) = n.cross(b - a).try_normalize() else {
             edges.clear();
-            return false;
+            return None;
         };
         edges.push(PieceEdge {
             from: a,
@@ -82,7 +83,7 @@ fn outline_edges(polygon: &[Vec3], n: Vec3, tolerance: f32, edges: &mut Vec<Piec
             offset: inward.dot(a),
         });
     }
-    true
+    Some(vector_area.length())
 }
 
 /// Corners within `tolerance` of the straight edge through their kept neighbours, and no
@@ -215,14 +216,14 @@ impl PieceIndex {
         let mut edges = Vec::new();
         let mut areas = Vec::new();
         for (polygon, part) in pieces {
-            if !outline_edges(polygon, normal, self.tolerance, &mut edges) {
+            let Some(area) = outline_edges(polygon, normal, self.tolerance, &mut edges) else {
                 continue;
-            }
+            };
             let first = u32::try_from(self.edges.len()).ok()?;
             let end = u32::try_from(self.edges.len() + edges.len()).ok()?;
             self.edges.extend_from_slice(&edges);
             self.pieces.push(PiecePolygon { first, end, part });
-            areas.push(polygon_vector_area(polygon).length());
+            areas.push(area);
         }
         let end = u32::try_from(self.pieces.len()).ok()?;
         if end == start {

@@ -106,19 +106,27 @@ fn corners_along_an_edge_are_dropped() {
 }
 
 proptest::proptest! {
-    /// A rectangle far from the origin cut into strips (each outline with T-junction
-    /// corners along its long edges, wound either way, listed in any order): a point
-    /// clear of every cut by more than the tolerance is located in its strip, against an
-    /// f64 brute force.
+    /// A rectangle cut into strips (each outline with T-junction corners along its long
+    /// edges, wound either way, listed in any order), a metre wide 10 km out, a micrometre
+    /// wide at the origin and 10 km wide 10⁴ km out: a point clear of every cut by four
+    /// tolerances is located in its strip, against an f64 brute force.
     #[test]
     fn points_are_located_in_their_strip(
         cuts in proptest::collection::btree_set(1u32..99, 1..8),
         junctions in proptest::collection::vec(0.0f64..1.0, 0..12),
         reversed in proptest::collection::vec(proptest::bool::ANY, 9),
         queries in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 40),
+        place in 0usize..3,
     ) {
-        let origin = [1.0e4f64, -2.0e3, 300.0];
-        let (width, height) = (4.0f64, 1.5f64);
+        // A room-sized face 10 km out, a micrometre-sized one at the origin, and a face 10 km
+        // wide 10⁴ km out (where an f32 step is a metre), each with the tolerance the
+        // partition would take there: at least eight float steps of its coordinates.
+        let (origin, scale) = [
+            ([1.0e4f64, -2.0e3, 300.0], 1.0f64),
+            ([0.0, 0.0, 0.0], 1e-6),
+            ([1.0e7, -6.0e6, 3.0e6], 2.5e3),
+        ][place];
+        let (width, height) = (4.0 * scale, 1.5 * scale);
         let at = |x: f64, y: f64| Vec3::new((origin[0] + x * width) as f32, (origin[1] + y * height) as f32, origin[2] as f32);
         let mut bounds: Vec<f64> = vec![0.0];
         bounds.extend(cuts.iter().map(|&c| f64::from(c) / 100.0));
@@ -142,7 +150,8 @@ proptest::proptest! {
                 outline
             })
             .collect();
-        let tolerance = 1e-3;
+        let largest = origin.iter().fold(0.0f64, |m, c| m.max(c.abs())) + width;
+        let tolerance = (2.5e-4 * scale).max(8.0 * largest * f64::from(f32::EPSILON)) as f32;
         let mut index = PieceIndex::new(tolerance);
         let list = index
             .push(Vec3::Z, Coverage::Whole, outlines.iter().enumerate().map(|(i, o)| (&o[..], part(i as u32))))
