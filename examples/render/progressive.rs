@@ -361,11 +361,12 @@ fn stats_json(
         o.push_str(&super::emission::json(s.emission.as_ref(), s.photons_traced));
         let _ = write!(
             o,
-            "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, ",
+            "\"photons_emitted\": {}, \"photons_stored\": {}, \"near_light_fraction\": {}, \"map_count\": {}, \"maps_read\": {}, \"threads\": {}, \"seconds\": {{\"pilot\": {}, \"trace\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, ",
             s.photons_emitted,
             s.photons_stored,
             json_number(s.near_light_fraction),
             s.map_count,
+            s.maps_read,
             s.threads,
             json_number(s.pilot.as_secs_f64()),
             json_number(s.trace.as_secs_f64()),

@@ -167,8 +167,8 @@ pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };
 pub use photons::{
-    EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy,
-    NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons,
+    EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapGeometryOnDemand,
+    MapOccupancy, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons,
     trace_guided_photon_paths, trace_photon_paths, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};

@@ -68,6 +68,10 @@ pub struct ProgressiveStats {
     pub near_light_fraction: f64,
     /// Number of photon maps.
     pub map_count: u32,
+    /// Maps whose polygons the passes have read (each built the first time an estimate fell
+    /// in it): the maps the camera's paths reach, a small share of a finely split scene's.
+    /// Zero for SPPM, which reads no polygons.
+    pub maps_read: u32,
     /// Worker threads used.
     pub threads: usize,
     /// Partitioning the scene, learning camera-driven emission, and tracing and building the

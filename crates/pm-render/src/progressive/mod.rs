@@ -70,15 +70,14 @@ use crate::estimator::point::MapView;
 use crate::mode::Mode;
 use crate::progress::Progress;
 use crate::renderer::in_pool;
-use crate::settings::RenderSettings;
 use crate::source::final_gather::FinalGatherSource;
 use crate::source::photon_read::DirectLight;
 use glam::Vec3;
-use pass_maps::trace_pass_counted;
+use pass_maps::{trace_pass, trace_pass_counted};
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
-use pm_kdtree::PhotonTree;
-use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene};
+use pm_kdtree::{KindMask, PhotonTree};
+use pm_trace::{MapAssignment, Partitioned, Scene};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -175,14 +174,18 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         let emitter = Emitter::new(scene, assignment, r, &[*scene.camera()])?;
         stats.emission = emitter.report().copied();
         progress.phase("pilot");
-        let pilot = Pilot::new(
-            // Uniform whatever the passes' emission: the pilot sets each point's volume from
-            // the density uniform emission gives, so that camera-driven passes put more
-            // photons in the same volumes (less noise) rather than shrinking them.
-            trace_and_build(scene, assignment, r, &Emitter::uniform(), PILOT_PASS)?.0,
-            &self.estimator,
-            &options,
+        // Uniform whatever the passes' emission: the pilot sets each point's volume from the
+        // density uniform emission gives, so that camera-driven passes put more photons in
+        // the same volumes (less noise) rather than shrinking them.
+        let traced = trace_pass(
+            scene,
+            assignment,
+            r,
+            &Emitter::uniform(),
+            PILOT_PASS,
+            KindMask::ALL,
         )?;
+        let pilot = Pilot::new(scene, assignment, traced.trees, &self.estimator, &options)?;
         stats.pilot = start.elapsed();
         stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;
@@ -213,6 +216,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             accumulation.passes += 1;
             progress.pass_done(accumulation.passes, stats.photons_emitted);
             stats.passes = accumulation.passes;
+            stats.maps_read = pilot.maps_built() as u32;
             stats.wall = start.elapsed();
             if observe(&accumulation, &stats).is_break() {
                 break;
@@ -241,7 +245,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         scene: &Scene,
         assignment: &MapAssignment,
         emitter: &Emitter,
-        pilot: &Pilot,
+        pilot: &Pilot<'_, E>,
         options: &EstimatorOptions,
         pass: u64,
         accumulation: &mut Accumulation,
@@ -316,7 +320,7 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         scene: &Scene,
         assignment: &MapAssignment,
         trees: &[PhotonTree],
-        pilot: &Pilot,
+        pilot: &Pilot<'_, E>,
         options: &EstimatorOptions,
         scale: f32,
     ) -> Result<RadianceCache, RenderError> {
@@ -329,33 +333,19 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
             options.max_distance,
             |point, scratch| {
                 let map = point.map;
-                let Some(pilot_map) = pilot.maps.get(map as u32) else {
+                let Some(extent) = pilot.extent(map, point.at.position, scratch) else {
                     return Vec3::ZERO;
                 };
-                let Some(extent) = pilot.extent(map, point.at.position, options, scratch) else {
+                let Some(polygons) = pilot.polygons(map as u32) else {
                     return Vec3::ZERO;
                 };
                 let view = MapView {
                     tree: point.photons,
-                    polygons: pilot_map.geometry(),
+                    polygons,
                 };
                 self.estimator
                     .irradiance_within(point.at, view, extent * scale, options, scratch)
             },
         )
     }
-}
-
-/// Traces pass `pass`'s photons (emitted as `emitter` says) and builds its maps; also the
-/// photons stored.
-pub(crate) fn trace_and_build(
-    scene: &Scene,
-    assignment: &MapAssignment,
-    settings: &RenderSettings,
-    emitter: &Emitter,
-    pass: u64,
-) -> Result<(PhotonMaps, u64), RenderError> {
-    let traced = emitter.trace(scene, assignment, settings, pass)?;
-    let stored = traced.stats().total_stored();
-    Ok((PhotonMaps::build(scene, assignment, traced)?, stored))
 }

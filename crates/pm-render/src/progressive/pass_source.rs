@@ -28,7 +28,7 @@ pub(super) struct PassVolumes<'a, E> {
     pub trees: &'a [PhotonTree],
     /// The pilot, which fixes the gather volume at each point, and every map's polygons (the
     /// same in every pass).
-    pub pilot: &'a Pilot,
+    pub pilot: &'a Pilot<'a, E>,
     pub estimator: &'a E,
     pub options: &'a EstimatorOptions,
     /// This pass's shrink factor `s_i`.
@@ -39,11 +39,8 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
     /// The estimate with `weight` at `hit` from the pass's photons of its map, in the pass's
     /// volume there.
     fn estimate(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
-        let map_id = self.pilot.maps.map_of(hit.part);
-        let Some(extent) = self
-            .pilot
-            .extent(map_id as usize, hit.position, self.options, scratch)
-        else {
+        let map_id = self.pilot.map_of(hit.part);
+        let Some(extent) = self.pilot.extent(map_id as usize, hit.position, scratch) else {
             return Vec3::ZERO;
         };
         self.within(
@@ -67,7 +64,7 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
         weight: &dyn PhotonWeight,
         scratch: &mut EstimatorScratch,
     ) -> Vec3 {
-        let (Some(tree), Some(pilot)) = (tree, self.pilot.maps.get(map_id)) else {
+        let (Some(tree), Some(polygons)) = (tree, self.pilot.polygons(map_id)) else {
             return Vec3::ZERO;
         };
         let at = SurfacePoint {
@@ -75,10 +72,7 @@ impl<E: FixedVolumeEstimator> PassVolumes<'_, E> {
             normal: self.scene.shading_normal_at(hit),
             front_face: hit.front_face,
         };
-        let view = MapView {
-            tree,
-            polygons: pilot.geometry(),
-        };
+        let view = MapView { tree, polygons };
         self.estimator
             .estimate_within(at, view, extent, self.options, weight, scratch)
     }
@@ -146,12 +140,12 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
 
     fn caustics(&self, hit: &Hit, weight: &dyn PhotonWeight, scratch: &mut EstimatorScratch) -> Vec3 {
         let l = self.volumes;
-        let map_id = l.pilot.maps.map_of(hit.part);
+        let map_id = l.pilot.map_of(hit.part);
         // Most maps hold no caustic photons: no extent to look up then.
         let tree @ Some(_) = self.cache.caustic_tree(map_id) else {
             return Vec3::ZERO;
         };
-        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
+        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, scratch) else {
             return Vec3::ZERO;
         };
         l.within(tree, hit, map_id, extent * l.scale, weight, scratch)
@@ -159,8 +153,8 @@ impl<E: FixedVolumeEstimator> GatherReads for PassGather<'_, E> {
 
     fn cached_radiance(&self, hit: &Hit, scratch: &mut EstimatorScratch) -> Vec3 {
         let l = self.volumes;
-        let map_id = l.pilot.maps.map_of(hit.part);
-        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, l.options, scratch) else {
+        let map_id = l.pilot.map_of(hit.part);
+        let Some(extent) = l.pilot.extent(map_id as usize, hit.position, scratch) else {
             return Vec3::ZERO;
         };
         let e =

@@ -1,6 +1,6 @@
 //! The pilot: a photon map traced once, whose k-nearest extents fix the gather volume at every
-//! surface point for all passes. The extents are computed once, at a sparse set of *sites*
-//! (every [`SITE_STRIDE`]-th pilot photon in tree order), and a point takes its nearest site's.
+//! surface point for all passes. The extents are taken at a sparse set of *sites* (every
+//! [`SITE_STRIDE`]-th pilot photon in tree order), and a point takes its nearest site's.
 //!
 //! A k-nearest query per pixel per pass cost as much as the rest of the pass's gather (a
 //! 100-nearest search is some 27,000 instructions; the nearest of a few thousand sites some
@@ -10,6 +10,13 @@
 //! photons. It is a deterministic function of x alone (never of a pass's photons), which is all
 //! that Knaus & Zwicker's argument asks of the volume; it adapts to the photon density as the
 //! k-nearest extent does.
+//!
+//! Nothing is computed for a point no pass asks about: a site's extent is computed the first
+//! time a point takes that site, and a map's polygons (which the extent and every estimate
+//! clip) the first time a point in that map is estimated ([`MapGeometryOnDemand`]). A camera
+//! sees few of a finely split scene's maps (1,090 of a modelled kitchen's 16,854 contact maps
+//! in a 320×180 view), and the extent at a site is the same number whoever computes it first,
+//! so the images do not change.
 
 use crate::error::RenderError;
 use crate::estimator::fixed::FixedVolumeEstimator;
@@ -18,90 +25,110 @@ use crate::estimator::point::MapView;
 use crate::estimator::point::SurfacePoint;
 use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
+use pm_geom::PolygonSet;
 use pm_kdtree::{Euclidean, KindMask, PhotonTree};
-use pm_trace::{MapError, PhotonMaps};
+use pm_trace::{MapAssignment, MapError, MapGeometry, MapGeometryOnDemand, Scene};
 use rayon::prelude::*;
+use std::sync::OnceLock;
 
 /// One site per this many pilot photons (of the kinds gathered). The photon tree stores its
 /// photons in spatial order, so every 16th is an even thinning.
 pub(super) const SITE_STRIDE: usize = 16;
 
-/// One map's sites and their extents (`None`: the k nearest all at one point, no volume).
+/// One map's sites and their extents, each computed when first asked for (`Some(None)`: the
+/// k nearest all at one point, no volume).
 struct Sites {
     tree: PhotonTree,
-    extents: Vec<Option<f32>>,
+    extents: Vec<OnceLock<Option<f32>>>,
 }
 
-/// The pilot maps and, per map, the sites with their extents.
-pub(super) struct Pilot {
-    pub(super) maps: PhotonMaps,
+/// The pilot's photon trees (one per map), every map's polygons (built on demand), and per
+/// map the sites with their extents (computed on demand) under `estimator` and `options`.
+pub(super) struct Pilot<'s, E> {
+    trees: Vec<PhotonTree>,
+    assignment: &'s MapAssignment,
+    geometry: MapGeometryOnDemand<'s>,
     sites: Vec<Sites>,
+    estimator: &'s E,
+    options: EstimatorOptions,
 }
 
-impl Pilot {
-    /// Picks each map's sites and computes their extents with `estimator` (in parallel over
-    /// maps and over each map's sites; the result, and the error reported, do not depend on
-    /// the thread count).
-    pub(super) fn new<E: FixedVolumeEstimator>(
-        maps: PhotonMaps,
-        estimator: &E,
+impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
+    /// Picks each map's sites among the pilot's photons `trees` (one per map of `assignment`,
+    /// in parallel; the error reported does not depend on the thread count). Extents and
+    /// polygons are computed as points ask for them.
+    pub(super) fn new(
+        scene: &'s Scene,
+        assignment: &'s MapAssignment,
+        trees: Vec<PhotonTree>,
+        estimator: &'s E,
         options: &EstimatorOptions,
     ) -> Result<Self, RenderError> {
-        let sites: Vec<Result<Sites, RenderError>> = (0..maps.len() as u32)
-            .into_par_iter()
-            .map(|m| {
-                let map = maps.map(m);
-                let pilot = map.tree();
+        let geometry = MapGeometryOnDemand::new(scene, assignment, MapGeometry::Merged)?;
+        let sites: Vec<Result<Sites, RenderError>> = trees
+            .par_iter()
+            .enumerate()
+            .map(|(m, pilot)| {
                 let picked = (0..pilot.len() as u32)
                     .filter(|&i| options.kinds.accepts(pilot.get(i).kind()))
                     .step_by(SITE_STRIDE)
                     .map(|i| pilot.photon(i))
                     .collect();
-                let tree = PhotonTree::build(picked).map_err(|source| MapError::Tree { map: m, source })?;
-                let view = MapView {
-                    tree: pilot,
-                    polygons: map.geometry(),
-                };
-                let extents = (0..tree.len() as u32)
-                    .into_par_iter()
-                    .map_init(EstimatorScratch::new, |scratch, i| {
-                        let site = tree.get(i);
-                        let at =
-                            SurfacePoint::front(site.position(), -site.direction_l1().normalize_or_zero());
-                        estimator.nearest_extent(at, view, options, scratch)
-                    })
-                    .collect();
+                let tree = PhotonTree::build(picked).map_err(|source| MapError::Tree {
+                    map: m as u32,
+                    source,
+                })?;
+                let extents = (0..tree.len()).map(|_| OnceLock::new()).collect();
                 Ok(Sites { tree, extents })
             })
             .collect();
         // The first map's error in map order, as one thread would meet it.
         let sites = sites.into_iter().collect::<Result<Vec<_>, _>>()?;
-        Ok(Pilot { maps, sites })
+        Ok(Pilot {
+            trees,
+            assignment,
+            geometry,
+            sites,
+            estimator,
+            options: *options,
+        })
     }
 
     /// Heap bytes of the pilot's photon trees and of the sites (trees and extents); the
     /// maps' polygons are the scene's and not counted.
     pub(super) fn heap_bytes(&self) -> usize {
-        let trees: usize = self.maps.iter().map(|m| m.tree().heap_bytes()).sum();
+        let trees: usize = self.trees.iter().map(|t| t.heap_bytes()).sum();
         let sites: usize = self
             .sites
             .iter()
-            .map(|s| s.tree.heap_bytes() + s.extents.capacity() * size_of::<Option<f32>>())
+            .map(|s| s.tree.heap_bytes() + s.extents.capacity() * size_of::<OnceLock<Option<f32>>>())
             .sum();
         trees + sites
     }
 
+    /// The map of `part`.
+    pub(super) fn map_of(&self, part: pm_trace::PartId) -> u32 {
+        self.assignment.map_of(part)
+    }
+
+    /// Map `map`'s polygons (built now if no point asked before), or `None` when there is no
+    /// such map.
+    pub(super) fn polygons(&self, map: u32) -> Option<&PolygonSet> {
+        self.geometry.polygons(map)
+    }
+
+    /// How many maps' polygons have been built so far.
+    pub(super) fn maps_built(&self) -> usize {
+        self.geometry.built_count()
+    }
+
     /// The gather extent at `at` in map `map` (before the pass's shrink factor): the
-    /// estimator's k-nearest extent at the site nearest to `at`, or the maximum distance when
-    /// no site of the map lies within it. `None` when there is no volume.
-    pub(super) fn extent(
-        &self,
-        map: usize,
-        at: Vec3,
-        options: &EstimatorOptions,
-        scratch: &mut EstimatorScratch,
-    ) -> Option<f32> {
+    /// estimator's k-nearest extent in the pilot map at the site nearest to `at` (computed
+    /// now if no point took that site before), or the maximum distance when no site of the
+    /// map lies within it. `None` when there is no volume.
+    pub(super) fn extent(&self, map: usize, at: Vec3, scratch: &mut EstimatorScratch) -> Option<f32> {
         let sites = self.sites.get(map)?;
+        let options = &self.options;
         sites.tree.nearest_k::<Euclidean>(
             at,
             1,
@@ -109,10 +136,18 @@ impl Pilot {
             KindMask::ALL,
             &mut scratch.neighbours,
         );
-        match scratch.neighbours.as_slice().first() {
-            Some(nearest) => sites.extents[nearest.index as usize],
-            None => Some(options.max_distance),
-        }
+        let Some(nearest) = scratch.neighbours.as_slice().first().map(|n| n.index) else {
+            return Some(options.max_distance);
+        };
+        *sites.extents[nearest as usize].get_or_init(|| {
+            let site = sites.tree.get(nearest);
+            let at = SurfacePoint::front(site.position(), -site.direction_l1().normalize_or_zero());
+            let view = MapView {
+                tree: &self.trees[map],
+                polygons: self.geometry.polygons(map as u32)?,
+            };
+            self.estimator.nearest_extent(at, view, options, scratch)
+        })
     }
 }
 
@@ -122,7 +157,8 @@ mod tests {
     use crate::emission::emitter::Emitter;
     use crate::estimator::GeometryCube;
     use crate::mode::Mode;
-    use crate::progressive::{PILOT_PASS, trace_and_build};
+    use crate::progressive::PILOT_PASS;
+    use crate::progressive::pass_maps::trace_pass;
     use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, Partitioner, scenes};
 
@@ -143,25 +179,32 @@ mod tests {
             ..RenderSettings::default()
         };
         let options = settings.estimator_options(&scene.bounds());
-        let maps = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), PILOT_PASS)
+        let trace = |pass| {
+            trace_pass(
+                &scene,
+                &assignment,
+                &settings,
+                &Emitter::uniform(),
+                pass,
+                KindMask::ALL,
+            )
             .unwrap()
-            .0;
-        let queries = trace_and_build(&scene, &assignment, &settings, &Emitter::uniform(), 0)
-            .unwrap()
-            .0;
-        let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
+            .trees
+        };
+        let queries = trace(0);
+        let pilot = Pilot::new(&scene, &assignment, trace(PILOT_PASS), &GeometryCube, &options).unwrap();
+        assert_eq!(pilot.maps_built(), 0, "nothing built before a point asks");
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;
-        for (m, map) in pilot.maps.iter().enumerate() {
-            let tree = map.tree();
+        for (m, tree) in pilot.trees.iter().enumerate() {
             let accepted: Vec<Vec3> = (0..tree.len() as u32)
                 .filter(|&i| options.kinds.accepts(tree.get(i).kind()))
                 .map(|i| tree.position(i))
                 .collect();
             let sites: Vec<Vec3> = accepted.iter().copied().step_by(SITE_STRIDE).collect();
-            let probe = queries.map(m as u32).tree();
+            let probe = &queries[m];
             for q in (0..probe.len() as u32).step_by(37).map(|i| probe.position(i)) {
-                let got = pilot.extent(m, q, &options, &mut scratch);
+                let got = pilot.extent(m, q, &mut scratch);
                 let nearest = sites
                     .iter()
                     .copied()
@@ -190,5 +233,62 @@ mod tests {
             }
         }
         assert!(checked > 50, "only {checked} points checked");
+    }
+
+    /// Extents computed on demand are the same bits whatever order points ask in and on
+    /// whichever thread asks first, and only the maps asked about get polygons.
+    #[test]
+    fn extents_do_not_depend_on_who_asks_first() {
+        let scene = scenes::build("cornell-box").unwrap();
+        let (scene, assignment, _) = CreaseAngle::default().partition(scene).unwrap().into_parts();
+        let settings = RenderSettings {
+            photons: 3_000,
+            k: 20,
+            mode: Mode::ShadowRays,
+            seed: 5,
+            ..RenderSettings::default()
+        };
+        let options = settings.estimator_options(&scene.bounds());
+        let trace = |pass| {
+            trace_pass(
+                &scene,
+                &assignment,
+                &settings,
+                &Emitter::uniform(),
+                pass,
+                KindMask::ALL,
+            )
+            .unwrap()
+            .trees
+        };
+        let queries: Vec<(usize, Vec3)> = trace(0)
+            .iter()
+            .enumerate()
+            .flat_map(|(m, t)| (0..t.len() as u32).map(move |i| (m, t.position(i))))
+            .collect();
+        assert!(queries.len() > 1_000);
+        let pilot = || Pilot::new(&scene, &assignment, trace(PILOT_PASS), &GeometryCube, &options).unwrap();
+        let (forward, backward) = (pilot(), pilot());
+        let mut scratch = EstimatorScratch::new();
+        let in_order: Vec<Option<f32>> = queries
+            .iter()
+            .map(|&(m, q)| forward.extent(m, q, &mut scratch))
+            .collect();
+        let mut reversed: Vec<Option<f32>> = queries
+            .par_iter()
+            .rev()
+            .map_init(EstimatorScratch::new, |scratch, &(m, q)| {
+                backward.extent(m, q, scratch)
+            })
+            .collect();
+        reversed.reverse();
+        let bits = |v: &[Option<f32>]| v.iter().map(|e| e.map(f32::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(&in_order), bits(&reversed));
+        let asked: std::collections::BTreeSet<usize> = queries.iter().map(|&(m, _)| m).collect();
+        let with_sites = asked
+            .iter()
+            .filter(|&&m| !forward.sites[m].tree.is_empty())
+            .count();
+        assert_eq!(forward.maps_built(), with_sites);
     }
 }

@@ -1,27 +1,16 @@
 //! Photon maps: per map, the photons in a kd-tree and the map's polygons (with an overlap
 //! index) for the geometry-based estimators.
 
+use super::map_geometry::{MapGeometry, MapPolygons, check_assignment, map_polygons};
 use super::traced::TracedPhotons;
 use crate::error::{MapError, TraceError};
 use crate::part::PartId;
 use crate::partition::assignment::MapAssignment;
 use crate::scene::Scene;
 use glam::Vec3;
-use pm_geom::{Aabb, CoplanarMerger, MergeOptions, PolygonSet};
+use pm_geom::{Aabb, PolygonSet};
 use pm_kdtree::PhotonTree;
 use rayon::prelude::*;
-
-/// How a map stores its polygons for the geometry-based estimators.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum MapGeometry {
-    /// Coplanar, edge-connected faces merged into larger convex polygons (the same area in
-    /// any volume, up to rounding): a gather volume over a finely split wall clips one
-    /// polygon, not hundreds.
-    #[default]
-    Merged,
-    /// Every face (and proxy polygon) as it is, one polygon each.
-    PerFace,
-}
 
 /// One photon map: its photons and its geometry, borrowed from its [`PhotonMaps`].
 #[derive(Clone, Copy, Debug)]
@@ -46,13 +35,6 @@ impl<'a> PhotonMap<'a> {
     pub fn bounds(&self) -> Aabb {
         self.geometry.bounds
     }
-}
-
-/// One map's polygons and their bounds.
-#[derive(Clone, Debug)]
-struct MapPolygons {
-    polygons: PolygonSet,
-    bounds: Aabb,
 }
 
 /// All photon maps of a scene and the map of each part: the maps' photon trees and their
@@ -239,52 +221,4 @@ impl PhotonMaps {
     pub fn assignment(&self) -> &MapAssignment {
         &self.assignment
     }
-}
-
-/// The polygons of a map of `parts`, stored as `kind` says.
-fn map_polygons(scene: &Scene, parts: &[PartId], kind: MapGeometry) -> MapPolygons {
-    let mut geometry = PolygonSet::new();
-    let bounds = match kind {
-        MapGeometry::PerFace => {
-            let mut bounds = Aabb::EMPTY;
-            for &part in parts {
-                scene.for_each_part_polygon(part, |polygon| {
-                    if geometry.push(polygon).is_some() {
-                        bounds = bounds.union(Aabb::from_points(polygon));
-                    }
-                });
-            }
-            bounds
-        }
-        MapGeometry::Merged => {
-            let mut merger = CoplanarMerger::new(MergeOptions::DEFAULT);
-            for &part in parts {
-                scene.for_each_part_polygon(part, |polygon| {
-                    merger.push(polygon);
-                });
-            }
-            merger.merge(|polygon| {
-                geometry.push(polygon);
-            });
-            // The pushed faces' bounds: the merged outlines keep their extreme vertices.
-            merger.bounds()
-        }
-    };
-    geometry.build_index();
-    MapPolygons {
-        polygons: geometry,
-        bounds,
-    }
-}
-
-/// Refuses an assignment made for a scene of another part count.
-fn check_assignment(scene: &Scene, assignment: &MapAssignment) -> Result<(), MapError> {
-    if assignment.part_count() != scene.part_count() {
-        return Err(TraceError::AssignmentMismatch {
-            assigned: assignment.part_count(),
-            parts: scene.part_count(),
-        }
-        .into());
-    }
-    Ok(())
 }

@@ -3,6 +3,7 @@
 
 mod guide;
 mod light_picker;
+mod map_geometry;
 mod maps;
 mod occupancy;
 mod options;
@@ -13,7 +14,8 @@ mod traced;
 
 pub use crate::bsdf::scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use guide::{EmissionGuide, GuideOptions};
-pub use maps::{MapGeometry, PhotonMap, PhotonMaps};
+pub use map_geometry::{MapGeometry, MapGeometryOnDemand};
+pub use maps::{PhotonMap, PhotonMaps};
 pub use occupancy::MapOccupancy;
 pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};
 pub use trace::{trace_guided_photon_paths, trace_photon_paths, trace_photons};
