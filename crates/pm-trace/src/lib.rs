@@ -11,7 +11,8 @@
 //! [`trace_photons`] shoots
 //! photons from the lights and stores them per map; [`PhotonMaps::build`] turns them into
 //! kd-trees plus each map's polygons for the geometry-based estimators (coplanar, edge-connected
-//! faces merged into larger convex polygons, so a finely split wall costs one clip). Ball & Stejko's
+//! faces merged into larger convex polygons, so a finely split wall costs one clip; merged the
+//! first time the map is read, so that a render builds the polygons of the maps it sees). Ball & Stejko's
 //! scenes, the same rooms built from solid boxes, and scale scenes for measuring how cost grows,
 //! are in [`scenes`].
 //!
@@ -167,8 +168,8 @@ pub use partition::{
     Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
 };
 pub use photons::{
-    EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapGeometryOnDemand,
-    MapOccupancy, NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons,
+    EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy,
+    NEAR_LIGHT_DISTANCE, PhotonMap, PhotonMaps, TraceOptions, TraceStats, TracedPhotons,
     trace_guided_photon_paths, trace_photon_paths, trace_photons,
 };
 pub use pm_kdtree::{Photon, PhotonKind};

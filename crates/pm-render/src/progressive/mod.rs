@@ -26,9 +26,10 @@
 //!   the estimator's k-nearest extent (the k-th Euclidean distance for the disc and ball, the
 //!   k-th Chebyshev distance — a cube's half-size — for the cube; the maximum distance where
 //!   fewer than k are found) in x's pilot map, taken at the *site* nearest to x (sites: every
-//!   16th pilot photon, their extents computed once; a k-nearest search per pixel and pass
-//!   cost as much as the pass's own gather). Every shard rebuilds the same pilot, so the volume is a deterministic
-//!   function of x. It adapts to the photon density as the k-nearest estimate does.
+//!   16th pilot photon, each one's extent computed once, when a point first takes it; a
+//!   k-nearest search per pixel and pass cost as much as the pass's own gather). Every shard
+//!   rebuilds the same pilot, so the volume is a deterministic function of x. It adapts to the
+//!   photon density as the k-nearest estimate does.
 //! - Pass i gathers **every** photon of x's map within `r_i(x) = r_pilot(x) · s_i` and divides
 //!   by the volume's area: `π r_i²` for the disc, and for the cube and the ball the area of the
 //!   map's own polygons inside it (Hey & Purgathofer's estimate,
@@ -73,11 +74,11 @@ use crate::renderer::in_pool;
 use crate::source::final_gather::FinalGatherSource;
 use crate::source::photon_read::DirectLight;
 use glam::Vec3;
-use pass_maps::{trace_pass, trace_pass_counted};
+use pass_maps::trace_pass_counted;
 use pass_source::{PassGather, PassPhotonSource, PassVolumes};
 use pilot::Pilot;
-use pm_kdtree::{KindMask, PhotonTree};
-use pm_trace::{MapAssignment, Partitioned, Scene};
+use pm_kdtree::PhotonTree;
+use pm_trace::{MapAssignment, Partitioned, PhotonMaps, Scene};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -177,15 +178,12 @@ impl<E: FixedVolumeEstimator> ProgressiveRenderer<E> {
         // Uniform whatever the passes' emission: the pilot sets each point's volume from the
         // density uniform emission gives, so that camera-driven passes put more photons in
         // the same volumes (less noise) rather than shrinking them.
-        let traced = trace_pass(
-            scene,
-            assignment,
-            r,
-            &Emitter::uniform(),
-            PILOT_PASS,
-            KindMask::ALL,
+        let traced = Emitter::uniform().trace(scene, assignment, r, PILOT_PASS)?;
+        let pilot = Pilot::new(
+            PhotonMaps::build(scene, assignment, traced)?,
+            &self.estimator,
+            &options,
         )?;
-        let pilot = Pilot::new(scene, assignment, traced.trees, &self.estimator, &options)?;
         stats.pilot = start.elapsed();
         stats.pilot_bytes = pilot.heap_bytes() as u64;
         let mut accumulation = Accumulation::new(r.width, r.height, s.first_pass)?;

@@ -13,7 +13,7 @@
 //!
 //! Nothing is computed for a point no pass asks about: a site's extent is computed the first
 //! time a point takes that site, and a map's polygons (which the extent and every estimate
-//! clip) the first time a point in that map is estimated ([`MapGeometryOnDemand`]). A camera
+//! clip) the first time a point in that map is estimated ([`PhotonMaps`]). A camera
 //! sees few of a finely split scene's maps (1,090 of a modelled kitchen's 16,854 contact maps
 //! in a 320×180 view), and the extent at a site is the same number whoever computes it first,
 //! so the images do not change.
@@ -27,7 +27,7 @@ use crate::estimator::scratch::EstimatorScratch;
 use glam::Vec3;
 use pm_geom::PolygonSet;
 use pm_kdtree::{Euclidean, KindMask, PhotonTree};
-use pm_trace::{MapAssignment, MapError, MapGeometry, MapGeometryOnDemand, Scene};
+use pm_trace::{MapError, PartId, PhotonMaps};
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
@@ -42,30 +42,26 @@ struct Sites {
     extents: Vec<OnceLock<Option<f32>>>,
 }
 
-/// The pilot's photon trees (one per map), every map's polygons (built on demand), and per
-/// map the sites with their extents (computed on demand) under `estimator` and `options`.
-pub(super) struct Pilot<'s, E> {
-    trees: Vec<PhotonTree>,
-    assignment: &'s MapAssignment,
-    geometry: MapGeometryOnDemand<'s>,
+/// The pilot maps (whose polygons are built when first read), and per map the sites with
+/// their extents (computed when first asked for) under `estimator` and `options`.
+pub(super) struct Pilot<'e, E> {
+    maps: PhotonMaps,
     sites: Vec<Sites>,
-    estimator: &'s E,
+    estimator: &'e E,
     options: EstimatorOptions,
 }
 
-impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
-    /// Picks each map's sites among the pilot's photons `trees` (one per map of `assignment`,
-    /// in parallel; the error reported does not depend on the thread count). Extents and
-    /// polygons are computed as points ask for them.
+impl<'e, E: FixedVolumeEstimator> Pilot<'e, E> {
+    /// Picks each map's sites among the pilot `maps`' photons (in parallel; the error
+    /// reported does not depend on the thread count). Extents and polygons are computed as
+    /// points ask for them.
     pub(super) fn new(
-        scene: &'s Scene,
-        assignment: &'s MapAssignment,
-        trees: Vec<PhotonTree>,
-        estimator: &'s E,
+        maps: PhotonMaps,
+        estimator: &'e E,
         options: &EstimatorOptions,
     ) -> Result<Self, RenderError> {
-        let geometry = MapGeometryOnDemand::new(scene, assignment, MapGeometry::Merged)?;
-        let sites: Vec<Result<Sites, RenderError>> = trees
+        let sites: Vec<Result<Sites, RenderError>> = maps
+            .trees()
             .par_iter()
             .enumerate()
             .map(|(m, pilot)| {
@@ -85,9 +81,7 @@ impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
         // The first map's error in map order, as one thread would meet it.
         let sites = sites.into_iter().collect::<Result<Vec<_>, _>>()?;
         Ok(Pilot {
-            trees,
-            assignment,
-            geometry,
+            maps,
             sites,
             estimator,
             options: *options,
@@ -97,7 +91,7 @@ impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
     /// Heap bytes of the pilot's photon trees and of the sites (trees and extents); the
     /// maps' polygons are the scene's and not counted.
     pub(super) fn heap_bytes(&self) -> usize {
-        let trees: usize = self.trees.iter().map(|t| t.heap_bytes()).sum();
+        let trees: usize = self.maps.trees().iter().map(|t| t.heap_bytes()).sum();
         let sites: usize = self
             .sites
             .iter()
@@ -107,19 +101,19 @@ impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
     }
 
     /// The map of `part`.
-    pub(super) fn map_of(&self, part: pm_trace::PartId) -> u32 {
-        self.assignment.map_of(part)
+    pub(super) fn map_of(&self, part: PartId) -> u32 {
+        self.maps.map_of(part)
     }
 
     /// Map `map`'s polygons (built now if no point asked before), or `None` when there is no
     /// such map.
     pub(super) fn polygons(&self, map: u32) -> Option<&PolygonSet> {
-        self.geometry.polygons(map)
+        Some(self.maps.get(map)?.geometry())
     }
 
     /// How many maps' polygons have been built so far.
     pub(super) fn maps_built(&self) -> usize {
-        self.geometry.built_count()
+        self.maps.maps_read()
     }
 
     /// The gather extent at `at` in map `map` (before the pass's shrink factor): the
@@ -142,9 +136,10 @@ impl<'s, E: FixedVolumeEstimator> Pilot<'s, E> {
         *sites.extents[nearest as usize].get_or_init(|| {
             let site = sites.tree.get(nearest);
             let at = SurfacePoint::front(site.position(), -site.direction_l1().normalize_or_zero());
+            let pilot = self.maps.map(map as u32);
             let view = MapView {
-                tree: &self.trees[map],
-                polygons: self.geometry.polygons(map as u32)?,
+                tree: pilot.tree(),
+                polygons: pilot.geometry(),
             };
             self.estimator.nearest_extent(at, view, options, scratch)
         })
@@ -160,7 +155,7 @@ mod tests {
     use crate::progressive::PILOT_PASS;
     use crate::progressive::pass_maps::trace_pass;
     use crate::settings::RenderSettings;
-    use pm_trace::{CreaseAngle, Partitioner, scenes};
+    use pm_trace::{CreaseAngle, MapGeometry, Partitioner, scenes};
 
     /// The pilot's extent at a point against brute force: the nearest site (every 16th
     /// photon of the gathered kinds, in tree order) found by a scan, and the k-th smallest
@@ -192,11 +187,13 @@ mod tests {
             .trees
         };
         let queries = trace(0);
-        let pilot = Pilot::new(&scene, &assignment, trace(PILOT_PASS), &GeometryCube, &options).unwrap();
+        let maps =
+            PhotonMaps::from_trees(&scene, &assignment, trace(PILOT_PASS), MapGeometry::Merged).unwrap();
+        let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
         assert_eq!(pilot.maps_built(), 0, "nothing built before a point asks");
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;
-        for (m, tree) in pilot.trees.iter().enumerate() {
+        for (m, tree) in pilot.maps.trees().iter().enumerate() {
             let accepted: Vec<Vec3> = (0..tree.len() as u32)
                 .filter(|&i| options.kinds.accepts(tree.get(i).kind()))
                 .map(|i| tree.position(i))
@@ -267,7 +264,10 @@ mod tests {
             .flat_map(|(m, t)| (0..t.len() as u32).map(move |i| (m, t.position(i))))
             .collect();
         assert!(queries.len() > 1_000);
-        let pilot = || Pilot::new(&scene, &assignment, trace(PILOT_PASS), &GeometryCube, &options).unwrap();
+        let pilot = || {
+            let maps = PhotonMaps::from_trees(&scene, &assignment, trace(PILOT_PASS), MapGeometry::Merged);
+            Pilot::new(maps.unwrap(), &GeometryCube, &options).unwrap()
+        };
         let (forward, backward) = (pilot(), pilot());
         let mut scratch = EstimatorScratch::new();
         let in_order: Vec<Option<f32>> = queries

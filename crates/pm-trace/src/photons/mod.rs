@@ -14,7 +14,7 @@ mod traced;
 
 pub use crate::bsdf::scatter::{fresnel_dielectric, glass_direction, mirror_direction, reflect, refract};
 pub use guide::{EmissionGuide, GuideOptions};
-pub use map_geometry::{MapGeometry, MapGeometryOnDemand};
+pub use map_geometry::MapGeometry;
 pub use maps::{PhotonMap, PhotonMaps};
 pub use occupancy::MapOccupancy;
 pub use options::{MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, NEAR_LIGHT_DISTANCE, TraceOptions};

@@ -23,7 +23,7 @@ pub struct MapOccupancy {
     pub photons_below_k: u64,
     /// Photons per map at the 10th, 50th and 90th percentiles, and the most in one map.
     pub photons_per_map: [u64; 4],
-    /// The maps' surface, square metres (their polygons' area).
+    /// The maps' surface, square metres (their faces' area).
     pub area: f64,
     /// The surface of maps that hold fewer than `k` photons (empty ones included).
     pub area_below_k: f64,
@@ -42,7 +42,8 @@ impl MapOccupancy {
 
 impl PhotonMaps {
     /// How the photons fill the maps, counted against an estimate's `k` (see
-    /// [`MapOccupancy`]). Linear in the maps' polygons; the photons are not visited.
+    /// [`MapOccupancy`]). Linear in the maps' faces; the photons are not visited, and no
+    /// map's polygons are built.
     pub fn occupancy(&self, k: usize) -> MapOccupancy {
         let mut counts: Vec<u64> = Vec::with_capacity(self.len());
         let mut out = MapOccupancy {
@@ -50,12 +51,10 @@ impl PhotonMaps {
             maps: self.len(),
             ..MapOccupancy::default()
         };
-        for map in self.iter() {
+        for (id, map) in self.iter().enumerate() {
             let n = map.tree().len() as u64;
-            let geometry = map.geometry();
-            let area: f64 = (0..geometry.len() as u32)
-                .map(|i| f64::from(geometry.area(i)))
-                .sum();
+            // The faces' area: the polygons' up to rounding, and no map's polygons built.
+            let area = self.face_area(id as u32);
             out.photons += n;
             out.area += area;
             if n < k as u64 {
