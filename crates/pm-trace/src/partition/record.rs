@@ -38,7 +38,8 @@ impl ContactRecord {
         self.source_faces.get(part.0 as usize).copied().flatten()
     }
 
-    /// Wall-clock seconds the split took.
+    /// Wall-clock seconds the partition took: cutting the faces where they meet, rebuilding
+    /// the scene from the pieces, and filling its maps.
     pub fn seconds(&self) -> f64 {
         self.seconds
     }
