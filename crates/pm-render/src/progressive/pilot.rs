@@ -157,39 +157,68 @@ mod tests {
     use crate::settings::RenderSettings;
     use pm_trace::{CreaseAngle, MapGeometry, Partitioner, scenes};
 
-    /// The pilot's extent at a point against brute force: the nearest site (every 16th
-    /// photon of the gathered kinds, in tree order) found by a scan, and the k-th smallest
-    /// Chebyshev distance from it to the map's photons of those kinds (the maximum distance
-    /// when fewer than k lie within it).
-    #[test]
-    fn extent_is_the_brute_force_k_nearest_extent_at_the_nearest_site() {
-        let scene = scenes::build("colored-rooms").unwrap();
-        let partitioned = CreaseAngle::default().partition(scene).unwrap();
-        let (scene, assignment, _) = partitioned.into_parts();
-        let settings = RenderSettings {
-            photons: 4_000,
-            k: 20,
-            mode: Mode::ShadowRays,
-            seed: 3,
-            ..RenderSettings::default()
-        };
-        let options = settings.estimator_options(&scene.bounds());
-        let trace = |pass| {
+    /// A built-in scene's crease maps and shadow-rays settings (k = 20), whose passes' photon
+    /// trees the tests trace.
+    struct Setup {
+        scene: pm_trace::Scene,
+        assignment: pm_trace::MapAssignment,
+        settings: RenderSettings,
+        options: EstimatorOptions,
+    }
+
+    impl Setup {
+        fn new(name: &str, photons: u32, seed: u64) -> Self {
+            let scene = scenes::build(name).unwrap();
+            let (scene, assignment, _) = CreaseAngle::default().partition(scene).unwrap().into_parts();
+            let settings = RenderSettings {
+                photons,
+                k: 20,
+                mode: Mode::ShadowRays,
+                seed,
+                ..RenderSettings::default()
+            };
+            let options = settings.estimator_options(&scene.bounds());
+            Setup {
+                scene,
+                assignment,
+                settings,
+                options,
+            }
+        }
+
+        /// Pass `pass`'s photon trees, all kinds.
+        fn trace(&self, pass: u64) -> Vec<PhotonTree> {
+            let (scene, assignment) = (&self.scene, &self.assignment);
             trace_pass(
-                &scene,
-                &assignment,
-                &settings,
+                scene,
+                assignment,
+                &self.settings,
                 &Emitter::uniform(),
                 pass,
                 KindMask::ALL,
             )
             .unwrap()
             .trees
-        };
-        let queries = trace(0);
-        let maps =
-            PhotonMaps::from_trees(&scene, &assignment, trace(PILOT_PASS), MapGeometry::Merged).unwrap();
-        let pilot = Pilot::new(maps, &GeometryCube, &options).unwrap();
+        }
+
+        /// A pilot over the pilot pass's photons, nothing computed yet.
+        fn pilot(&self) -> Pilot<'static, GeometryCube> {
+            let trees = self.trace(PILOT_PASS);
+            let maps = PhotonMaps::from_trees(&self.scene, &self.assignment, trees, MapGeometry::Merged);
+            Pilot::new(maps.unwrap(), &GeometryCube, &self.options).unwrap()
+        }
+    }
+
+    /// The pilot's extent at a point against brute force: the nearest site (every 16th
+    /// photon of the gathered kinds, in tree order) found by a scan, and the k-th smallest
+    /// Chebyshev distance from it to the map's photons of those kinds (the maximum distance
+    /// when fewer than k lie within it).
+    #[test]
+    fn extent_is_the_brute_force_k_nearest_extent_at_the_nearest_site() {
+        let setup = Setup::new("colored-rooms", 4_000, 3);
+        let options = setup.options;
+        let queries = setup.trace(0);
+        let pilot = setup.pilot();
         assert_eq!(pilot.maps_built(), 0, "nothing built before a point asks");
         let mut scratch = EstimatorScratch::new();
         let mut checked = 0;
@@ -236,39 +265,15 @@ mod tests {
     /// whichever thread asks first, and only the maps asked about get polygons.
     #[test]
     fn extents_do_not_depend_on_who_asks_first() {
-        let scene = scenes::build("cornell-box").unwrap();
-        let (scene, assignment, _) = CreaseAngle::default().partition(scene).unwrap().into_parts();
-        let settings = RenderSettings {
-            photons: 3_000,
-            k: 20,
-            mode: Mode::ShadowRays,
-            seed: 5,
-            ..RenderSettings::default()
-        };
-        let options = settings.estimator_options(&scene.bounds());
-        let trace = |pass| {
-            trace_pass(
-                &scene,
-                &assignment,
-                &settings,
-                &Emitter::uniform(),
-                pass,
-                KindMask::ALL,
-            )
-            .unwrap()
-            .trees
-        };
-        let queries: Vec<(usize, Vec3)> = trace(0)
+        let setup = Setup::new("cornell-box", 3_000, 5);
+        let queries: Vec<(usize, Vec3)> = setup
+            .trace(0)
             .iter()
             .enumerate()
             .flat_map(|(m, t)| (0..t.len() as u32).map(move |i| (m, t.position(i))))
             .collect();
         assert!(queries.len() > 1_000);
-        let pilot = || {
-            let maps = PhotonMaps::from_trees(&scene, &assignment, trace(PILOT_PASS), MapGeometry::Merged);
-            Pilot::new(maps.unwrap(), &GeometryCube, &options).unwrap()
-        };
-        let (forward, backward) = (pilot(), pilot());
+        let (forward, backward) = (setup.pilot(), setup.pilot());
         let mut scratch = EstimatorScratch::new();
         let in_order: Vec<Option<f32>> = queries
             .iter()
