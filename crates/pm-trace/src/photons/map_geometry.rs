@@ -205,7 +205,7 @@ mod tests {
                 }
                 assert_eq!(in_order.map(m).bounds(), reversed.map(m).bounds(), "map {m}");
                 let area: f64 = (0..a.len() as u32).map(|i| f64::from(a.area(i))).sum();
-                let faces = in_order.face_area(m);
+                let faces = in_order.face_area(m).unwrap();
                 assert!((area - faces).abs() <= 1e-5 * faces, "map {m}: {area} vs {faces}");
                 if kind == MapGeometry::PerFace {
                     let mut expected = Vec::new();
@@ -217,6 +217,7 @@ mod tests {
                 }
             }
             assert_eq!(reversed.maps_read(), asked.len(), "reading again builds nothing");
+            assert_eq!(in_order.face_area(in_order.len() as u32), None);
         }
     }
 }

@@ -128,9 +128,9 @@ impl PhotonMaps {
     }
 
     /// The area of map `id`'s faces, square metres (its polygons' area up to rounding,
-    /// without building them). Panics when `id` is not below [`PhotonMaps::len`].
-    pub fn face_area(&self, id: u32) -> f64 {
-        self.geometry.face_area(id as usize)
+    /// without building them), or `None` when there is no such map.
+    pub fn face_area(&self, id: u32) -> Option<f64> {
+        ((id as usize) < self.len()).then(|| self.geometry.face_area(id as usize))
     }
 
     /// The map of `part`.

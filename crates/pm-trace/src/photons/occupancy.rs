@@ -54,7 +54,7 @@ impl PhotonMaps {
         for (id, map) in self.iter().enumerate() {
             let n = map.tree().len() as u64;
             // The faces' area: the polygons' up to rounding, and no map's polygons built.
-            let area = self.face_area(id as u32);
+            let area = self.face_area(id as u32).unwrap_or(0.0);
             out.photons += n;
             out.area += area;
             if n < k as u64 {
