@@ -113,6 +113,11 @@ fn one_two_and_three_threads_give_bit_identical_images() {
         let one = render(1);
         assert_eq!(one, render(2), "{kind}: 1 and 2 threads differ");
         assert_eq!(one, render(3), "{kind}: 1 and 3 threads differ");
+        // Many threads asking for the same pilot sites and map polygons at once (each is
+        // computed by whichever asks first).
+        if kind == EstimatorKind::GeometryCube {
+            assert_eq!(one, render(64), "{kind}: 1 and 64 threads differ");
+        }
     }
     let sppm = |threads| {
         let s = SppmSettings::new(render_settings(6_000, threads), 3);
