@@ -43,6 +43,15 @@ METHODS = {
     "progressive": (["--mode", "progressive", "--direct", "shadow-rays"], "timed"),
     "progressive-gap1e-4": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001"], "timed"),
+    # Two camera samples per pixel on each pass's photons, or half the photons per pass: more
+    # camera samples per second, where per-pixel error is mostly pixel sampling noise.
+    "progressive-gap1e-4-spp2": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--spp", "2"], "timed"),
+    "progressive-gap1e-4-photons50k": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "50000"], "timed"),
+    "sppm-photons50k": (["--mode", "sppm", "--photons", "50000"], "timed"),
     "progressive-crease": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
     "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
