@@ -99,7 +99,7 @@ fn corners_along_an_edge_are_dropped() {
             .unwrap()
             .0
             & !PIECES;
-        assert_eq!(index.edges.len(), 4);
+        assert_eq!(index.edge_lines(), 4);
         assert_eq!(index.locate(list, Vec3::new(0.55, 0.25, 5.0)), Some(part(3)));
         assert_eq!(index.locate(list, Vec3::new(0.55, 0.6, 5.0)), None);
     }
