@@ -1,5 +1,5 @@
 //! A fast hash map for the geometry's own integer keys: grid cells, vertex indices and the bit
-//! patterns of coordinates. Welding a scene looks up 27 grid cells per vertex and linking
+//! patterns of coordinates. Welding a scene looks up grid cells and blocks of them per vertex and linking
 //! twins hashes every edge, so on a 57k-triangle interior the standard library's SipHash
 //! took a third of the time of building the meshes.
 //!
@@ -10,11 +10,14 @@
 //! collide, which mesh coordinates are not. Every map keyed with it is read by lookups only,
 //! or its iteration is sorted first, so nothing built depends on the hash.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hasher};
 
 /// A [`HashMap`] hashed with [`FastHasher`].
 pub(crate) type FastHashMap<K, V> = HashMap<K, V, BuildHasherDefault<FastHasher>>;
+
+/// A [`HashSet`] hashed with [`FastHasher`].
+pub(crate) type FastHashSet<K> = HashSet<K, BuildHasherDefault<FastHasher>>;
 
 /// An empty [`FastHashMap`] with room for `capacity` entries.
 pub(crate) fn fast_map_with_capacity<K, V>(capacity: usize) -> FastHashMap<K, V> {
