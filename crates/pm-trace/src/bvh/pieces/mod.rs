@@ -167,7 +167,8 @@ pub(crate) enum Coverage {
 
 /// One 16-byte row of the index, as four words. A cut face's rows follow one another: its
 /// header (piece count, [`Coverage`]), then for each piece, largest first, the piece's header
-/// (part, surface, edge count) and one row per edge line (the inward unit normal's bits and
+/// (part, surface, edge count, where its corners start in [`PieceIndex::corners`]) and one row
+/// per edge line (the inward unit normal's bits and
 /// the offset's, so that `offset - inward·p` is how far `p` lies outside it). So locating a
 /// point reads one run of memory from where its triangle's record points, rather than a list,
 /// then its pieces, then their edges, each somewhere else: on the obvhs kitchen that took a
@@ -181,8 +182,8 @@ impl Row {
         Row([pieces, coverage as u32, 0, 0])
     }
 
-    fn piece(part: PartSurface, edges: u32) -> Row {
-        Row([part.part.0, part.surface, edges, 0])
+    fn piece(part: PartSurface, edges: u32, first_corner: u32) -> Row {
+        Row([part.part.0, part.surface, edges, first_corner])
     }
 
     fn line(inward: Vec3, offset: f32) -> Row {
@@ -200,14 +201,14 @@ impl Row {
         (self.0[0] as usize, coverage)
     }
 
-    /// A piece header's part and edge count.
+    /// A piece header's part, edge count and first corner.
     #[inline]
-    fn piece_header(self) -> (PartSurface, usize) {
+    fn piece_header(self) -> (PartSurface, usize, usize) {
         let part = PartSurface {
             part: PartId(self.0[0]),
             surface: self.0[1],
         };
-        (part, self.0[2] as usize)
+        (part, self.0[2] as usize, self.0[3] as usize)
     }
 
     /// How far `p` lies outside this edge line.
@@ -218,11 +219,13 @@ impl Row {
     }
 }
 
-/// Every cut face's pieces, as convex outlines: [`Row`]s, and beside each edge line's row
-/// the corner its edge starts from (read only for a point off every piece).
+/// Every cut face's pieces, as convex outlines: [`Row`]s, and the corners their edges start
+/// from.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PieceIndex {
     rows: Vec<Row>,
+    /// Each piece's corners in the order of its edge lines (read only for a point off every
+    /// piece).
     corners: Vec<Vec3>,
     /// Points within this of a piece lie on it (the partition's tolerance).
     tolerance: f32,
@@ -263,14 +266,14 @@ impl PieceIndex {
         u32::try_from(self.rows.len() + rows)
             .ok()
             .filter(|&end| end <= PIECES)?;
+        u32::try_from(self.corners.len() + rows).ok()?;
         // Largest first: a hit lands in a piece in proportion to its area, so the search
         // mostly ends at the first one or two. Stable, so equal areas keep the pieces' order.
         outlines.sort_by(|a, b| b.0.total_cmp(&a.0));
         self.rows.push(Row::face(outlines.len() as u32, coverage));
-        self.corners.push(Vec3::ZERO);
         for (_, part, edges) in outlines {
-            self.rows.push(Row::piece(part, edges.len() as u32));
-            self.corners.push(Vec3::ZERO);
+            self.rows
+                .push(Row::piece(part, edges.len() as u32, self.corners.len() as u32));
             for e in edges {
                 self.rows.push(Row::line(e.inward, e.offset));
                 self.corners.push(e.from);
@@ -296,9 +299,9 @@ impl PieceIndex {
         let (pieces, _) = self.rows[face as usize].face_header();
         let mut at = face as usize + 1;
         for _ in 0..pieces {
-            let (part, edges) = self.rows[at].piece_header();
-            let lines = at + 1..at + 1 + edges;
-            if let Some(found) = visit(part, &self.rows[lines.clone()], &self.corners[lines]) {
+            let (part, edges, corner) = self.rows[at].piece_header();
+            let (lines, corners) = (at + 1..at + 1 + edges, corner..corner + edges);
+            if let Some(found) = visit(part, &self.rows[lines], &self.corners[corners]) {
                 return Some(found);
             }
             at += 1 + edges;
