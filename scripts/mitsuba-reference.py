@@ -194,7 +194,16 @@ def main():
     parser.add_argument("--max-depth", type=int, default=-1, help="-1: Russian roulette only, as ours")
     parser.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant (llvm_ad_rgb is faster where its JIT works; it failed to compile on the machine this was written on)")
     parser.add_argument("--out", default=os.path.join("target", "kitchen", "mitsuba.exr"))
+    parser.add_argument("--first-seed", type=int, default=1000,
+                        help="seed of the first pass (pass k renders with this + k)")
+    parser.add_argument("--combine-with", metavar="NPY",
+                        help="an earlier run's .npy of as many samples, rendered with seeds "
+                             "that do not overlap this run's: the output is both together")
     args = parser.parse_args()
+    out_npy = os.path.splitext(args.out)[0] + ".npy"
+    if args.combine_with and os.path.abspath(args.combine_with) == os.path.abspath(out_npy):
+        raise SystemExit(f"--out would write {out_npy}, the run named by --combine-with: "
+                         "name another output")
     import mitsuba as mi
 
     try:
@@ -209,17 +218,27 @@ def main():
     per_pass = max(1, args.spp // args.passes)
     images = []
     for k in range(args.passes):
-        img = np.array(mi.render(scene, spp=per_pass, seed=1000 + k))[:, :, :3]
+        img = np.array(mi.render(scene, spp=per_pass, seed=args.first_seed + k))[:, :, :3]
         images.append(img)
         print(f"pass {k + 1}/{args.passes}: mean {img.mean():.5f}", flush=True)
     stack = np.stack(images)
     mean = stack.mean(0)
     stderr = stack.std(0, ddof=1) / math.sqrt(args.passes) if args.passes > 1 else np.zeros_like(mean)
+    spp = per_pass * args.passes
+    if args.combine_with:
+        # Two independent estimates of as many samples: their mean, and its standard error.
+        earlier_mean, earlier_stderr = np.load(args.combine_with)
+        if earlier_mean.shape != mean.shape:
+            raise SystemExit(f"{args.combine_with}: {earlier_mean.shape[1]}x{earlier_mean.shape[0]}, "
+                             f"not {width}x{height}")
+        mean = (mean + earlier_mean) / 2
+        stderr = np.sqrt(stderr ** 2 + earlier_stderr ** 2) / 2
+        spp *= 2
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     mi.Bitmap(mean.astype(np.float32)).write(args.out)
-    np.save(os.path.splitext(args.out)[0] + ".npy", np.stack([mean, stderr]).astype(np.float32))
+    np.save(out_npy, np.stack([mean, stderr]).astype(np.float32))
     print(f"wrote {args.out} and its .npy (mean, standard error): {width}x{height}, "
-          f"{per_pass * args.passes} spp, mean rgb {mean.reshape(-1, 3).mean(0)}")
+          f"{spp} spp, mean rgb {mean.reshape(-1, 3).mean(0)}")
 
 
 if __name__ == "__main__":

@@ -227,8 +227,12 @@ fn measure_the_progressive_bias_as_passes_grow() {
 const MEAN_RATIO: f64 = 0.6;
 
 /// The disc darkens the top right corner's block (t ≈ −60 against the path tracer): a bias,
-/// not noise. It fell 0.194 → 0.122 from 2 to 32 passes, the 16^(−1/6) = 0.63 that the disc's
-/// radius shrinks by at α = 2/3; with α = 0.999 (volumes that barely shrink) it stays.
+/// not noise, which shrinks with the volumes. After 32 passes from the same first pass, the
+/// corner's error with the default α = 2/3 is below this fraction of its error with α = 0.999
+/// (volumes that barely shrink). Measured (3 seeds): 0.089 against 0.140 (0.64); before pixel
+/// samples were stratified, 0.127 against 0.173 (0.73). (Comparing the corner's error at 2
+/// and 32 passes of one α instead leaned on the noise of 2 passes, which stratified pixel
+/// samples cut: 0.110 → 0.089 at α = 2/3, and 0.120 → 0.140 at α = 0.999.)
 const CORNER_RATIO: f64 = 0.8;
 const DISC_CORNER: usize = 3;
 
@@ -257,17 +261,10 @@ fn the_progressive_modes_bias_falls_with_passes_region_by_region() {
     let (_, kind, mode) = PROGRESSIVE[1];
     let corner =
         |alpha: f32, passes: u64| rel(&progressive_blocks(kind, mode, passes, alpha, seeds))[DISC_CORNER];
-    let (early, late) = (corner(alpha, 2), corner(alpha, 32));
-    eprintln!("the disc's corner: {early:.3} at 2 passes, {late:.3} at 32");
+    let (shrinking, kept) = (corner(alpha, 32), corner(0.999, 32));
+    eprintln!("the disc's corner after 32 passes: {shrinking:.3} (alpha {alpha}), {kept:.3} (alpha 0.999)");
     assert!(
-        late < CORNER_RATIO * early,
-        "the disc's corner bias stays: {early:.3} to {late:.3}"
-    );
-    // The test can fail: volumes that keep their size keep the disc's corner bias.
-    let (early, late) = (corner(0.999, 2), corner(0.999, 32));
-    eprintln!("the disc's corner at alpha 0.999: {early:.3} at 2 passes, {late:.3} at 32");
-    assert!(
-        late > CORNER_RATIO * early,
-        "volumes that do not shrink: {early:.3} to {late:.3}"
+        shrinking < CORNER_RATIO * kept,
+        "the disc's corner bias does not shrink with the volumes: {shrinking:.3} against {kept:.3}"
     );
 }

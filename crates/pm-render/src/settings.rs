@@ -17,7 +17,8 @@ pub struct RenderSettings {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
-    /// Samples per pixel (jittered within the pixel).
+    /// Samples per pixel, spread over the pixel by a stratified sequence that progressive
+    /// passes continue ([`crate::core::pixel_samples`]).
     pub samples_per_pixel: u32,
     /// Photon paths emitted from the lights.
     pub photons: u32,

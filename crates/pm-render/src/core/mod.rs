@@ -10,6 +10,7 @@
 //! ```
 
 pub(crate) mod delta;
+pub mod pixel_samples;
 pub(crate) mod tiles;
 
 pub use delta::specular_bounce;

@@ -2,6 +2,7 @@
 //! from its own random stream, so the pixels are the same for any number of threads. One-shot
 //! renders copy each tile into an image; progressive passes add it to their sums.
 
+use super::pixel_samples::{pixel_position, sample_number};
 use super::{RadianceSource, camera_radiance};
 use crate::estimator::scratch::EstimatorScratch;
 use crate::progress::Progress;
@@ -21,14 +22,16 @@ pub struct Frame {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Jittered camera samples per pixel, averaged.
+    /// Camera samples per pixel, averaged (their positions: [`super::pixel_samples`]).
     pub samples_per_pixel: u32,
     /// Side of the square tiles handed to workers (at least 1).
     pub tile_size: u32,
 }
 
 /// Which random streams the pixel samples draw from: stream `pixel · spp + sample` of
-/// [`Rng::for_pass`]`(seed ^ salt, pass, ·)`. A one-shot render is pass 0.
+/// [`Rng::for_pass`]`(seed ^ salt, pass, ·)`; and where they land in their pixel: sample
+/// number `pass · spp + sample` of the pixel's sequence ([`super::pixel_samples`]). A
+/// one-shot render is pass 0.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SampleStreams {
     /// The render's seed.
@@ -99,8 +102,10 @@ pub fn render_tiles<S: RadianceSource + ?Sized>(
                     let mut sum = Vec3::ZERO;
                     for sample in 0..spp {
                         let mut rng = Rng::for_pass(seed, streams.pass, pixel * spp + sample);
-                        let u = (x as f32 + rng.next_f32()) / frame.width as f32;
-                        let v = (y as f32 + rng.next_f32()) / frame.height as f32;
+                        let number = sample_number(streams.pass, spp, sample);
+                        let at = pixel_position(streams.seed, pixel, number);
+                        let u = (x as f32 + at.x) / frame.width as f32;
+                        let v = (y as f32 + at.y) / frame.height as f32;
                         let l = camera_radiance(source, camera.ray(u, v, aspect), &mut rng, scratch);
                         if l.is_finite() {
                             sum += l;

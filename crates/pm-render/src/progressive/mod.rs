@@ -2,8 +2,9 @@
 //!
 //! Passes 0, 1, 2, … each trace a fresh, independent set of photons (path `p` of pass `i`
 //! draws from [`pm_trace::Rng::for_pass`]`(seed, i, p)`), build the maps the partition gives
-//! (crease or contact maps keep photons on the surfaces they belong to), render one jittered
-//! sample per pixel from streams `(seed, i, pixel)`, and add it to a running sum. Photons of
+//! (crease or contact maps keep photons on the surfaces they belong to), render one sample
+//! per pixel from streams `(seed, i, pixel)`, at sample number `i` of the pixel's stratified
+//! sequence of positions ([`crate::core::pixel_samples`]), and add it to a running sum. Photons of
 //! earlier passes are dropped: memory is one pass's maps, the pilot maps (below) and the sum.
 //!
 //! # The scheme and why
@@ -37,8 +38,8 @@
 //!   exactly unbiased for the irradiance smoothed over the pass's volume, the geometric area
 //!   keeps edges true at every radius, and the smoothing bias vanishes as `s_i → 0`.
 //!
-//! The passes are independent given their index, so a run can be split into shards of passes
-//! rendered anywhere and merged ([`Shard::merge`]).
+//! A pass depends only on its index (its photons' streams and its pixels' sample numbers), so
+//! a run can be split into shards of passes rendered anywhere and merged ([`Shard::merge`]).
 
 pub(crate) mod accumulation;
 pub(crate) mod pass_maps;

@@ -1,7 +1,8 @@
 //! Stochastic progressive photon mapping (Hachisuka & Jensen 2009) as pbrt-v4 implements it,
 //! the baseline the leak-free progressive renderer is compared with.
 //!
-//! Per pass, every pixel traces one jittered camera ray through specular bounces, adding
+//! Per pass, every pixel traces one camera ray (at its next position in the pixel's
+//! stratified sequence, [`crate::core::pixel_samples`]) through specular bounces, adding
 //! emission and direct light by shadow rays at each diffuse vertex it records as its visible
 //! point; the pass's photons (one global map, photons of kind direct left out since shadow
 //! rays carry direct light, as pbrt deposits no photon at a path's first hit) within the
@@ -21,6 +22,7 @@
 
 use super::accumulation::ProgressiveStats;
 use super::pass_maps::trace_pass_counted;
+use crate::core::pixel_samples::{pixel_position, sample_number};
 use crate::core::tiles::PIXEL_SEED_SALT;
 use crate::core::{PathVertex, follow_delta_bounces};
 use crate::emission::emitter::Emitter;
@@ -304,8 +306,9 @@ impl Pass<'_> {
         let scene = self.scene;
         let pixel_index = y as u64 * s.width as u64 + x as u64;
         let mut rng = Rng::for_pass(s.seed ^ PIXEL_SEED_SALT, self.pass, pixel_index);
-        let u = (x as f32 + rng.next_f32()) / s.width as f32;
-        let v = (y as f32 + rng.next_f32()) / s.height as f32;
+        let at = pixel_position(s.seed, pixel_index, sample_number(self.pass, 1, 0));
+        let u = (x as f32 + at.x) / s.width as f32;
+        let v = (y as f32 + at.y) / s.height as f32;
         let ray = scene.camera().ray(u, v, s.width as f32 / s.height as f32);
         let mut seen = Vec3::ZERO;
         let vertex = follow_delta_bounces(scene, ray, RayKind::Camera, &mut rng, |hit, _, throughput, _| {
