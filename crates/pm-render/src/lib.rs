@@ -8,7 +8,9 @@
 //! - [`core`]: the one path from a camera ray to radiance. A ray follows mirror and glass
 //!   bounces to its first diffuse vertex ([`PathVertex`]), where a [`RadianceSource`] reads
 //!   the radiance; one tile loop renders any source. Bring your own source to render with
-//!   the same core ([`Renderer::render_source`]).
+//!   the same core ([`Renderer::render_source`]). Camera samples spread over each pixel by
+//!   a scrambled Sobol' sequence that progressive passes continue
+//!   ([`core::pixel_samples`]).
 //! - [`Mode`]: `PhotonMap` (the photon maps read at the first diffuse hit), `ShadowRays`
 //!   (direct light by shadow rays), `PathTrace` (the unbiased reference) and `FinalGather`
 //!   (one gathered bounce into the [`RadianceCache`], precomputed irradiance in each map);
@@ -70,6 +72,12 @@
 //!   multiple maps, geometry area, both) and timing table this workspace reproduces; "the
 //!   report" in these docs is that report. The reproduction is in the repository's
 //!   `docs/results.md`.
+//! - I. M. Sobol', *On the distribution of points in a cube and the approximate evaluation of
+//!   integrals*, USSR Computational Mathematics and Mathematical Physics 7(4), 1967: the
+//!   low-discrepancy sequence the camera samples follow. Each pixel's is randomised by a
+//!   digital shift, which keeps its stratification and makes every sample uniform (P.
+//!   L'Ecuyer and C. Lemieux, *Recent Advances in Randomized Quasi-Monte Carlo Methods*,
+//!   2002).
 
 pub mod auto_photons;
 pub mod cache;
