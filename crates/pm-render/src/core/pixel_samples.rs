@@ -15,7 +15,8 @@
 //! Why it matters: where a pixel straddles an edge, above all a bright one (a lamp seen
 //! directly), its value is the fraction of its area on each side, which independent samples
 //! estimate with an error falling as `N^(−1/2)`, and stratified ones close to `N^(−3/4)`.
-//! Positions have 24 bits, so the sequence repeats after 2²⁴ samples of a pixel.
+//! Positions have 24 bits; the sequence repeats after 2³² samples of a pixel (it reads the
+//! sample number's low 32 bits).
 
 use glam::Vec2;
 use pm_trace::Rng;
@@ -39,17 +40,41 @@ fn sobol_second(mut n: u32) -> u32 {
     bits
 }
 
+/// One pixel's sequence of sample positions: its random digital shift, drawn once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelSequence {
+    shift_x: u32,
+    shift_y: u32,
+}
+
+impl PixelSequence {
+    /// The sequence of pixel `pixel` in a render of seed `seed`.
+    #[inline]
+    pub fn new(seed: u64, pixel: u64) -> Self {
+        let mut shifts = Rng::new(seed ^ SHIFT_SALT, pixel);
+        let (shift_x, shift_y) = (shifts.next_u32(), shifts.next_u32());
+        PixelSequence { shift_x, shift_y }
+    }
+
+    /// The position in `[0, 1)²` of sample number `sample` ([`sample_number`]).
+    #[inline]
+    pub fn position(self, sample: u64) -> Vec2 {
+        // The sequence is of the sample number's low 32 bits.
+        let n = sample as u32;
+        let unit = |bits: u32| (bits >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
+        Vec2::new(
+            unit(n.reverse_bits() ^ self.shift_x),
+            unit(sobol_second(n) ^ self.shift_y),
+        )
+    }
+}
+
 /// The position in `[0, 1)²` within pixel `pixel` of its camera sample number `sample`
 /// (`pass · samples per pass + sample in the pass`, [`sample_number`]), for a render of seed
-/// `seed`.
+/// `seed`: [`PixelSequence::position`] (which draws the pixel's shift once for all its samples).
 #[inline]
 pub fn pixel_position(seed: u64, pixel: u64, sample: u64) -> Vec2 {
-    let mut shifts = Rng::new(seed ^ SHIFT_SALT, pixel);
-    let (shift_x, shift_y) = (shifts.next_u32(), shifts.next_u32());
-    // The top 24 bits depend only on the sample number's low 24.
-    let n = sample as u32;
-    let unit = |bits: u32| (bits >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
-    Vec2::new(unit(n.reverse_bits() ^ shift_x), unit(sobol_second(n) ^ shift_y))
+    PixelSequence::new(seed, pixel).position(sample)
 }
 
 /// The sample number of sample `sample` of pass `pass`, with `per_pass` samples a pass.
@@ -134,6 +159,24 @@ mod tests {
                 assert_eq!(cells, [1; 16], "pixel {pixel}, samples from {first}");
             }
         }
+    }
+
+    /// The ends of the sample numbers: the sequence repeats after 2³² samples and not before
+    /// (at 2²⁴, where the 24-bit positions could suggest it, Sobol's second dimension still
+    /// differs), and numbers up to `u64::MAX` (a pass count times samples that wraps) still
+    /// give positions in `[0, 1)²`.
+    #[test]
+    fn sample_numbers_at_their_ends() {
+        let pixel = PixelSequence::new(11, 5);
+        for n in [0u64, 1, 77, (1 << 24) - 1] {
+            assert_eq!(pixel.position(n), pixel.position(n + (1 << 32)), "{n}");
+            assert_ne!(pixel.position(n), pixel.position(n + (1 << 24)), "{n}");
+        }
+        for n in [u64::MAX, u64::MAX - 1, 1 << 40, u32::MAX as u64] {
+            let p = pixel.position(n);
+            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y), "{n}: {p}");
+        }
+        assert_eq!(sample_number(u64::MAX, 2, 1), u64::MAX);
     }
 
     /// Samples continue across passes: sample `s` of pass `p` is number `p · per_pass + s`.

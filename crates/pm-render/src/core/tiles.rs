@@ -2,7 +2,7 @@
 //! from its own random stream, so the pixels are the same for any number of threads. One-shot
 //! renders copy each tile into an image; progressive passes add it to their sums.
 
-use super::pixel_samples::{pixel_position, sample_number};
+use super::pixel_samples::{PixelSequence, sample_number};
 use super::{RadianceSource, camera_radiance};
 use crate::estimator::scratch::EstimatorScratch;
 use crate::progress::Progress;
@@ -100,10 +100,10 @@ pub fn render_tiles<S: RadianceSource + ?Sized>(
                 for x in tile.x..tile.x + tile.width {
                     let pixel = u64::from(y) * u64::from(frame.width) + u64::from(x);
                     let mut sum = Vec3::ZERO;
+                    let sequence = PixelSequence::new(streams.seed, pixel);
                     for sample in 0..spp {
                         let mut rng = Rng::for_pass(seed, streams.pass, pixel * spp + sample);
-                        let number = sample_number(streams.pass, spp, sample);
-                        let at = pixel_position(streams.seed, pixel, number);
+                        let at = sequence.position(sample_number(streams.pass, spp, sample));
                         let u = (x as f32 + at.x) / frame.width as f32;
                         let v = (y as f32 + at.y) / frame.height as f32;
                         let l = camera_radiance(source, camera.ray(u, v, aspect), &mut rng, scratch);
