@@ -124,11 +124,23 @@ impl HalfEdgeMesh {
     fn link_twins(&mut self) {
         let count = self.he_origin.len();
         self.he_twin = vec![NO_TWIN; count];
+        // Each half-edge's vertex pair, made walking the faces: asking each half-edge for its
+        // target searches the face starts for its face, which on the kitchen's split cost
+        // as much again as the hashing (182 M instructions of the run's 5.95 G).
+        let mut keys: Vec<(u32, u32)> = Vec::with_capacity(count);
+        for face in self.face_starts.windows(2) {
+            let (start, end) = (face[0], face[1]);
+            for he in start..end {
+                let next = if he + 1 == end { start } else { he + 1 };
+                let (a, b) = (self.he_origin[he as usize], self.he_origin[next as usize]);
+                keys.push((a.min(b), a.max(b)));
+            }
+        }
         let mut edges: FastHashMap<(u32, u32), EdgeUse> = fast_map_with_capacity(count);
-        for he in 0..count as u32 {
-            let (a, b) = self.endpoints(he);
+        for (he, &key) in keys.iter().enumerate() {
+            let he = he as u32;
             edges
-                .entry((a.min(b), a.max(b)))
+                .entry(key)
                 .and_modify(|e| {
                     if e.count == 1 {
                         e.second = he;
@@ -152,12 +164,11 @@ impl HalfEdgeMesh {
             }
         }
         if self.non_manifold_edges > 0 {
-            for he in 0..count as u32 {
-                let (a, b) = self.endpoints(he);
-                let edge = edges[&(a.min(b), a.max(b))];
-                let twinned = edge.count == 2 && self.he_twin[he as usize] != NO_TWIN;
+            for (he, key) in keys.iter().enumerate() {
+                let edge = edges[key];
+                let twinned = edge.count == 2 && self.he_twin[he] != NO_TWIN;
                 if edge.count >= 2 && !twinned {
-                    self.he_twin[he as usize] = NON_MANIFOLD;
+                    self.he_twin[he] = NON_MANIFOLD;
                 }
             }
         }
