@@ -226,7 +226,6 @@ impl Partitioner for Contact {
         // The fill is part of the partition's time, as the crease-angle partition's is all fill.
         let start = std::time::Instant::now();
         let assignment = self.assign(&scene, &record);
-        eprintln!("FILL {:.4}", start.elapsed().as_secs_f64());
         record.seconds += start.elapsed().as_secs_f64();
         Ok(Partitioned::with_record(scene, assignment, record))
     }
