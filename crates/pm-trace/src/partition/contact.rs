@@ -87,7 +87,7 @@ impl Contact {
     }
 
     /// `scene` rebuilt with every mesh face cut where other faces meet it, its ray queries
-    /// searching the faces as given (`Scene::search_of_faces_as_given`), and what was found. Each piece keeps its
+    /// searching the faces as given (`Scene::trace_faces_as_given`), and what was found. Each piece keeps its
     /// face's surface and its vertex attributes (texture coordinates, colours and normals,
     /// interpolated over the original triangle, so [`Scene::albedo_at`] and
     /// [`Scene::shading_normal_at`] give what they gave before the split); lights, analytic
@@ -100,7 +100,7 @@ impl Contact {
     /// Fails with [`SceneError::Arrangement`] when the faces meet in more places than the
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
     /// mesh), before allocating past them.
-    fn split(&self, scene: Scene) -> Result<(Scene, ContactRecord, Option<OpenFaces>), SceneError> {
+    fn split(&self, scene: Scene) -> Result<(Scene, ContactRecord), SceneError> {
         let start = std::time::Instant::now();
         let tolerance = self.tolerance(&scene);
         let options = ArrangementOptions::new(tolerance, self.gap(&scene));
@@ -115,8 +115,7 @@ impl Contact {
                 seconds: start.elapsed().as_secs_f64(),
                 ..ContactRecord::default()
             };
-            let open = OpenFaces::welded(&scene, self.tolerance(&scene));
-            return Ok((scene, record, open));
+            return Ok((scene, record));
         }
 
         // One rebuilt mesh per original mesh, holding that mesh's pieces.
@@ -195,13 +194,7 @@ impl Contact {
         }
         let barriers = BarrierSet::new(split.barriers, tolerance);
         drop((piece_index, piece_sources));
-        // The faces with an open edge are welded (one sequential step) while the ray search
-        // of the faces as given is built: both only read the rebuilt scene.
-        let (search, open) = rayon::join(
-            || rebuilt.search_of_faces_as_given(&original, &source_faces, tolerance),
-            || OpenFaces::welded(&rebuilt, self.tolerance(&rebuilt)),
-        );
-        rebuilt.use_search(search);
+        rebuilt.trace_faces_as_given(&original, &source_faces, tolerance);
         let record = ContactRecord {
             barriers,
             sealed_parts,
@@ -209,7 +202,7 @@ impl Contact {
             counts,
             seconds: start.elapsed().as_secs_f64(),
         };
-        Ok((rebuilt, record, open))
+        Ok((rebuilt, record))
     }
 }
 
@@ -229,10 +222,10 @@ impl Contact {
 impl Partitioner for Contact {
     /// Splits the scene where its faces meet, then assigns the maps of the split scene.
     fn partition(&self, scene: Scene) -> Result<Partitioned, PartitionError> {
-        let (scene, mut record, open) = self.split(scene)?;
+        let (scene, mut record) = self.split(scene)?;
         // The fill is part of the partition's time, as the crease-angle partition's is all fill.
         let start = std::time::Instant::now();
-        let assignment = self.assign(&scene, &record, open.as_ref());
+        let assignment = self.assign(&scene, &record);
         record.seconds += start.elapsed().as_secs_f64();
         Ok(Partitioned::with_record(scene, assignment, record))
     }
@@ -244,16 +237,23 @@ impl Contact {
     /// fills of different meshes joined across flat edges they share. Maps are numbered in
     /// order of each group's first part, as the crease-angle maps are; every analytic part is
     /// a map of its own.
-    /// `open` is the scene's faces with an open edge, welded ([`OpenFaces::welded`]).
-    fn assign(&self, scene: &Scene, record: &ContactRecord, open: Option<&OpenFaces>) -> MapAssignment {
+    fn assign(&self, scene: &Scene, record: &ContactRecord) -> MapAssignment {
         let barriers = record.barriers();
         let sealed = |part: PartId| record.is_sealed(part);
-        let fill = flood_fill(scene, |mesh, he, part, other| {
-            !sealed(part) && !sealed(other) && self.joins(mesh, he, barriers)
-        });
+        // The fill and the welding of the faces with an open edge need only the scene: the
+        // weld (one sequential step, a fifth of the split's time on a modelled interior
+        // whose meshes share no vertex) runs beside the fill's meshes.
+        let (fill, open) = rayon::join(
+            || {
+                flood_fill(scene, |mesh, he, part, other| {
+                    !sealed(part) && !sealed(other) && self.joins(mesh, he, barriers)
+                })
+            },
+            || OpenFaces::welded(scene, self.tolerance(scene)),
+        );
         let mut groups = UnionFind::new(scene.part_count());
         if let Some(open) = open {
-            self.join_across_meshes(open, &fill, &sealed, barriers, &mut groups);
+            self.join_across_meshes(&open, &fill, &sealed, barriers, &mut groups);
         }
         let roots: Vec<u32> = fill.iter().map(|&f| groups.find(f)).collect();
         MapAssignment::from_roots(&roots)

@@ -21,7 +21,7 @@ pub(crate) enum RayTriangles {
     #[default]
     Own,
     /// None yet: the caller puts others in (the contact partition's faces as given,
-    /// `Scene::search_of_faces_as_given`), so the split scene's own are never searched.
+    /// `Scene::trace_faces_as_given`), so the split scene's own are never searched.
     Deferred,
 }
 

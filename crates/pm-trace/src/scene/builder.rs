@@ -270,7 +270,7 @@ impl SceneBuilder {
     }
 
     /// Builds the scene without searching its meshes' triangles: the caller puts the triangles
-    /// rays meet in afterwards (`Scene::search_of_faces_as_given`).
+    /// rays meet in afterwards (`Scene::trace_faces_as_given`).
     pub(crate) fn defer_ray_triangles(mut self) -> Self {
         self.ray_triangles = RayTriangles::Deferred;
         self

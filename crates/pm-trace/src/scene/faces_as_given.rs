@@ -7,7 +7,6 @@
 //! ray meets.
 
 use super::Scene;
-use crate::bvh::SceneBvh;
 use crate::bvh::pieces::{Coverage, PieceIndex};
 use crate::part::{PartId, PartSurface, SourceFace};
 use glam::Vec3;
@@ -50,21 +49,20 @@ impl Scene {
         out
     }
 
-    /// A ray search of `original` (the triangles of the scene this one was rebuilt from, each
-    /// with the face it belongs to) for this scene to use instead of its own pieces
-    /// ([`Scene::use_search`]); made from `&self`, so other work may read the scene meanwhile.
-    /// This scene's part `p` is a piece of face `sources[p]`. A triangle whose face lies in one
-    /// part keeps that part; one whose face was cut into pieces of several parts locates each
-    /// hit among them (within `tolerance`, metres); one whose face has no piece left (a hidden
-    /// copy of a coincident face, dropped) is not searched. The scene is built with
+    /// Makes this scene's ray queries search `original` (the triangles of the scene it was
+    /// rebuilt from, each with the face it belongs to) instead of its own pieces. This scene's
+    /// part `p` is a piece of face `sources[p]`. A triangle whose face lies in one part keeps
+    /// that part; one whose face was cut into pieces of several parts locates each hit among
+    /// them (within `tolerance`, metres); one whose face has no piece left (a hidden copy of a
+    /// coincident face, dropped) is not searched. Built with
     /// [`SceneBuilder::defer_ray_triangles`](super::builder::SceneBuilder::defer_ray_triangles),
     /// so the pieces are never searched themselves.
-    pub(crate) fn search_of_faces_as_given(
-        &self,
+    pub(crate) fn trace_faces_as_given(
+        &mut self,
         original: &[([Vec3; 3], SourceFace)],
         sources: &[Option<SourceFace>],
         tolerance: f32,
-    ) -> SceneBvh {
+    ) {
         let pieces = SourcePolygons::collect(self, sources);
         // A point rounded off a piece by the scene's own rounding still lies on it, where that
         // is coarser than the partition's tolerance (far from the origin).
@@ -89,12 +87,7 @@ impl Scene {
         index.shrink_to_fit();
         // The pieces' outlines are in the index now: not held while the hierarchy is built.
         drop(pieces);
-        self.bvh.with_triangles(triangles, parts, index)
-    }
-
-    /// Makes this scene's ray queries use `search` (from [`Scene::search_of_faces_as_given`]).
-    pub(crate) fn use_search(&mut self, search: SceneBvh) {
-        self.bvh = Arc::new(search);
+        self.bvh = Arc::new(self.bvh.with_triangles(triangles, parts, index));
     }
 
     /// Each mesh triangle of this scene with the face the user gave it belongs to
