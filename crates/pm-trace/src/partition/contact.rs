@@ -241,7 +241,7 @@ impl Contact {
         let barriers = record.barriers();
         let sealed = |part: PartId| record.is_sealed(part);
         // The fill and the welding of the faces with an open edge need only the scene: the
-        // weld (one sequential step, a fifth of the split's time on a modelled interior
+        // weld (one sequential step, 0.07–0.09 s of a 0.5–0.7 s split on a modelled interior
         // whose meshes share no vertex) runs beside the fill's meshes.
         let (fill, open) = rayon::join(
             || {
