@@ -378,3 +378,88 @@ fn source_faces_without_a_split_are_the_scene_s_own() {
         );
     }
 }
+
+/// A floor of two meshes (two materials) meeting along `x = 1` without sharing vertices, and
+/// walls standing across it at `x = 1` over `spans` of z.
+fn two_mesh_floor_with_wall(spans: &[(f32, f32)]) -> Scene {
+    let p = Vec3::new;
+    let half = |x0: f32, x1: f32| [p(x0, 0.0, 0.0), p(x0, 0.0, 1.0), p(x1, 0.0, 1.0), p(x1, 0.0, 0.0)];
+    let (white, grey) = (
+        Surface::diffuse(Vec3::splat(0.5)),
+        Surface::diffuse(Vec3::splat(0.3)),
+    );
+    let mut builder = Scene::builder()
+        .mesh(&half(0.0, 1.0), &[[0u32, 1, 2, 3]], white)
+        .mesh(&half(1.0, 2.0), &[[0u32, 1, 2, 3]], grey);
+    for &(z0, z1) in spans {
+        // A thin closed box whose face at x = 1 stands on the meshes' common edge (closed,
+        // so that its own open edges do not make the common edge non-manifold).
+        let (x0, x1) = (1.0, 1.02);
+        let wall = [
+            p(x0, 0.0, z0),
+            p(x0, 1.0, z0),
+            p(x0, 1.0, z1),
+            p(x0, 0.0, z1),
+            p(x1, 0.0, z0),
+            p(x1, 1.0, z0),
+            p(x1, 1.0, z1),
+            p(x1, 0.0, z1),
+        ];
+        // Outward normals: x = 1, x = 1.02, z = z0, z = z1, top, bottom.
+        let faces = [
+            [0u32, 3, 2, 1],
+            [4, 5, 6, 7],
+            [0, 1, 5, 4],
+            [3, 7, 6, 2],
+            [1, 2, 6, 5],
+            [0, 4, 7, 3],
+        ];
+        builder = builder.mesh(&wall, &faces, white);
+    }
+    builder
+        .light(PointLight::new(p(0.5, 0.5, 0.5), Vec3::splat(10.0)))
+        .build()
+        .unwrap()
+}
+
+/// Faces of different meshes that share a flat edge (welded across the meshes) share a map,
+/// which the crease maps never do; a wall standing on that edge keeps them apart, and a
+/// doorway in it lets them join again.
+#[test]
+fn meshes_sharing_a_flat_edge_share_a_map_unless_a_wall_stands_on_it() {
+    let floor = two_mesh_floor_with_wall(&[]);
+    let crease = CreaseAngle::default().partition(floor.clone()).unwrap();
+    let (scene, maps) = (crease.scene(), crease.assignment());
+    assert_ne!(
+        map_below(scene, maps, 0.5, 0.5),
+        map_below(scene, maps, 1.5, 0.5),
+        "crease maps stay within a mesh"
+    );
+    let contact = Contact::default().partition(floor).unwrap();
+    let (scene, maps) = (contact.scene(), contact.assignment());
+    assert_eq!(
+        map_below(scene, maps, 0.5, 0.5),
+        map_below(scene, maps, 1.5, 0.5),
+        "the two meshes join across their common flat edge"
+    );
+
+    let walled = Contact::default()
+        .partition(two_mesh_floor_with_wall(&[(0.0, 1.0)]))
+        .unwrap();
+    let (scene, maps) = (walled.scene(), walled.assignment());
+    assert_ne!(
+        map_below(scene, maps, 0.5, 0.5),
+        map_below(scene, maps, 1.5, 0.5),
+        "a wall on the common edge keeps the meshes apart"
+    );
+
+    let doorway = Contact::default()
+        .partition(two_mesh_floor_with_wall(&[(0.0, 0.4), (0.6, 1.0)]))
+        .unwrap();
+    let (scene, maps) = (doorway.scene(), doorway.assignment());
+    assert_eq!(
+        map_below(scene, maps, 0.5, 0.1),
+        map_below(scene, maps, 1.5, 0.9),
+        "light passes through the doorway between the meshes"
+    );
+}
