@@ -5,8 +5,8 @@ mod common;
 
 use pm_trace::glam::Vec3;
 use pm_trace::{
-    Contact, CreaseAngle, MapAssignment, PartSource, Partitioner, PointLight, Ray, RayKind, Scene, Surface,
-    TraceOptions, scenes, trace_photons,
+    Contact, CreaseAngle, MapAssignment, PartSource, Partitioned, Partitioner, PointLight, Ray, RayKind,
+    Scene, SceneBuilder, Surface, TraceOptions, scenes, trace_photons,
 };
 
 /// The map of the surface straight below `(x, 0.5, z)`.
@@ -103,8 +103,13 @@ fn floor_with_wall(spans: &[(f32, f32)]) -> Scene {
         ];
         builder = builder.mesh(&wall, &faces, white);
     }
+    lit_by_the_left_room_s_lamp(builder)
+}
+
+/// The scene of `builder` with a point lamp above the left room's floor.
+fn lit_by_the_left_room_s_lamp(builder: SceneBuilder) -> Scene {
     builder
-        .light(PointLight::new(p(0.5, 0.5, 0.5), Vec3::splat(10.0)))
+        .light(PointLight::new(Vec3::new(0.5, 0.5, 0.5), Vec3::splat(10.0)))
         .build()
         .unwrap()
 }
@@ -394,32 +399,10 @@ fn two_mesh_floor_with_wall(spans: &[(f32, f32)]) -> Scene {
     for &(z0, z1) in spans {
         // A thin closed box whose face at x = 1 stands on the meshes' common edge (closed,
         // so that its own open edges do not make the common edge non-manifold).
-        let (x0, x1) = (1.0, 1.02);
-        let wall = [
-            p(x0, 0.0, z0),
-            p(x0, 1.0, z0),
-            p(x0, 1.0, z1),
-            p(x0, 0.0, z1),
-            p(x1, 0.0, z0),
-            p(x1, 1.0, z0),
-            p(x1, 1.0, z1),
-            p(x1, 0.0, z1),
-        ];
-        // Outward normals: x = 1, x = 1.02, z = z0, z = z1, top, bottom.
-        let faces = [
-            [0u32, 3, 2, 1],
-            [4, 5, 6, 7],
-            [0, 1, 5, 4],
-            [3, 7, 6, 2],
-            [1, 2, 6, 5],
-            [0, 4, 7, 3],
-        ];
+        let (wall, faces) = solid_box(p(1.0, 0.0, z0), p(1.02, 1.0, z1));
         builder = builder.mesh(&wall, &faces, white);
     }
-    builder
-        .light(PointLight::new(p(0.5, 0.5, 0.5), Vec3::splat(10.0)))
-        .build()
-        .unwrap()
+    lit_by_the_left_room_s_lamp(builder)
 }
 
 /// Faces of different meshes that share a flat edge (welded across the meshes) share a map,
@@ -427,39 +410,32 @@ fn two_mesh_floor_with_wall(spans: &[(f32, f32)]) -> Scene {
 /// doorway in it lets them join again.
 #[test]
 fn meshes_sharing_a_flat_edge_share_a_map_unless_a_wall_stands_on_it() {
+    // Whether the floor below (x, z) = `left` and below `right` share a map.
+    let shared = |partitioned: Partitioned, left: (f32, f32), right: (f32, f32)| {
+        let (scene, maps) = (partitioned.scene(), partitioned.assignment());
+        map_below(scene, maps, left.0, left.1) == map_below(scene, maps, right.0, right.1)
+    };
+    let (left, right) = ((0.5, 0.5), (1.5, 0.5));
     let floor = two_mesh_floor_with_wall(&[]);
     let crease = CreaseAngle::default().partition(floor.clone()).unwrap();
-    let (scene, maps) = (crease.scene(), crease.assignment());
-    assert_ne!(
-        map_below(scene, maps, 0.5, 0.5),
-        map_below(scene, maps, 1.5, 0.5),
-        "crease maps stay within a mesh"
-    );
+    assert!(!shared(crease, left, right), "crease maps stay within a mesh");
     let contact = Contact::default().partition(floor).unwrap();
-    let (scene, maps) = (contact.scene(), contact.assignment());
-    assert_eq!(
-        map_below(scene, maps, 0.5, 0.5),
-        map_below(scene, maps, 1.5, 0.5),
+    assert!(
+        shared(contact, left, right),
         "the two meshes join across their common flat edge"
     );
-
     let walled = Contact::default()
         .partition(two_mesh_floor_with_wall(&[(0.0, 1.0)]))
         .unwrap();
-    let (scene, maps) = (walled.scene(), walled.assignment());
-    assert_ne!(
-        map_below(scene, maps, 0.5, 0.5),
-        map_below(scene, maps, 1.5, 0.5),
+    assert!(
+        !shared(walled, left, right),
         "a wall on the common edge keeps the meshes apart"
     );
-
     let doorway = Contact::default()
         .partition(two_mesh_floor_with_wall(&[(0.0, 0.4), (0.6, 1.0)]))
         .unwrap();
-    let (scene, maps) = (doorway.scene(), doorway.assignment());
-    assert_eq!(
-        map_below(scene, maps, 0.5, 0.1),
-        map_below(scene, maps, 1.5, 0.9),
+    assert!(
+        shared(doorway, (0.5, 0.1), (1.5, 0.9)),
         "light passes through the doorway between the meshes"
     );
 }
