@@ -13,11 +13,14 @@ What it reads of the glTF, and how it matches the project's renderer (examples/r
   see pm-trace/src/gltf/light.rs and units.rs;
 - the first perspective camera: its position, -Z axis and +Y axis, vertical field of view
   yfov, at the image size given (the renderer uses the image's aspect ratio);
-- pixels: box filter over the pixel, centre at +0.5 (the renderer jitters uniformly in the
-  pixel and averages).
+- pixels: box filter over the pixel, centre at +0.5 (the renderer's samples are each uniform
+  over the pixel, a scrambled stratified sequence, and averaged).
 
 Standard errors come from `--passes` independent renders with different seeds (each of
-spp / passes samples per pixel): the per-pixel standard error of their mean.
+spp / passes samples per pixel): the per-pixel standard error of their mean. Beside the .npy a
+.json records the samples per pixel and the seeds used, so that `--combine-with` can weight an
+earlier run by its samples and refuse one whose seeds overlap this run's (their samples would
+not be independent).
 
 Usage: scripts/mitsuba-reference.py SCENE.gltf --size 320x180 --spp 1024 --out ref.exr
 Not run in tests (CI has no Mitsuba).
@@ -184,6 +187,22 @@ def build_scene(path, width, height, punctual_factor, max_depth, workdir):
     return mi.load_dict(scene)
 
 
+def read_run_record(npy):
+    """The samples per pixel and seeds of the run that wrote `npy` (its .json). A run made
+    before the record was written has none: then it is taken to have as many samples as this
+    run, as --combine-with required then, and its seeds cannot be checked (said so)."""
+    path = os.path.splitext(npy)[0] + ".json"
+    if not os.path.exists(path):
+        print(f"warning: {path} is missing: {npy} is taken to have as many samples per pixel as "
+              "this run, and its seeds are not checked against this run's", file=sys.stderr)
+        return None
+    with open(path) as f:
+        record = json.load(f)
+    if not isinstance(record.get("spp"), int) or record["spp"] <= 0:
+        raise SystemExit(f"{path}: no positive 'spp'")
+    return record
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("scene")
@@ -197,13 +216,25 @@ def main():
     parser.add_argument("--first-seed", type=int, default=1000,
                         help="seed of the first pass (pass k renders with this + k)")
     parser.add_argument("--combine-with", metavar="NPY",
-                        help="an earlier run's .npy of as many samples, rendered with seeds "
-                             "that do not overlap this run's: the output is both together")
+                        help="an earlier run's .npy, rendered with seeds that do not overlap "
+                             "this run's: the output is both together, each weighted by its "
+                             "samples per pixel (from the .json beside it)")
     args = parser.parse_args()
-    out_npy = os.path.splitext(args.out)[0] + ".npy"
-    if args.combine_with and os.path.abspath(args.combine_with) == os.path.abspath(out_npy):
-        raise SystemExit(f"--out would write {out_npy}, the run named by --combine-with: "
-                         "name another output")
+    out_base = os.path.splitext(args.out)[0]
+    out_npy, out_json = out_base + ".npy", out_base + ".json"
+    inputs = [args.scene] + ([args.combine_with, os.path.splitext(args.combine_with)[0] + ".json"]
+                             if args.combine_with else [])
+    for written in (args.out, out_npy, out_json):
+        if any(os.path.abspath(written) == os.path.abspath(i) for i in inputs):
+            raise SystemExit(f"--out would write {written}, which is an input: name another output")
+    seeds = [args.first_seed, args.first_seed + args.passes - 1]
+    earlier = None
+    if args.combine_with:
+        earlier = read_run_record(args.combine_with) or {"seeds": []}
+        for first, last in earlier.get("seeds", []):
+            if first <= seeds[1] and seeds[0] <= last:
+                raise SystemExit(f"{args.combine_with} used seeds {first}-{last}, which overlap "
+                                 f"this run's {seeds[0]}-{seeds[1]}: choose another --first-seed")
     import mitsuba as mi
 
     try:
@@ -225,18 +256,28 @@ def main():
     mean = stack.mean(0)
     stderr = stack.std(0, ddof=1) / math.sqrt(args.passes) if args.passes > 1 else np.zeros_like(mean)
     spp = per_pass * args.passes
+    record = {"spp": spp, "seeds": [seeds]}
     if args.combine_with:
-        # Two independent estimates of as many samples: their mean, and its standard error.
+        # Two independent estimates, each the mean of its own samples: the mean of all the
+        # samples weights each by its count, and so does its standard error.
         earlier_mean, earlier_stderr = np.load(args.combine_with)
         if earlier_mean.shape != mean.shape:
             raise SystemExit(f"{args.combine_with}: {earlier_mean.shape[1]}x{earlier_mean.shape[0]}, "
                              f"not {width}x{height}")
-        mean = (mean + earlier_mean) / 2
-        stderr = np.sqrt(stderr ** 2 + earlier_stderr ** 2) / 2
-        spp *= 2
+        n0, n1 = earlier.get("spp", spp), spp
+        mean = (n0 * earlier_mean + n1 * mean) / (n0 + n1)
+        stderr = np.sqrt((n0 * earlier_stderr) ** 2 + (n1 * stderr) ** 2) / (n0 + n1)
+        record = {"spp": n0 + n1, "seeds": earlier.get("seeds", []) + [seeds]}
+        # Samples whose seeds no record gives (a run from before records), carried along.
+        unrecorded = earlier.get("unrecorded_spp", 0) + (0 if "spp" in earlier else n0)
+        if unrecorded:
+            record["unrecorded_spp"] = unrecorded
+        spp = n0 + n1
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     mi.Bitmap(mean.astype(np.float32)).write(args.out)
     np.save(out_npy, np.stack([mean, stderr]).astype(np.float32))
+    with open(out_json, "w") as f:
+        json.dump(record, f)
     print(f"wrote {args.out} and its .npy (mean, standard error): {width}x{height}, "
           f"{spp} spp, mean rgb {mean.reshape(-1, 3).mean(0)}")
 
