@@ -87,7 +87,7 @@ pub fn sample_number(pass: u64, per_pass: u64, sample: u64) -> u64 {
 mod tests {
     use super::*;
 
-    /// The fraction of a pixel below the line `y = 0.3 + 0.45 x`: a pixel on an edge.
+    /// 1 where `p` lies below the line `y = 0.3 + 0.45 x` (a pixel on an edge), else 0.
     fn covered(p: Vec2) -> f32 {
         f32::from(p.y < 0.3 + 0.45 * p.x)
     }
@@ -132,8 +132,9 @@ mod tests {
     }
 
     /// Each position lies in `[0, 1)²`, is uniform over the pixel across pixels (each quarter
-    /// of the pixel gets its share of first samples within 4 standard errors), and every 16
-    /// samples from a multiple of 16 fall one in each cell of a 4 × 4 grid.
+    /// of the pixel gets its share of first samples within 4 standard errors), and every 2ᵐ
+    /// samples from a multiple of 2ᵐ fall one in each cell of every grid of 2ᵐ cells,
+    /// 2ᵏ × 2ᵐ⁻ᵏ (the definition of a (0, 2)-sequence in base 2), for m = 4 and 8.
     #[test]
     fn positions_are_uniform_and_spread_within_a_pixel() {
         let pixels = 10_000u64;
@@ -149,14 +150,26 @@ mod tests {
             assert!((f64::from(q) - expected).abs() <= 4.0 * sd, "{quarters:?}");
         }
         for pixel in 0..100 {
-            for first in [0, 16, 4096] {
-                let mut cells = [0u32; 16];
-                for s in first..first + 16 {
-                    let p = pixel_position(3, pixel, s) * 4.0;
-                    cells[(p.x as usize).min(3) + 4 * (p.y as usize).min(3)] += 1;
+            let sequence = PixelSequence::new(3, pixel);
+            for m in [4u32, 8] {
+                let count = 1u64 << m;
+                for first in [0, count, 4096, (1 << 32) - count] {
+                    for k in 0..=m {
+                        let (columns, rows) = (1usize << k, 1usize << (m - k));
+                        let mut cells = vec![0u32; columns * rows];
+                        for s in first..first + count {
+                            let p = sequence.position(s);
+                            let column = ((p.x * columns as f32) as usize).min(columns - 1);
+                            let row = ((p.y * rows as f32) as usize).min(rows - 1);
+                            cells[column + columns * row] += 1;
+                        }
+                        // Independent points leave a fraction (1 − 2⁻ᵐ)^(2ᵐ) ≈ 1/e empty.
+                        assert!(
+                            cells.iter().all(|&c| c == 1),
+                            "pixel {pixel}, samples {first}..+{count}, {columns} x {rows} cells"
+                        );
+                    }
                 }
-                // Independent points leave 16 · (15/16)¹⁶ ≈ 5.7 cells empty on average.
-                assert_eq!(cells, [1; 16], "pixel {pixel}, samples from {first}");
             }
         }
     }
