@@ -18,6 +18,7 @@ mod batch;
 pub(crate) mod closest;
 mod pair;
 pub(crate) mod pieces;
+mod relabel;
 mod sah;
 mod scan;
 pub(crate) mod shape;
@@ -87,6 +88,11 @@ pub(crate) struct SceneBvh {
     /// Each triangle, in the search's order.
     triangles: Vec<TriangleRecord>,
     triangle_search: Search<TriangleBatches>,
+    /// For a hierarchy, each record's index among the triangles it was built from (empty for
+    /// a scan, whose records keep their order).
+    input_index: Vec<u32>,
+    /// Records that are never met ([`SceneBvh::with_parts_of`]).
+    dropped: usize,
     shapes: Vec<ShapePrimitive>,
     shape_search: Search<BoundsScan>,
     /// The pieces of cut faces (empty unless the contact partition cut some).
@@ -113,7 +119,7 @@ fn build_cwbvh(bounds: Vec<obvhs::aabb::Aabb>) -> (CwBvh, Vec<u32>) {
     drop(bounds);
     let mut bvh = bvh2_to_cwbvh(&bvh2, 3, true, false);
     // Leaf index i will be primitive i once the caller reorders by this; obvhs's traversal
-    // never reads the indices, so they are not kept twice.
+    // never reads the indices, so the caller keeps them instead.
     let order = std::mem::take(&mut bvh.primitive_indices);
     // The converter reserves nodes for the worst case (one per primitive).
     bvh.nodes.shrink_to_fit();
@@ -144,21 +150,20 @@ impl SceneBvh {
             part: parts[i].part,
             surface: parts[i].surface,
         };
-        let (triangles, triangle_search) = if triangles.is_empty() {
-            (Vec::new(), Search::Empty)
+        let (triangles, triangle_search, input_index) = if triangles.is_empty() {
+            (Vec::new(), Search::Empty, Vec::new())
         } else if triangles.len() <= scan_max {
             let records = (0..triangles.len()).map(record).collect();
-            (records, Search::Scan(TriangleBatches::new(triangles.clone())))
+            let scan = Search::Scan(TriangleBatches::new(triangles.clone()));
+            (records, scan, Vec::new())
         } else {
             let bounds = triangles
                 .iter()
                 .map(|v| to_obvhs(pm_geom::Aabb::from_points(v)))
                 .collect();
             let (bvh, order) = build_cwbvh(bounds);
-            (
-                order.iter().map(|&i| record(i as usize)).collect(),
-                Search::Bvh(bvh),
-            )
+            let records = order.iter().map(|&i| record(i as usize)).collect();
+            (records, Search::Bvh(bvh), order)
         };
         let (shapes, shape_search) = if shapes.is_empty() {
             (shapes, Search::Empty)
@@ -179,6 +184,8 @@ impl SceneBvh {
         SceneBvh {
             triangles,
             triangle_search,
+            input_index,
+            dropped: 0,
             shapes,
             shape_search,
             pieces: PieceIndex::default(),
@@ -289,9 +296,9 @@ impl SceneBvh {
             .then_some((point, magnitude, condition))
     }
 
-    /// Number of triangles.
+    /// Number of triangles a ray may meet.
     pub(crate) fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.triangles.len() - self.dropped
     }
 
     /// Heap bytes held (for memory accounting).
@@ -304,6 +311,7 @@ impl SceneBvh {
             }
         }
         self.triangles.capacity() * size_of::<TriangleRecord>()
+            + self.input_index.capacity() * size_of::<u32>()
             + self.shapes.capacity() * size_of::<ShapePrimitive>()
             + search_bytes(&self.triangle_search, TriangleBatches::heap_bytes)
             + search_bytes(&self.shape_search, BoundsScan::heap_bytes)

@@ -155,6 +155,7 @@ impl Contact {
         }
         // Rays will meet the faces as given: their triangles and faces, before the scene goes.
         let original = scene.mesh_triangle_sources();
+        let loaded_rays = scene.ray_search();
         // Vertex attributes (texture coordinates, colours, normals) carry over: each piece is
         // shaded by interpolating over the whole original triangle it lies in.
         let shading: Vec<_> = scene
@@ -194,7 +195,7 @@ impl Contact {
         }
         let barriers = BarrierSet::new(split.barriers, tolerance);
         drop((piece_index, piece_sources));
-        rebuilt.trace_faces_as_given(&original, &source_faces, tolerance);
+        rebuilt.trace_faces_as_given(&original, &source_faces, tolerance, loaded_rays);
         let record = ContactRecord {
             barriers,
             sealed_parts,

@@ -7,6 +7,7 @@
 //! ray meets.
 
 use super::Scene;
+use crate::bvh::SceneBvh;
 use crate::bvh::pieces::{Coverage, PieceIndex};
 use crate::part::{PartId, PartSurface, SourceFace};
 use glam::Vec3;
@@ -54,20 +55,22 @@ impl Scene {
     /// part `p` is a piece of face `sources[p]`. A triangle whose face lies in one part keeps
     /// that part; one whose face was cut into pieces of several parts locates each hit among
     /// them (within `tolerance`, metres); one whose face has no piece left (a hidden copy of a
-    /// coincident face, dropped) is not searched. Built with
+    /// coincident face, dropped) is not met. Built with
     /// [`SceneBuilder::defer_ray_triangles`](super::builder::SceneBuilder::defer_ray_triangles),
-    /// so the pieces are never searched themselves.
+    /// so the pieces are never searched themselves. `loaded` is the ray search of the scene
+    /// `original` came from: when it is a hierarchy over those triangles, it is taken over
+    /// with the new parts ([`SceneBvh::with_parts_of`]) rather than built again.
     pub(crate) fn trace_faces_as_given(
         &mut self,
         original: &[([Vec3; 3], SourceFace)],
         sources: &[Option<SourceFace>],
         tolerance: f32,
+        loaded: Arc<SceneBvh>,
     ) {
         let pieces = SourcePolygons::collect(self, sources);
         // A point rounded off a piece by the scene's own rounding still lies on it, where that
         // is coarser than the partition's tolerance (far from the origin).
         let mut index = PieceIndex::new(tolerance.max(4.0 * self.epsilon()));
-        let mut triangles = Vec::with_capacity(original.len());
         let mut parts = Vec::with_capacity(original.len());
         // Original triangles of one face come together: each run is one face, whose record
         // part is made once.
@@ -78,16 +81,23 @@ impl Scene {
             let run = &original[start..end];
             let from = pieces.outlines.partition_point(|o| o.face < face);
             let to = pieces.outlines.partition_point(|o| o.face <= face);
-            if let Some(part) = face_part(run, &pieces, from..to, &mut index) {
-                triangles.extend(run.iter().map(|&(v, _)| v));
-                parts.extend(std::iter::repeat_n(part, run.len()));
-            }
+            let part = face_part(run, &pieces, from..to, &mut index);
+            parts.extend(std::iter::repeat_n(part, run.len()));
             start = end;
         }
         index.shrink_to_fit();
-        // The pieces' outlines are in the index now: not held while the hierarchy is built.
+        // The pieces' outlines are in the index now: not held while the search is made.
         drop(pieces);
-        self.bvh = Arc::new(self.bvh.with_triangles(triangles, parts, index));
+        let bvh = match self.bvh.with_parts_of(loaded, |i| original[i].0, &parts, index) {
+            Ok(bvh) => bvh,
+            Err(index) => {
+                let kept = |i: &usize| parts[*i].is_some();
+                let triangles = (0..original.len()).filter(kept).map(|i| original[i].0).collect();
+                let parts = parts.iter().flatten().copied().collect();
+                self.bvh.with_triangles(triangles, parts, index)
+            }
+        };
+        self.bvh = Arc::new(bvh);
     }
 
     /// Each mesh triangle of this scene with the face the user gave it belongs to

@@ -142,6 +142,12 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The ray-query structure, shared (the contact partition takes it over for the scene it
+    /// rebuilds).
+    pub(crate) fn ray_search(&self) -> Arc<SceneBvh> {
+        Arc::clone(&self.bvh)
+    }
+
     /// The ray-query structure (for tests that compare its two kinds of search).
     #[cfg(test)]
     pub(crate) fn search(&self) -> &SceneBvh {
