@@ -67,15 +67,25 @@ pub fn contacts_json(record: Option<&ContactRecord>) -> String {
         return "null".to_owned();
     };
     let c = record.counts();
+    let p = record.phases();
+    let a = p.arrangement;
     format!(
-        "{{\"piercing\": {}, \"in_plane\": {}, \"coplanar_overlap\": {}, \"near_contact\": {}, \"duplicate_pieces\": {}, \"sealed_pieces\": {}, \"seconds\": {}}}",
+        "{{\"piercing\": {}, \"in_plane\": {}, \"coplanar_overlap\": {}, \"near_contact\": {}, \"duplicate_pieces\": {}, \"sealed_pieces\": {}, \"candidate_pairs\": {}, \"seconds\": {}, \"phases\": {{\"faces\": {}, \"meetings\": {}, \"cutting\": {}, \"copies_and_sealing\": {}, \"rebuild\": {}, \"faces_as_given\": {}, \"fill\": {}}}}}",
         c.piercing,
         c.in_plane,
         c.coplanar_overlap,
         c.near_contact,
         c.duplicate_pieces,
         c.sealed_pieces,
-        json_number(record.seconds())
+        c.candidate_pairs,
+        json_number(record.seconds()),
+        json_number(p.faces + a.faces),
+        json_number(a.meetings),
+        json_number(a.cutting),
+        json_number(a.copies_and_sealing),
+        json_number(p.rebuild),
+        json_number(p.faces_as_given),
+        json_number(p.fill)
     )
 }
 

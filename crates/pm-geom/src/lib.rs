@@ -81,7 +81,7 @@ pub mod volume;
 
 pub use aabb::Aabb;
 pub use arrangement::{
-    Arrangement, ArrangementError, ArrangementOptions, BarrierSet, IntersectionCounts,
+    Arrangement, ArrangementError, ArrangementOptions, ArrangementSeconds, BarrierSet, IntersectionCounts,
     split_polygons_at_intersections,
 };
 pub use ball::{Ball, polygon_area_in_ball};

@@ -165,7 +165,8 @@ pub use light::{
 pub use material::{Material, Surface};
 pub use part::{PartId, PartSource, SourceFace};
 pub use partition::{
-    Contact, ContactRecord, CreaseAngle, MapAssignment, PartitionError, Partitioned, Partitioner, SingleMap,
+    Contact, ContactRecord, ContactSeconds, CreaseAngle, MapAssignment, PartitionError, Partitioned,
+    Partitioner, SingleMap,
 };
 pub use photons::{
     EmissionGuide, GuideOptions, MAX_PHOTON_PATHS, MAX_STORED_PHOTONS, MapGeometry, MapOccupancy,

@@ -235,6 +235,14 @@ fn contact_maps_come_only_with_the_split_scene() {
         .record()
         .expect("the contact partition keeps what it found");
     assert!(record.counts().in_plane > 0, "{:?}", record.counts());
+    // Every meeting came from a candidate pair, and the partition's time is its steps' sum.
+    assert!(record.counts().candidate_pairs >= record.counts().meetings());
+    let phases = record.phases();
+    assert_eq!(record.seconds(), phases.total(), "{phases:?}");
+    assert!(
+        phases.arrangement.meetings > 0.0 && phases.fill > 0.0,
+        "{phases:?}"
+    );
     // The maps are the split scene's: they cover its parts, not the scene as built.
     assert!(contact.scene().part_count() > parts);
     assert_eq!(contact.assignment().part_count(), contact.scene().part_count());

@@ -16,6 +16,9 @@ pub struct IntersectionCounts {
     pub duplicate_pieces: usize,
     /// Pieces inside a closed solid, where no light reaches.
     pub sealed_pieces: usize,
+    /// Face pairs examined: those the broad phase found close enough to meet (each pair
+    /// once), of which the counts above met.
+    pub candidate_pairs: usize,
 }
 
 impl IntersectionCounts {

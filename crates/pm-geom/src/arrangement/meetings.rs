@@ -71,8 +71,12 @@ pub(super) fn find_meetings(
         }
     }
     let Fold {
-        mut found, pending, ..
+        mut found,
+        pending,
+        pair_count,
+        ..
     } = fold;
+    found.counts.candidate_pairs = pair_count;
     close_slits(
         &mut found.cuts,
         &mut found.barriers,

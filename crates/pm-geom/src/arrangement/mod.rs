@@ -36,6 +36,7 @@ mod pair;
 #[cfg(test)]
 mod parallel_tests;
 mod pieces;
+mod seconds;
 #[cfg(test)]
 mod slit_tests;
 mod slits;
@@ -48,6 +49,7 @@ pub use barrier::BarrierSet;
 pub use budget::ArrangementError;
 pub use counts::IntersectionCounts;
 pub use options::ArrangementOptions;
+pub use seconds::ArrangementSeconds;
 
 use crate::aabb::Aabb;
 use crate::polygon::polygon_vector_area;
@@ -75,6 +77,8 @@ pub struct Arrangement {
     pub barriers: Vec<[Vec3; 2]>,
     /// What was found.
     pub counts: IntersectionCounts,
+    /// How long each step took.
+    pub seconds: ArrangementSeconds,
 }
 
 /// Cuts the convex planar `polygons` wherever they meet each other.
@@ -116,6 +120,14 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
     solids: &[Option<u32>],
     options: &ArrangementOptions,
 ) -> Result<Arrangement, ArrangementError> {
+    let mut clock = std::time::Instant::now();
+    let mut lap = || {
+        let now = std::time::Instant::now();
+        let seconds = (now - clock).as_secs_f64();
+        clock = now;
+        seconds
+    };
+    let mut seconds = ArrangementSeconds::default();
     let (tolerance, gap) = tolerances(polygons, options);
     let duplicate = exact_duplicates(polygons);
     let neighbours = EdgeNeighbours::new(polygons);
@@ -131,12 +143,14 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
             }
         })
         .collect();
+    seconds.faces = lap();
     let Meetings {
         cuts,
         barriers,
         hidden_by,
         mut counts,
     } = find_meetings(&faces, tolerance, gap, options)?;
+    seconds.meetings = lap();
     let mut pieces = cut_faces(
         polygons,
         &faces,
@@ -146,6 +160,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
         options,
         &mut counts,
     )?;
+    seconds.cutting = lap();
     let keep = drop_hidden_copies(
         &pieces,
         &faces,
@@ -178,6 +193,8 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
     }
     counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
     out.counts = counts;
+    seconds.copies_and_sealing = lap();
+    out.seconds = seconds;
     Ok(out)
 }
 

@@ -8,7 +8,7 @@ use super::Partitioner;
 use super::assignment::MapAssignment;
 use super::flood::flood_fill;
 use super::partitioned::{PartitionError, Partitioned};
-use super::record::ContactRecord;
+use super::record::{ContactRecord, ContactSeconds};
 use crate::error::SceneError;
 use crate::material::Surface;
 use crate::part::{PartId, PartSource, SourceFace};
@@ -101,18 +101,29 @@ impl Contact {
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
     /// mesh), before allocating past them.
     fn split(&self, scene: Scene) -> Result<(Scene, ContactRecord), SceneError> {
-        let start = std::time::Instant::now();
+        let mut clock = std::time::Instant::now();
+        let mut lap = || {
+            let now = std::time::Instant::now();
+            let seconds = (now - clock).as_secs_f64();
+            clock = now;
+            seconds
+        };
+        let mut phases = ContactSeconds::default();
         let tolerance = self.tolerance(&scene);
         let options = ArrangementOptions::new(tolerance, self.gap(&scene));
         let faces = mesh_faces(&scene);
+        phases.faces = lap();
         let mut split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
+        lap();
+        phases.arrangement = split.seconds;
         let counts = split.counts;
         if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
             let record = ContactRecord {
                 source_faces: (0..scene.part_count() as u32)
                     .map(|p| scene.source_face(PartId(p)))
                     .collect(),
-                seconds: start.elapsed().as_secs_f64(),
+                seconds: phases.faces + phases.arrangement.total(),
+                phases,
                 ..ContactRecord::default()
             };
             return Ok((scene, record));
@@ -195,13 +206,16 @@ impl Contact {
         }
         let barriers = BarrierSet::new(split.barriers, tolerance);
         drop((piece_index, piece_sources));
+        phases.rebuild = lap();
         rebuilt.trace_faces_as_given(&original, &source_faces, tolerance, loaded_rays);
+        phases.faces_as_given = lap();
         let record = ContactRecord {
             barriers,
             sealed_parts,
             source_faces,
             counts,
-            seconds: start.elapsed().as_secs_f64(),
+            seconds: phases.total(),
+            phases,
         };
         Ok((rebuilt, record))
     }
@@ -227,7 +241,8 @@ impl Partitioner for Contact {
         // The fill is part of the partition's time, as the crease-angle partition's is all fill.
         let start = std::time::Instant::now();
         let assignment = self.assign(&scene, &record);
-        record.seconds += start.elapsed().as_secs_f64();
+        record.phases.fill = start.elapsed().as_secs_f64();
+        record.seconds += record.phases.fill;
         Ok(Partitioned::with_record(scene, assignment, record))
     }
 }

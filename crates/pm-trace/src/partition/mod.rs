@@ -14,7 +14,7 @@ pub use assignment::MapAssignment;
 pub use contact::Contact;
 pub use crease::CreaseAngle;
 pub use partitioned::{PartitionError, Partitioned};
-pub use record::ContactRecord;
+pub use record::{ContactRecord, ContactSeconds};
 
 use crate::scene::Scene;
 
