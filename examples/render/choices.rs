@@ -12,7 +12,9 @@ use std::fmt;
 pub enum MapsChoice {
     /// One global photon map (Jensen's basic method).
     Single,
-    /// One map per group of faces joined across edges with a small crease angle.
+    /// One map per group of faces joined across edges with a small crease angle (the report's
+    /// baseline, fastest to build; not for modelled interiors: a wall's map runs on behind the
+    /// cabinet standing against it, and the wall reads dark, 6 % over the obvhs kitchen).
     Crease,
     /// The default: crease-angle maps that never join across faces that meet — walls standing
     /// on or running through floors, overlapping or duplicated faces, gaps under 0.2 % of the
