@@ -36,7 +36,7 @@ impl BarrierSet {
             })
             .collect();
         BarrierSet {
-            bvh: BoundsBvh::build(&boxes),
+            bvh: BoundsBvh::build_sah(&boxes, crate::bounds_bvh::MAX_LEAF),
             segments,
             boxes,
             tolerance,

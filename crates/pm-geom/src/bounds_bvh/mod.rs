@@ -4,6 +4,8 @@
 use crate::aabb::Aabb;
 use glam::Vec3;
 
+mod sah;
+
 /// Items per leaf; small leaves suit the few-polygons-per-query pattern of the estimator.
 pub(crate) const MAX_LEAF: usize = 4;
 /// Traversal stack depth. Median splits give depth ≤ log2(n / MAX_LEAF) + 1 < 32 for any
@@ -163,35 +165,105 @@ mod tests {
         (*state >> 40) as f32 / (1u64 << 24) as f32
     }
 
-    #[test]
-    fn candidates_match_brute_force_overlaps() {
+    /// 1,000 small boxes in a 10 m cube, and (for the surface-area build's reason to be) as
+    /// many again long and thin along the axes, as the segments where faces meet are.
+    fn mixed_boxes(count: usize) -> Vec<Aabb> {
         let mut s = 7;
         let mut r = || lcg(&mut s);
-        let boxes: Vec<Aabb> = (0..1000)
-            .map(|_| {
+        (0..count)
+            .map(|k| {
                 let c = Vec3::new(r(), r(), r()) * 10.0;
-                Aabb::new(c, c + Vec3::new(r(), r(), r()) * 0.5)
+                let size = if k % 2 == 0 {
+                    Vec3::new(r(), r(), r()) * 0.5
+                } else {
+                    [Vec3::X, Vec3::Y, Vec3::Z][k % 3] * r() * 8.0 + Vec3::splat(1e-3)
+                };
+                Aabb::new(c, c + size)
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn candidates_match_brute_force_overlaps() {
+        let boxes = mixed_boxes(2000);
+        let mut s = 11;
+        let mut r = || lcg(&mut s);
         // Every leaf size the crate builds with (the estimator's, the broad phase's, the
-        // T-junction points'), and one item a leaf.
+        // T-junction points'), and one item a leaf; by median and by surface-area splits.
         for leaf in [1, MAX_LEAF, 12, 16] {
-            let bvh = BoundsBvh::build_with_leaves(&boxes, leaf);
-            for _ in 0..200 {
-                let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
-                let mut got = Vec::new();
-                bvh.for_each_candidate(&q, |i| {
-                    if boxes[i as usize].overlaps(&q) {
-                        got.push(i)
-                    }
-                });
-                got.sort_unstable();
-                let want: Vec<u32> = (0..boxes.len() as u32)
-                    .filter(|&i| boxes[i as usize].overlaps(&q))
-                    .collect();
-                assert_eq!(got, want, "leaves of {leaf}");
+            let trees = [
+                ("median", BoundsBvh::build_with_leaves(&boxes, leaf)),
+                ("sah", BoundsBvh::build_sah(&boxes, leaf)),
+            ];
+            for (kind, bvh) in trees {
+                for _ in 0..200 {
+                    let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
+                    let mut got = Vec::new();
+                    bvh.for_each_candidate(&q, |i| {
+                        if boxes[i as usize].overlaps(&q) {
+                            got.push(i)
+                        }
+                    });
+                    got.sort_unstable();
+                    let want: Vec<u32> = (0..boxes.len() as u32)
+                        .filter(|&i| boxes[i as usize].overlaps(&q))
+                        .collect();
+                    assert_eq!(got, want, "{kind}, leaves of {leaf}");
+                }
             }
         }
+    }
+
+    /// The surface-area build makes the same tree on one thread and on many (its halves past
+    /// `SAH_PARALLEL_MIN` are built beside each other), and one whose queries visit fewer
+    /// nodes than the median build's where long boxes mix with small ones.
+    #[test]
+    fn the_surface_area_tree_is_the_same_on_any_thread_count_and_visits_fewer_nodes() {
+        let boxes = mixed_boxes(20_000);
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| BoundsBvh::build_sah(&boxes, 12))
+        };
+        let one = on(1);
+        for threads in [2, 8] {
+            let many = on(threads);
+            assert_eq!(one.order, many.order, "{threads} threads");
+            let bits = |b: &BoundsBvh| -> Vec<[u32; 8]> {
+                b.nodes
+                    .iter()
+                    .map(|n| {
+                        let [a, b, c] = n.min.to_array().map(f32::to_bits);
+                        let [d, e, f] = n.max.to_array().map(f32::to_bits);
+                        [a, b, c, d, e, f, n.first, n.count]
+                    })
+                    .collect()
+            };
+            assert_eq!(bits(&one), bits(&many), "{threads} threads");
+        }
+        let visits = |bvh: &BoundsBvh| {
+            let mut s = 3;
+            let mut visited = 0usize;
+            for _ in 0..2000 {
+                let p = Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)) * 10.0;
+                let mut stack = vec![0u32];
+                while let Some(i) = stack.pop() {
+                    visited += 1;
+                    let n = bvh.nodes[i as usize];
+                    if n.count == 0 && n.min.cmple(p).all() && p.cmple(n.max).all() {
+                        stack.extend([n.first, i + 1]);
+                    }
+                }
+            }
+            visited
+        };
+        let (median, sah) = (visits(&BoundsBvh::build_with_leaves(&boxes, 12)), visits(&one));
+        assert!(
+            sah < median,
+            "surface-area tree visits {sah} nodes, median tree {median}"
+        );
     }
 
     #[test]
