@@ -256,33 +256,57 @@ fn has_suffix_ignore_case(s: &str, suffix: &str) -> bool {
     s.len() >= suffix.len() && s.as_bytes()[s.len() - suffix.len()..].eq_ignore_ascii_case(suffix.as_bytes())
 }
 
-/// Standard or URL-safe base64, padding optional; `None` on any other character.
-pub(super) fn decode_base64(text: &str) -> Option<Vec<u8>> {
-    fn value(c: u8) -> Option<u32> {
-        Some(match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' | b'-' => 62,
-            b'/' | b'_' => 63,
-            _ => return None,
-        } as u32)
+/// Each byte's base64 value (standard and URL-safe alphabets alike), or [`NOT_BASE64`].
+const BASE64_VALUES: [u8; 256] = {
+    let mut values = [NOT_BASE64; 256];
+    let mut i = 0;
+    while i < 26 {
+        values[b'A' as usize + i] = i as u8;
+        values[b'a' as usize + i] = 26 + i as u8;
+        if i < 10 {
+            values[b'0' as usize + i] = 52 + i as u8;
+        }
+        i += 1;
     }
+    values[b'+' as usize] = 62;
+    values[b'-' as usize] = 62;
+    values[b'/' as usize] = 63;
+    values[b'_' as usize] = 63;
+    values
+};
+
+/// Marks a byte that is no base64 digit (any value of 64 or more would do).
+const NOT_BASE64: u8 = 0xFF;
+
+/// Standard or URL-safe base64, padding optional; `None` on any other character. Four digits
+/// at a time by table (an embedded glTF buffer is megabytes of them), any invalid digit
+/// noticed once at the end.
+pub(super) fn decode_base64(text: &str) -> Option<Vec<u8>> {
     let text = text.trim_end_matches('=').as_bytes();
     if text.len() % 4 == 1 {
         return None;
     }
     let mut out = Vec::with_capacity(text.len() / 4 * 3 + 2);
-    for chunk in text.chunks(4) {
-        let mut acc = 0u32;
-        for &c in chunk {
-            acc = (acc << 6) | value(c)?;
-        }
-        acc <<= 6 * (4 - chunk.len() as u32);
-        let bytes = acc.to_be_bytes();
-        out.extend_from_slice(&bytes[1..chunk.len()]);
+    let value = |c: u8| BASE64_VALUES[c as usize];
+    let mut seen = 0u8;
+    let mut chunks = text.chunks_exact(4);
+    for chunk in &mut chunks {
+        let [a, b, c, d] = [chunk[0], chunk[1], chunk[2], chunk[3]].map(value);
+        seen |= a | b | c | d;
+        let acc = (u32::from(a) << 18) | (u32::from(b) << 12) | (u32::from(c) << 6) | u32::from(d);
+        out.extend_from_slice(&acc.to_be_bytes()[1..]);
     }
-    Some(out)
+    let rest = chunks.remainder();
+    if !rest.is_empty() {
+        let mut acc = 0u32;
+        for &c in rest {
+            seen |= value(c);
+            acc = (acc << 6) | u32::from(value(c) & 63);
+        }
+        acc <<= 6 * (4 - rest.len() as u32);
+        out.extend_from_slice(&acc.to_be_bytes()[1..rest.len()]);
+    }
+    (seen < 64).then_some(out)
 }
 
 #[cfg(test)]
@@ -305,6 +329,56 @@ mod tests {
         }
         assert_eq!(decode_base64("Zm9v!"), None);
         assert_eq!(decode_base64("Z"), None);
+    }
+
+    /// Base64 the slow way, six bits at a time off a bit string: the independent encoder the
+    /// table decoder is checked against.
+    fn encode(bytes: &[u8], alphabet: &[u8; 64], pad: bool) -> String {
+        let bits: Vec<u8> = bytes
+            .iter()
+            .flat_map(|b| (0..8).rev().map(move |i| (b >> i) & 1))
+            .collect();
+        let mut out: String = bits
+            .chunks(6)
+            .map(|six| {
+                let v = (0..6).fold(0usize, |v, i| {
+                    (v << 1) | usize::from(six.get(i).copied().unwrap_or(0))
+                });
+                alphabet[v] as char
+            })
+            .collect();
+        while pad && out.len() % 4 != 0 {
+            out.push('=');
+        }
+        out
+    }
+
+    proptest::proptest! {
+        /// Every byte string, in either alphabet, padded or not, decodes to itself; one byte
+        /// that is no base64 digit, anywhere, makes it invalid.
+        #[test]
+        fn base64_decodes_what_it_encodes(
+            bytes in proptest::collection::vec(proptest::num::u8::ANY, 0..100),
+            url_safe: bool,
+            pad: bool,
+            bad_at in 0usize..200,
+            bad in proptest::sample::select(vec![b'!', b'.', b' ', b'\n', 0x80u8, b'*']),
+        ) {
+            let mut alphabet = *b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+            if url_safe {
+                alphabet[62] = b'-';
+                alphabet[63] = b'_';
+            }
+            let text = encode(&bytes, &alphabet, pad);
+            proptest::prop_assert_eq!(decode_base64(&text), Some(bytes.clone()));
+            let digits = text.trim_end_matches('=').len();
+            if digits > 0 {
+                let mut broken = text.into_bytes();
+                broken[bad_at % digits] = bad;
+                let broken = String::from_utf8_lossy(&broken).into_owned();
+                proptest::prop_assert_eq!(decode_base64(&broken), None);
+            }
+        }
     }
 
     #[test]
