@@ -347,7 +347,7 @@ mod tests {
                 alphabet[v] as char
             })
             .collect();
-        while pad && out.len() % 4 != 0 {
+        while pad && !out.len().is_multiple_of(4) {
             out.push('=');
         }
         out
