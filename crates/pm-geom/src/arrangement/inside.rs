@@ -37,7 +37,7 @@ pub(super) fn mark_sealed(
         .filter(|&i| faces[i as usize].is_some() && solids.get(i as usize).copied().flatten().is_some())
         .collect();
     let live_boxes: Vec<Aabb> = live.iter().map(|&i| boxes[i as usize]).collect();
-    let bvh = BoundsBvh::build(&live_boxes);
+    let bvh = BoundsBvh::build_sah(&live_boxes, crate::bounds_bvh::MAX_LEAF);
     let outward = OutwardSolids::new(solids, faces, &boxes);
     let mut winding: Vec<(u32, i32)> = Vec::new();
     for (p, piece) in pieces.iter().enumerate() {
@@ -99,7 +99,7 @@ impl OutwardSolids {
         let boxes: Vec<Aabb> = found.iter().map(|&(_, b, _)| b).collect();
         OutwardSolids {
             ids: found.iter().map(|&(id, _, _)| id).collect(),
-            bvh: BoundsBvh::build(&boxes),
+            bvh: BoundsBvh::build_sah(&boxes, crate::bounds_bvh::MAX_LEAF),
             boxes,
         }
     }

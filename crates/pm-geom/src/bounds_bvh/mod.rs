@@ -32,21 +32,11 @@ pub(crate) struct BoundsBvh {
 }
 
 impl BoundsBvh {
-    /// Builds over `boxes` (item `i` has box `boxes[i]`; boxes must be non-empty and finite).
-    pub(crate) fn build(boxes: &[Aabb]) -> Self {
-        Self::build_with_leaves(boxes, MAX_LEAF)
-    }
-
-    /// [`Self::build`] with up to `leaf` items per leaf (at least 1): larger leaves suit many
-    /// small queries of a whole set against itself (the arrangement's candidate pairs).
-    pub(crate) fn build_with_leaves(boxes: &[Aabb], leaf: usize) -> Self {
-        Self::build_by(boxes.len(), |i| boxes[i as usize], leaf)
-    }
-
-    /// As [`Self::build_with_leaves`] over `count` items whose boxes `box_of` gives, asked
-    /// again each time one is needed (it must give the same box each time): for boxes made
-    /// from other data (padded points), so that no table of them is held. The same hierarchy,
-    /// bit for bit, as a table of the same boxes gives. `count` must fit in `u32`.
+    /// The hierarchy of median splits over `count` items whose boxes `box_of` gives (non-empty
+    /// and finite), with up to `leaf` items per leaf (at least 1), asked again each time one is
+    /// needed (it must give the same box each time): for boxes made from other data (padded
+    /// points), so that no table of them is held. `count` must fit in `u32`. Quick to build and
+    /// good for boxes of like sizes; [`Self::build_sah`] for a mix of long and small ones.
     pub(crate) fn build_by(count: usize, box_of: impl Fn(u32) -> Aabb, leaf: usize) -> Self {
         let leaf = leaf.max(1);
         let mut bvh = BoundsBvh {
@@ -183,6 +173,11 @@ mod tests {
             .collect()
     }
 
+    /// The median-split hierarchy over a table of boxes.
+    fn median(boxes: &[Aabb], leaf: usize) -> BoundsBvh {
+        BoundsBvh::build_by(boxes.len(), |i| boxes[i as usize], leaf)
+    }
+
     #[test]
     fn candidates_match_brute_force_overlaps() {
         let boxes = mixed_boxes(2000);
@@ -192,7 +187,7 @@ mod tests {
         // T-junction points'), and one item a leaf; by median and by surface-area splits.
         for leaf in [1, MAX_LEAF, 12, 16] {
             let trees = [
-                ("median", BoundsBvh::build_with_leaves(&boxes, leaf)),
+                ("median", median(&boxes, leaf)),
                 ("sah", BoundsBvh::build_sah(&boxes, leaf)),
             ];
             for (kind, bvh) in trees {
@@ -259,7 +254,7 @@ mod tests {
             }
             visited
         };
-        let (median, sah) = (visits(&BoundsBvh::build_with_leaves(&boxes, 12)), visits(&one));
+        let (median, sah) = (visits(&median(&boxes, 12)), visits(&one));
         assert!(
             sah < median,
             "surface-area tree visits {sah} nodes, median tree {median}"
@@ -268,12 +263,12 @@ mod tests {
 
     #[test]
     fn identical_boxes_and_empty_input_work() {
-        let empty = BoundsBvh::build(&[]);
+        let empty = median(&[], MAX_LEAF);
         empty.for_each_candidate(&Aabb::cube(Vec3::ZERO, 1.0), |_| {
             panic!("empty tree reported an item")
         });
         let boxes = vec![Aabb::cube(Vec3::ONE, 0.1); 100];
-        let bvh = BoundsBvh::build(&boxes);
+        let bvh = median(&boxes, MAX_LEAF);
         let mut count = 0;
         bvh.for_each_candidate(&Aabb::cube(Vec3::ONE, 0.01), |_| count += 1);
         assert_eq!(count, 100);
@@ -288,7 +283,7 @@ mod tests {
                 let boxes: Vec<Aabb> = (0..count)
                     .map(|i| Aabb::cube(Vec3::splat(i as f32), 0.5))
                     .collect();
-                let bvh = BoundsBvh::build_with_leaves(&boxes, leaf);
+                let bvh = median(&boxes, leaf);
                 assert_eq!(
                     bvh.nodes.len(),
                     node_count(count, leaf),

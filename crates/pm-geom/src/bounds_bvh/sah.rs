@@ -6,11 +6,11 @@ use crate::aabb::Aabb;
 use glam::{UVec3, Vec3A};
 
 impl BoundsBvh {
-    /// [`Self::build_with_leaves`] with each split chosen by the surface-area heuristic over
-    /// binned box centres instead of at the median: fewer nodes visited per query where boxes
-    /// of very different sizes and shapes mix (the segments where a modelled interior's faces
-    /// meet: long ones along walls, short ones round small objects). The node table is sized
-    /// as it grows, not beforehand.
+    /// The hierarchy over `boxes` (non-empty and finite) with up to `leaf` per leaf (at least
+    /// 1), each split chosen by the surface-area heuristic over binned box centres instead of
+    /// at the median: fewer nodes visited per query where boxes of very different sizes and
+    /// shapes mix (the segments where a modelled interior's faces meet: long ones along walls,
+    /// short ones round small objects). The node table is sized as it grows, not beforehand.
     pub(crate) fn build_sah(boxes: &[Aabb], leaf: usize) -> Self {
         let mut bvh = BoundsBvh {
             leaf: leaf.max(1),
