@@ -82,7 +82,7 @@ pub mod volume;
 pub use aabb::Aabb;
 pub use arrangement::{
     Arrangement, ArrangementError, ArrangementOptions, ArrangementSeconds, BarrierSet, IntersectionCounts,
-    split_polygons_at_intersections,
+    StepTimer, split_polygons_at_intersections,
 };
 pub use ball::{Ball, polygon_area_in_ball};
 pub use clip::{

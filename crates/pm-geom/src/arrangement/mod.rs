@@ -49,7 +49,7 @@ pub use barrier::BarrierSet;
 pub use budget::ArrangementError;
 pub use counts::IntersectionCounts;
 pub use options::ArrangementOptions;
-pub use seconds::ArrangementSeconds;
+pub use seconds::{ArrangementSeconds, StepTimer};
 
 use crate::aabb::Aabb;
 use crate::polygon::polygon_vector_area;
@@ -120,13 +120,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
     solids: &[Option<u32>],
     options: &ArrangementOptions,
 ) -> Result<Arrangement, ArrangementError> {
-    let mut clock = std::time::Instant::now();
-    let mut lap = || {
-        let now = std::time::Instant::now();
-        let seconds = (now - clock).as_secs_f64();
-        clock = now;
-        seconds
-    };
+    let mut timer = StepTimer::start();
     let mut seconds = ArrangementSeconds::default();
     let (tolerance, gap) = tolerances(polygons, options);
     let duplicate = exact_duplicates(polygons);
@@ -143,14 +137,14 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
             }
         })
         .collect();
-    seconds.faces = lap();
+    seconds.faces = timer.lap();
     let Meetings {
         cuts,
         barriers,
         hidden_by,
         mut counts,
     } = find_meetings(&faces, tolerance, gap, options)?;
-    seconds.meetings = lap();
+    seconds.meetings = timer.lap();
     let mut pieces = cut_faces(
         polygons,
         &faces,
@@ -160,7 +154,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
         options,
         &mut counts,
     )?;
-    seconds.cutting = lap();
+    seconds.cutting = timer.lap();
     let keep = drop_hidden_copies(
         &pieces,
         &faces,
@@ -193,7 +187,7 @@ pub fn split_polygons_at_intersections<P: AsRef<[Vec3]> + Sync>(
     }
     counts.sealed_pieces = out.sealed.iter().filter(|&&s| s).count();
     out.counts = counts;
-    seconds.copies_and_sealing = lap();
+    seconds.copies_and_sealing = timer.lap();
     out.seconds = seconds;
     Ok(out)
 }

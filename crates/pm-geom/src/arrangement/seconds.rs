@@ -1,4 +1,5 @@
-//! How long each step of an arrangement took, for profiling a split on a real scene.
+//! How long each step of an arrangement took, for profiling a split on a real scene, and the
+//! timer that measures such steps.
 
 /// Wall-clock seconds of each step of [`split_polygons_at_intersections`](super::split_polygons_at_intersections),
 /// in the order they run. Timings differ from run to run; everything else an
@@ -20,5 +21,36 @@ impl ArrangementSeconds {
     /// The sum of the steps.
     pub fn total(&self) -> f64 {
         self.faces + self.meetings + self.cutting + self.copies_and_sealing
+    }
+}
+
+/// Times consecutive steps: each [`StepTimer::lap`] is the wall-clock seconds since the one
+/// before (or since [`StepTimer::start`]).
+///
+/// ```
+/// let mut timer = pm_geom::StepTimer::start();
+/// let first = timer.lap();
+/// let second = timer.lap();
+/// assert!(first >= 0.0 && second >= 0.0);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct StepTimer {
+    last: std::time::Instant,
+}
+
+impl StepTimer {
+    /// A timer whose first lap starts now.
+    pub fn start() -> Self {
+        StepTimer {
+            last: std::time::Instant::now(),
+        }
+    }
+
+    /// Seconds since the last lap, and a new lap begun.
+    pub fn lap(&mut self) -> f64 {
+        let now = std::time::Instant::now();
+        let seconds = (now - self.last).as_secs_f64();
+        self.last = now;
+        seconds
     }
 }

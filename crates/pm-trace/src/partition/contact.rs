@@ -15,7 +15,8 @@ use crate::part::{PartId, PartSource, SourceFace};
 use crate::scene::Scene;
 use glam::Vec3;
 use pm_geom::{
-    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, MeshOptions, split_polygons_at_intersections,
+    ArrangementOptions, BarrierSet, FaceId, HalfEdgeMesh, MeshOptions, StepTimer,
+    split_polygons_at_intersections,
 };
 
 /// Crease-angle maps over all meshes of a scene welded together, after cutting faces where
@@ -101,20 +102,14 @@ impl Contact {
     /// bounds of [`ArrangementOptions`] allow (for example a thousand overlapping copies of a
     /// mesh), before allocating past them.
     fn split(&self, scene: Scene) -> Result<(Scene, ContactRecord), SceneError> {
-        let mut clock = std::time::Instant::now();
-        let mut lap = || {
-            let now = std::time::Instant::now();
-            let seconds = (now - clock).as_secs_f64();
-            clock = now;
-            seconds
-        };
+        let mut timer = StepTimer::start();
         let mut phases = ContactSeconds::default();
         let tolerance = self.tolerance(&scene);
         let options = ArrangementOptions::new(tolerance, self.gap(&scene));
         let faces = mesh_faces(&scene);
-        phases.faces = lap();
+        phases.faces = timer.lap();
         let mut split = split_polygons_at_intersections(&faces.polygons, &faces.solids, &options)?;
-        lap();
+        timer.lap();
         phases.arrangement = split.seconds;
         let counts = split.counts;
         if counts.meetings() == 0 && counts.duplicate_pieces == 0 && counts.sealed_pieces == 0 {
@@ -206,9 +201,9 @@ impl Contact {
         }
         let barriers = BarrierSet::new(split.barriers, tolerance);
         drop((piece_index, piece_sources));
-        phases.rebuild = lap();
+        phases.rebuild = timer.lap();
         rebuilt.trace_faces_as_given(&original, &source_faces, tolerance, loaded_rays);
-        phases.faces_as_given = lap();
+        phases.faces_as_given = timer.lap();
         let record = ContactRecord {
             barriers,
             sealed_parts,
@@ -239,9 +234,9 @@ impl Partitioner for Contact {
     fn partition(&self, scene: Scene) -> Result<Partitioned, PartitionError> {
         let (scene, mut record) = self.split(scene)?;
         // The fill is part of the partition's time, as the crease-angle partition's is all fill.
-        let start = std::time::Instant::now();
+        let mut timer = StepTimer::start();
         let assignment = self.assign(&scene, &record);
-        record.phases.fill = start.elapsed().as_secs_f64();
+        record.phases.fill = timer.lap();
         record.seconds += record.phases.fill;
         Ok(Partitioned::with_record(scene, assignment, record))
     }
