@@ -27,7 +27,8 @@ impl BoundsBvh {
                 .collect();
             let mut order = std::mem::take(&mut bvh.order);
             let bounds = SahExtent::of(&items, &order);
-            build_sah_subtree(&mut bvh.nodes, &items, &mut order, 0, bounds, bvh.leaf);
+            let at = Place { offset: 0, depth: 0 };
+            build_sah_subtree(&mut bvh.nodes, &items, &mut order, at, bounds, bvh.leaf);
             bvh.order = order;
         }
         bvh.nodes.shrink_to_fit();
@@ -38,8 +39,21 @@ impl BoundsBvh {
 /// Subtrees of at least this many boxes are built beside each other ([`build_sah_subtree`]).
 const SAH_PARALLEL_MIN: usize = 4096;
 
-/// Appends to `nodes` the surface-area-heuristic subtree over `order` (which starts at
-/// `offset` in the final order and spans `bounds`), with up to `leaf` boxes a leaf. A large
+/// Below this depth splits minimise the surface-area cost; deeper ones split at the median, so
+/// that the depth stays below `MAX_SAH_DEPTH + log2(n)` (at most 56 for any `u32` count: the
+/// traversal stack holds 64) however unevenly the binned splits fall (a binned split may peel
+/// off one bin's few boxes a level where the centres crowd towards one end).
+const MAX_SAH_DEPTH: u32 = 24;
+
+/// Where a subtree goes: its first box's position in the final order, and its root's depth.
+#[derive(Clone, Copy)]
+struct Place {
+    offset: usize,
+    depth: u32,
+}
+
+/// Appends to `nodes` the surface-area-heuristic subtree over `order` (which goes `at` its
+/// place in the final order and the tree, and spans `bounds`), with up to `leaf` boxes a leaf. A large
 /// subtree's right half is built on another thread into a table of its own and appended
 /// after the left, its inner nodes' `first` moved by where it lands: the same nodes, in the
 /// same order, on any number of threads.
@@ -47,7 +61,7 @@ fn build_sah_subtree(
     nodes: &mut Vec<Node>,
     items: &[SahItem],
     order: &mut [u32],
-    offset: usize,
+    at: Place,
     bounds: SahExtent,
     leaf: usize,
 ) {
@@ -55,13 +69,14 @@ fn build_sah_subtree(
     nodes.push(Node {
         min: bounds.min.into(),
         max: bounds.max.into(),
-        first: offset as u32,
+        first: at.offset as u32,
         count: order.len() as u32,
     });
     if order.len() <= leaf {
         return;
     }
-    let binned = (order.len() >= SAH_MIN).then(|| sah_split(items, order, &bounds));
+    let binned =
+        (order.len() >= SAH_MIN && at.depth < MAX_SAH_DEPTH).then(|| sah_split(items, order, &bounds));
     let (mid, left, right) = binned.flatten().unwrap_or_else(|| {
         let mid = median_split(items, order, &bounds);
         let (l, r) = order.split_at(mid);
@@ -69,12 +84,23 @@ fn build_sah_subtree(
     });
     let parallel = order.len() >= SAH_PARALLEL_MIN;
     let (left_order, right_order) = order.split_at_mut(mid);
+    let depth = at.depth + 1;
+    let (left_at, right_at) = (
+        Place {
+            offset: at.offset,
+            depth,
+        },
+        Place {
+            offset: at.offset + mid,
+            depth,
+        },
+    );
     if parallel {
         let ((), right_nodes) = rayon::join(
-            || build_sah_subtree(nodes, items, left_order, offset, left, leaf),
+            || build_sah_subtree(nodes, items, left_order, left_at, left, leaf),
             || {
                 let mut right_nodes = Vec::new();
-                build_sah_subtree(&mut right_nodes, items, right_order, offset + mid, right, leaf);
+                build_sah_subtree(&mut right_nodes, items, right_order, right_at, right, leaf);
                 right_nodes
             },
         );
@@ -87,9 +113,9 @@ fn build_sah_subtree(
         }));
         nodes[index].first = base;
     } else {
-        build_sah_subtree(nodes, items, left_order, offset, left, leaf);
+        build_sah_subtree(nodes, items, left_order, left_at, left, leaf);
         nodes[index].first = nodes.len() as u32;
-        build_sah_subtree(nodes, items, right_order, offset + mid, right, leaf);
+        build_sah_subtree(nodes, items, right_order, right_at, right, leaf);
     }
     nodes[index].count = 0;
 }
