@@ -295,7 +295,9 @@ fn run(args: &Args) -> Result<(), String> {
     if let Some(path) = &args.save_cache {
         files::check_cache_output(path, &base, args.stats_json.as_deref(), &inputs)?;
     }
+    let mut timer = photon_maps::geom::StepTimer::start();
     let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
+    let load_seconds = timer.lap();
     let origin_offset = scene.origin_offset().to_array();
 
     let variants: Vec<Variant> = if args.compare {
@@ -329,9 +331,14 @@ fn run(args: &Args) -> Result<(), String> {
     let mut scene = Some(scene);
     for variant in &variants {
         let partition = variant.maps.partitioner(args.contact_gap)?;
+        timer.lap();
         let partitioned = partition
             .partition(scene.take().ok_or("no scene")?)
             .map_err(choices::partition_message)?;
+        let setup = report::Setup {
+            load: load_seconds,
+            partition: Some(timer.lap()),
+        };
         let bar = TileBar::new(variant.label);
         let renderer = Renderer::new(variant.estimator, settings);
         let (out, cache_use) = match (&args.save_cache, &args.load_cache) {
@@ -358,6 +365,7 @@ fn run(args: &Args) -> Result<(), String> {
             contacts,
             origin_offset,
             cache: cache_use,
+            setup,
         };
         say(&summary(&record));
         records.push(record);

@@ -10,10 +10,11 @@ use scratch::Scratch;
 mod example;
 use example::{assert_ok, assert_refused, run};
 
-/// The map count the run's `--stats-json` reports.
-fn map_count(json: &str) -> u64 {
+/// The number after the first `key` (with its quotes and colon) in the run's `--stats-json`.
+fn number_after(json: &str, key: &str) -> f64 {
     let text = std::fs::read_to_string(json).unwrap();
-    let at = text.find("\"map_count\": ").unwrap() + "\"map_count\": ".len();
+    let key = format!("\"{key}\": ");
+    let at = text.find(&key).unwrap_or_else(|| panic!("{key} in {text}")) + key.len();
     text[at..]
         .split([',', '}'])
         .next()
@@ -21,6 +22,11 @@ fn map_count(json: &str) -> u64 {
         .trim()
         .parse()
         .unwrap()
+}
+
+/// The map count the run's `--stats-json` reports.
+fn map_count(json: &str) -> u64 {
+    number_after(json, "map_count") as u64
 }
 
 #[test]
@@ -52,6 +58,28 @@ fn a_smaller_contact_gap_makes_fewer_maps_and_bad_gaps_are_refused() {
         }
         let output = run(&args)?;
         assert_ok(&args, &output);
+        // The set-up's partition time holds the split's (cutting, rebuilding, the map fill),
+        // whose steps make up its total.
+        let partition = number_after(&json, "partition");
+        let split = number_after(&json, "seconds");
+        let steps = [
+            "faces",
+            "meetings",
+            "cutting",
+            "copies_and_sealing",
+            "rebuild",
+            "faces_as_given",
+            "fill",
+        ];
+        let summed: f64 = steps.iter().map(|k| number_after(&json, k)).sum();
+        assert!(
+            partition >= split && split > 0.0,
+            "partition {partition} s, split {split} s"
+        );
+        assert!(
+            (summed - split).abs() <= 1e-9 * split.max(1.0),
+            "steps {summed} s, split {split} s"
+        );
         Some(map_count(&json))
     };
     let Some(default) = count(None, "default") else {

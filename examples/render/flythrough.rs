@@ -5,7 +5,7 @@
 //! scene's bounds centre, so frame 0 is the scene's own camera and `--orbit 360` loops.
 
 use super::files::{NamedFile, check_outputs, load_scene, say, scene_dependencies, scene_inputs};
-use super::report::{Record, contacts_json, contacts_summary, json_number, json_object, summary};
+use super::report::{Record, Setup, contacts_json, contacts_summary, json_number, json_object, summary};
 use super::{Args, TileBar, Variant, cache, default_out};
 use photon_maps::render::glam::{Quat, Vec3};
 use photon_maps::render::image::write_atomically;
@@ -113,7 +113,9 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
     }));
     check_outputs(&outputs, &inputs)?;
 
+    let mut timer = photon_maps::geom::StepTimer::start();
     let (scene, _) = load_scene(&args.scene, args.light_units.into())?;
+    let load = timer.lap();
     let origin_offset = scene.origin_offset().to_array();
     let variant = Variant {
         label: "fly-through",
@@ -125,6 +127,10 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
         .partitioner(args.contact_gap)?
         .partition(scene)
         .map_err(crate::choices::partition_message)?;
+    let before_render = Setup {
+        load,
+        partition: Some(timer.lap()),
+    };
     let contacts = (
         contacts_summary(partitioned.record()),
         contacts_json(partitioned.record()),
@@ -172,6 +178,7 @@ pub fn run(args: &Args, settings: RenderSettings, estimator: EstimatorKind) -> R
                 contacts: contacts.clone(),
                 origin_offset,
                 cache: cache_use.take(),
+                setup: before_render,
             };
             say(&summary(&record));
             first = Some(json_object(&record));

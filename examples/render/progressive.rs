@@ -3,6 +3,7 @@
 //! the single-pass command line.
 
 use super::files::{NamedFile, check_run_outputs, scene_dependencies, scene_input, scene_inputs};
+use super::report::Setup;
 use super::{
     Args, ModeChoice, contacts_json, contacts_summary, json_number, json_string, load_scene, origin_json,
     origin_summary, say,
@@ -76,7 +77,12 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
     let (exr_path, png_path) = check_run_outputs(&base, args.stats_json.as_deref(), &inputs)?;
     let bar = PassBar::new(passes);
     let heap_before = crate::tracking_allocator::reset_peak();
+    let mut timer = photon_maps::geom::StepTimer::start();
     let scene = load_scene(&args.scene, args.light_units.into())?.0;
+    let mut setup = Setup {
+        load: timer.lap(),
+        partition: None,
+    };
     let origin_offset = scene.origin_offset().to_array();
     let (image, stats, range, identity, contacts) = if sppm {
         let s = SppmSettings {
@@ -100,9 +106,11 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
         )
     } else {
         let partition = args.maps().partitioner(args.contact_gap)?;
+        timer.lap();
         let partitioned = partition
             .partition(scene)
             .map_err(crate::choices::partition_message)?;
+        setup.partition = Some(timer.lap());
         let s = progressive_settings;
         let out = ProgressiveRenderer::new(estimator, s)
             .render(&partitioned, &bar)
@@ -170,7 +178,7 @@ pub fn run(args: &Args, mut settings: RenderSettings, estimator: EstimatorKind) 
             &scene_id,
             &identity,
             range,
-            Some((&stats, heap_peak, &contacts.1, origin_offset)),
+            Some((&stats, heap_peak, &contacts.1, origin_offset, setup)),
             m.to_array(),
         );
         write_atomically(path, |w| w.write_all(json.as_bytes()))
@@ -336,7 +344,7 @@ fn stats_json(
     scene: &str,
     settings: &str,
     range: std::ops::Range<u64>,
-    stats: Option<(&ProgressiveStats, usize, &str, [f64; 3])>,
+    stats: Option<(&ProgressiveStats, usize, &str, [f64; 3], Setup)>,
     mean: [f32; 3],
 ) -> String {
     let mut o = String::from("{");
@@ -350,8 +358,9 @@ fn stats_json(
         range.end,
         range.end - range.start,
     );
-    if let Some((s, heap_peak, contacts, origin_offset)) = stats {
+    if let Some((s, heap_peak, contacts, origin_offset, setup)) = stats {
         let _ = write!(o, "\"contacts\": {contacts}, ");
+        let _ = write!(o, "\"setup_seconds\": {}, ", setup.json());
         let _ = write!(o, "\"origin_offset\": {}, ", origin_json(origin_offset));
         let _ = write!(
             o,

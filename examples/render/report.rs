@@ -19,6 +19,28 @@ pub struct Record<'a> {
     pub origin_offset: [f64; 3],
     /// What `--save-cache` / `--load-cache` did, if given.
     pub cache: Option<super::cache::CacheUse>,
+    /// The time before rendering.
+    pub setup: Setup,
+}
+
+/// Wall-clock seconds before rendering: reading the scene (once per run, whatever the
+/// variants) and partitioning it into photon maps (`None` where nothing is partitioned: SPPM's
+/// one map). The contact partition's steps are in `contacts.phases`.
+#[derive(Clone, Copy, Debug)]
+pub struct Setup {
+    pub load: f64,
+    pub partition: Option<f64>,
+}
+
+impl Setup {
+    /// As a JSON object.
+    pub fn json(&self) -> String {
+        format!(
+            "{{\"load\": {}, \"partition\": {}}}",
+            json_number(self.load),
+            self.partition.map_or_else(|| "null".to_owned(), json_number)
+        )
+    }
 }
 
 /// The re-centring offset for the summary: empty for a scene that was not moved.
@@ -245,9 +267,10 @@ pub fn json_object(r: &Record<'_>) -> String {
     }
     let _ = write!(
         o,
-        "\"contacts\": {}, \"origin_offset\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
+        "\"contacts\": {}, \"origin_offset\": {}, \"setup_seconds\": {}, \"seconds\": {{\"trace\": {}, \"build\": {}, \"precompute\": {}, \"render\": {}, \"total\": {}}}, \"mean_rgb\": [{}, {}, {}]}}",
         r.contacts.1,
         origin_json(r.origin_offset),
+        r.setup.json(),
         json_number(s.trace.as_secs_f64()),
         json_number(s.build.as_secs_f64()),
         json_number(s.precompute.as_secs_f64()),
