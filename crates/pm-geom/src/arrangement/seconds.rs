@@ -29,9 +29,9 @@ impl ArrangementSeconds {
 ///
 /// ```
 /// let mut timer = pm_geom::StepTimer::start();
-/// let first = timer.lap();
-/// let second = timer.lap();
-/// assert!(first >= 0.0 && second >= 0.0);
+/// std::thread::sleep(std::time::Duration::from_millis(20));
+/// let slept = timer.lap();
+/// assert!(slept >= 0.02, "a lap holds the step since the last: {slept} s");
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct StepTimer {

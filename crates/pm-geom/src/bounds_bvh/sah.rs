@@ -53,10 +53,10 @@ struct Place {
 }
 
 /// Appends to `nodes` the surface-area-heuristic subtree over `order` (which goes `at` its
-/// place in the final order and the tree, and spans `bounds`), with up to `leaf` boxes a leaf. A large
-/// subtree's right half is built on another thread into a table of its own and appended
-/// after the left, its inner nodes' `first` moved by where it lands: the same nodes, in the
-/// same order, on any number of threads.
+/// place in the final order and the tree, and spans `bounds`), with up to `leaf` boxes a
+/// leaf. A large subtree's right half is built on another thread into a table of its own and
+/// appended after the left, its inner nodes' `first` moved by where it lands: the same nodes,
+/// in the same order, on any number of threads.
 fn build_sah_subtree(
     nodes: &mut Vec<Node>,
     items: &[SahItem],

@@ -162,6 +162,87 @@ mod tests {
         assert!(hits > 5_000, "too few hits to test: {hits}");
     }
 
+    /// The contact partition does take the scene's hierarchy over: a tessellated floor, its
+    /// coincident copy (the hidden copy the split drops, all 200 of its triangles) and a wall
+    /// standing on it (which cuts the floor). The split scene searches the loaded scene's very
+    /// nodes, its dropped records are the copy's, and rays meet what they met before the split.
+    /// At a metre, a micrometre, and ten kilometres ten thousand kilometres from the origin.
+    #[test]
+    fn the_contact_split_takes_the_loaded_hierarchy_over() {
+        for (scale, origin) in [
+            (1.0, Vec3::ZERO),
+            (1e-6, Vec3::ZERO),
+            (1e4, Vec3::new(1e7, -6e6, 3e6)),
+        ] {
+            contact_split_takes_the_loaded_hierarchy_over_at(scale, origin);
+        }
+    }
+
+    fn contact_split_takes_the_loaded_hierarchy_over_at(scale: f32, origin: Vec3) {
+        use crate::partition::{Contact, Partitioner};
+        use crate::{PointLight, Scene, Surface};
+        let at = |p: Vec3| origin + p * scale;
+        let n = 10u32;
+        let grid: Vec<Vec3> = (0..=n)
+            .flat_map(|z| (0..=n).map(move |x| Vec3::new(x as f32, 0.0, z as f32) / n as f32))
+            .map(at)
+            .collect();
+        let quads: Vec<[u32; 4]> = (0..n)
+            .flat_map(|z| (0..n).map(move |x| z * (n + 1) + x))
+            .map(|i| [i, i + n + 1, i + n + 2, i + 1])
+            .collect();
+        let wall = [
+            Vec3::new(0.45, 0.0, 0.0),
+            Vec3::new(0.45, 0.0, 1.0),
+            Vec3::new(0.45, 0.5, 1.0),
+            Vec3::new(0.45, 0.5, 0.0),
+        ]
+        .map(at);
+        let grey = Surface::diffuse(Vec3::splat(0.5));
+        let scene = Scene::builder()
+            .mesh(&grid, &quads, grey)
+            .mesh(&grid, &quads, grey)
+            .mesh(&wall, &[[0u32, 1, 2, 3]], grey)
+            .light(PointLight::new(at(Vec3::new(0.2, 1.0, 0.5)), Vec3::splat(1.0)))
+            .build()
+            .unwrap();
+        let loaded_nodes = match &scene.search().triangle_search {
+            Search::Bvh(bvh) => bvh.nodes.clone(),
+            _ => panic!("402 triangles are searched by a hierarchy"),
+        };
+        let split = Contact::default().partition(scene.clone()).unwrap();
+        let search = split.scene().search();
+        let Search::Bvh(bvh) = &search.triangle_search else {
+            panic!("the split scene's triangles are searched by a hierarchy");
+        };
+        let case = format!("scale {scale}, origin {origin}");
+        assert_eq!(
+            bvh.nodes, loaded_nodes,
+            "{case}: the loaded hierarchy, not a new one"
+        );
+        assert_eq!(
+            search.dropped, 200,
+            "{case}: the copy's triangles are the dropped ones"
+        );
+        assert_eq!(search.triangle_count(), 202, "{case}");
+        // Rays in the scene's own coordinates (it may be re-centred): from above the floor.
+        let bounds = scene.bounds();
+        let mut rng = Rng::new(5, 1);
+        let mut u = || rng.next_f32();
+        for _ in 0..2_000 {
+            let ray = Ray {
+                origin: bounds.min + (bounds.max - bounds.min) * Vec3::new(u(), 0.05 + 0.9 * u(), u()),
+                direction: uniform_sphere(Vec2::new(u(), u())),
+            };
+            let t = |s: &Scene| {
+                s.search()
+                    .closest(&ray, 0.0, f32::INFINITY, |_| true)
+                    .map(|h| h.0)
+            };
+            assert_eq!(t(split.scene()), t(&scene), "{case}");
+        }
+    }
+
     /// Only a hierarchy over exactly the given triangles, in their order, is taken over.
     #[test]
     fn other_triangles_or_a_scan_are_refused() {
