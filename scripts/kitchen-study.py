@@ -19,12 +19,22 @@ noise mostly averaged out) and the image mean's relative difference. The referen
 scripts/mitsuba-reference.py's .npy (mean and standard error per pixel); its noise is
 reported so that the reader can see it is at least 3× below the errors it judges.
 
+With several seeds the table gives each cell's mean and its standard error over the seeds,
+and for each budget the best leak-free method (by mean per-pixel error) is compared with the
+best SPPM setting seed by seed: the mean paired difference, its standard error, how many
+standard errors that is (t) and on how many seeds the leak-free method was lower, per pixel
+and on 4×4 means.
+
+`--rescore` re-scores the EXRs an earlier run kept in --out-dir against --reference (a less
+noisy one, say) without rendering again.
+
 Writes a Markdown table and a JSON of every run to --out-dir (default
 target/kitchen/study); never into tracked files. Needs numpy and mitsuba (to read EXRs).
 
 Usage: scripts/kitchen-study.py --reference target/kitchen/out/mitsuba.npy
        [--scene target/kitchen/kitchen.gltf] [--budgets 2,6,30] [--seeds 1]
        [--methods sppm,progressive,...] [--render target/release/examples/render]
+       [--out-dir DIR] [--rescore]
 """
 
 import argparse
@@ -51,7 +61,17 @@ METHODS = {
     "progressive-gap1e-4-photons50k": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
          "--photons", "50000"], "timed"),
+    "progressive-gap1e-4-photons25k": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "25000"], "timed"),
+    "progressive-gap1e-4-photons25k-k50": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "25000", "--k", "50"], "timed"),
     "sppm-photons50k": (["--mode", "sppm", "--photons", "50000"], "timed"),
+    "sppm-photons25k": (["--mode", "sppm", "--photons", "25000"], "timed"),
+    "progressive-gap1e-4-photons10k": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "10000"], "timed"),
     "progressive-crease": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
     "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
@@ -134,6 +154,8 @@ def main():
     p.add_argument("--methods", default=",".join(METHODS))
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out-dir", default="target/kitchen/study")
+    p.add_argument("--rescore", action="store_true",
+                   help="score the EXRs of the run kept in --out-dir against --reference")
     args = p.parse_args()
     if not os.path.exists(args.scene):
         print(f"skipped: {args.scene} not found (make it with scripts/kitchen-gltf.py)")
@@ -143,6 +165,8 @@ def main():
     ref = ref_mean.mean(2)
     ref_var = (ref_se ** 2).mean(2) / 3.0
     args.height, args.width = ref.shape
+    if args.rescore:
+        return rescore(args, ref, ref_var)
     budgets = [float(b) for b in args.budgets.split(",")]
     seeds = [int(s) for s in args.seeds.split(",")]
     records = []
@@ -157,7 +181,8 @@ def main():
                     out, wall, cpu, fig = run(args, name, base + ["--time", f"{t:.3f}"], seed, f"t{b:g}")
                     e = errors(read_exr(out), ref, ref_var)
                     rec = dict(method=name, seed=seed, budget=b, wall=wall, cpu=cpu, setup=setup,
-                               passes=fig.get("passes"), maps=fig.get("map_count"), **e)
+                               passes=fig.get("passes"), maps=fig.get("map_count"),
+                               exr=os.path.basename(out), **e)
                     records.append(rec)
                     print(json.dumps(rec), flush=True)
             else:
@@ -165,7 +190,7 @@ def main():
                     out, wall, cpu, fig = run(args, name, base + rung, seed, f"r{i}")
                     e = errors(read_exr(out), ref, ref_var)
                     rec = dict(method=name, seed=seed, rung=" ".join(rung), wall=wall, cpu=cpu,
-                               maps=fig.get("map_count"), **e)
+                               maps=fig.get("map_count"), exr=os.path.basename(out), **e)
                     records.append(rec)
                     print(json.dumps(rec), flush=True)
                     if wall > 1.5 * max(budgets):
@@ -173,6 +198,67 @@ def main():
     with open(os.path.join(args.out_dir, "study.json"), "w") as f:
         json.dump(records, f, indent=1)
     write_table(args, records, budgets)
+
+
+def rescore(args, ref, ref_var):
+    """Scores the kept run's EXRs against the reference given now; writes study.json and
+    study.md again (the run's first ones are kept as study-first.*)."""
+    path = os.path.join(args.out_dir, "study.json")
+    if not os.path.exists(path):
+        raise SystemExit(f"error: --rescore: no {path} (run the study into --out-dir first)")
+    with open(path) as f:
+        records = json.load(f)
+    for suffix in ("json", "md"):
+        first = os.path.join(args.out_dir, f"study-first.{suffix}")
+        if not os.path.exists(first):
+            os.replace(os.path.join(args.out_dir, f"study.{suffix}"), first)
+    for rec in records:
+        # Runs kept before the EXR's name was recorded: the name the run gave it.
+        name = rec.get("exr") or f"{rec['method']}-t{rec['budget']:g}-s{rec['seed']}.exr"
+        rec.update(errors(read_exr(os.path.join(args.out_dir, name)), ref, ref_var))
+    with open(path, "w") as f:
+        json.dump(records, f, indent=1)
+    budgets = sorted({r["budget"] for r in records if "budget" in r})
+    write_table(args, records, budgets)
+
+
+def mean_and_error(values):
+    """The mean of `values` and its standard error (0 for a single value)."""
+    m = float(np.mean(values))
+    if len(values) < 2:
+        return m, 0.0
+    return m, float(np.std(values, ddof=1) / math.sqrt(len(values)))
+
+
+def paired_lines(records, budgets):
+    """Per budget: the leak-free method with the lowest mean per-pixel error against the SPPM
+    setting with the lowest mean error on each measure, seed by seed (one leak-free setting
+    held against SPPM at its best for that measure)."""
+    lines = []
+    for b in budgets:
+        by = {}
+        for r in records:
+            if r.get("budget") == b:
+                by.setdefault(r["method"], {})[r["seed"]] = r
+        # Crease maps leak light around the objects resting on surfaces: not leak-free.
+        ours_names = [m for m in by if not m.startswith("sppm") and "crease" not in m]
+        sppm_names = [m for m in by if m.startswith("sppm")]
+        if not ours_names or not sppm_names:
+            continue
+        mean_of = lambda m, key: np.mean([r[key] for r in by[m].values()])
+        ours = min(ours_names, key=lambda m: mean_of(m, "rmse1"))
+        for key, label in (("rmse1", "per pixel"), ("rmse4", "4×4 means")):
+            theirs = min(sppm_names, key=lambda m: mean_of(m, key))
+            seeds = sorted(set(by[ours]) & set(by[theirs]))
+            if len(seeds) < 2:
+                continue
+            diff = [by[ours][s][key] - by[theirs][s][key] for s in seeds]
+            m, se = mean_and_error(diff)
+            t = m / se if se > 0 else float("inf")
+            lower = sum(d < 0 for d in diff)
+            lines.append(f"- ~{b:g} s, {label}: {ours} − {theirs} = {m:+.4f} ± {se:.4f} "
+                         f"(t = {t:+.1f}; lower on {lower} of {len(seeds)} seeds)")
+    return lines
 
 
 def write_table(args, records, budgets):
@@ -187,11 +273,18 @@ def write_table(args, records, budgets):
             near = [r for r in mine if r.get("budget") == b] or \
                 [min(mine, key=lambda r: abs(math.log(r["wall"] / b)))]
             w = np.mean([r["wall"] for r in near])
-            e1 = np.mean([r["rmse1"] for r in near])
-            e4 = np.mean([r["rmse4"] for r in near])
+            (e1, s1), (e4, s4) = (mean_and_error([r[k] for r in near]) for k in ("rmse1", "rmse4"))
             m = np.mean([r["mean"] for r in near])
-            cells.append(f"{e1:.4f} / {e4:.4f} ({w:.1f} s, {100 * m:+.1f} %)")
+            if len(near) > 1:
+                cells.append(f"{e1:.4f} ± {s1:.4f} / {e4:.4f} ± {s4:.4f} "
+                             f"({w:.1f} s, {100 * m:+.1f} %, {len(near)} seeds)")
+            else:
+                cells.append(f"{e1:.4f} / {e4:.4f} ({w:.1f} s, {100 * m:+.1f} %)")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    paired = paired_lines(records, budgets)
+    if paired:
+        lines += ["", "Best leak-free method against best SPPM setting, paired by seed "
+                  "(mean difference ± its standard error):"] + paired
     text = "\n".join(lines) + "\n"
     with open(os.path.join(args.out_dir, "study.md"), "w") as f:
         f.write(text)
