@@ -20,10 +20,10 @@ scripts/mitsuba-reference.py's .npy (mean and standard error per pixel); its noi
 reported so that the reader can see it is at least 3× below the errors it judges.
 
 With several seeds the table gives each cell's mean and its standard error over the seeds,
-and for each budget the best leak-free method (by mean per-pixel error) is compared with the
-best SPPM setting seed by seed: the mean paired difference, its standard error, how many
-standard errors that is (t) and on how many seeds the leak-free method was lower, per pixel
-and on 4×4 means.
+and for each budget the leak-free method with the lowest mean per-pixel error is compared,
+seed by seed, with the SPPM setting that is best on each measure: the mean paired difference,
+its standard error, how many standard errors that is (t) and on how many seeds the leak-free
+method was lower, per pixel and on 4×4 means.
 
 `--rescore` re-scores the EXRs an earlier run kept in --out-dir against --reference (a less
 noisy one, say) without rendering again.
@@ -213,12 +213,19 @@ def rescore(args, ref, ref_var):
         if not os.path.exists(first):
             os.replace(os.path.join(args.out_dir, f"study.{suffix}"), first)
     for rec in records:
-        # Runs kept before the EXR's name was recorded: the name the run gave it.
-        name = rec.get("exr") or f"{rec['method']}-t{rec['budget']:g}-s{rec['seed']}.exr"
+        name = rec.get("exr")
+        if name is None and "budget" in rec:
+            # Runs kept before the EXR's name was recorded: the name the run gave it.
+            name = f"{rec['method']}-t{rec['budget']:g}-s{rec['seed']}.exr"
+        if name is None:
+            raise SystemExit(f"error: --rescore: {rec['method']} seed {rec['seed']} "
+                             f"({rec.get('rung')}) has no EXR recorded; run it again")
         rec.update(errors(read_exr(os.path.join(args.out_dir, name)), ref, ref_var))
     with open(path, "w") as f:
         json.dump(records, f, indent=1)
-    budgets = sorted({r["budget"] for r in records if "budget" in r})
+    # The timed runs' budgets; a study of ladders alone takes --budgets.
+    budgets = sorted({r["budget"] for r in records if "budget" in r}) or \
+        [float(b) for b in args.budgets.split(",")]
     write_table(args, records, budgets)
 
 
