@@ -75,9 +75,6 @@ METHODS = {
          "--photons", "35000", "--k", "50"], "timed"),
     "sppm-photons50k": (["--mode", "sppm", "--photons", "50000"], "timed"),
     "sppm-photons25k": (["--mode", "sppm", "--photons", "25000"], "timed"),
-    "progressive-gap1e-4-photons10k": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "10000"], "timed"),
     "progressive-crease": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
     "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
