@@ -215,8 +215,9 @@ def rescore(args, ref, ref_var):
         records = json.load(f)
     for suffix in ("json", "md"):
         first = os.path.join(args.out_dir, f"study-first.{suffix}")
-        if not os.path.exists(first):
-            os.replace(os.path.join(args.out_dir, f"study.{suffix}"), first)
+        current = os.path.join(args.out_dir, f"study.{suffix}")
+        if not os.path.exists(first) and os.path.exists(current):
+            os.replace(current, first)
     for rec in records:
         name = rec.get("exr")
         if name is None and "budget" in rec:

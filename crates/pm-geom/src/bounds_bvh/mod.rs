@@ -1,5 +1,7 @@
-//! A small bounding-volume hierarchy over boxes, answering "which boxes overlap this box"
-//! without allocating: the overlap index of [`crate::PolygonSet`].
+//! A bounding-volume hierarchy over boxes, answering "which boxes overlap this box" without
+//! allocating: the overlap index of [`crate::PolygonSet`] and of the T-junction points (median
+//! splits), and the arrangement's broad phase, barrier segments and sealed pieces (surface-area
+//! splits, [`BoundsBvh::build_sah`]).
 
 use crate::aabb::Aabb;
 use glam::Vec3;
@@ -23,7 +25,8 @@ struct Node {
     count: u32,
 }
 
-/// Binary BVH over item boxes, built by median splits on the widest centroid axis.
+/// Binary BVH over item boxes, built by median splits on the widest centroid axis
+/// ([`BoundsBvh::build_by`]) or by the binned surface-area heuristic ([`BoundsBvh::build_sah`]).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct BoundsBvh {
     /// Most items per leaf.
@@ -262,17 +265,63 @@ mod tests {
         );
     }
 
+    /// The same brute-force check at the ends of the operating range: the boxes a micrometre
+    /// across at the origin, and ten kilometres across ten thousand kilometres from it (where
+    /// a float step is a metre and the binned centres crowd into few distinct values).
+    #[test]
+    fn candidates_match_brute_force_at_micrometres_and_far_from_the_origin() {
+        for (scale, origin) in [(1e-7, Vec3::ZERO), (1e3, Vec3::new(1e7, -6e6, 3e6))] {
+            let boxes: Vec<Aabb> = mixed_boxes(3000)
+                .iter()
+                .map(|b| Aabb::new(origin + b.min * scale, origin + b.max * scale))
+                .collect();
+            let mut s = 5;
+            let mut r = || lcg(&mut s);
+            for (kind, bvh) in [
+                ("median", median(&boxes, 12)),
+                ("sah", BoundsBvh::build_sah(&boxes, 12)),
+            ] {
+                let mut found = 0;
+                for _ in 0..200 {
+                    let q = Aabb::cube(origin + Vec3::new(r(), r(), r()) * 10.0 * scale, r() * scale);
+                    let mut got = Vec::new();
+                    bvh.for_each_candidate(&q, |i| {
+                        if boxes[i as usize].overlaps(&q) {
+                            got.push(i)
+                        }
+                    });
+                    got.sort_unstable();
+                    let want: Vec<u32> = (0..boxes.len() as u32)
+                        .filter(|&i| boxes[i as usize].overlaps(&q))
+                        .collect();
+                    assert_eq!(got, want, "{kind}, scale {scale}, origin {origin}");
+                    found += got.len();
+                }
+                assert!(
+                    found > 1000,
+                    "{kind}, scale {scale}: too few overlaps to test ({found})"
+                );
+            }
+        }
+    }
+
     #[test]
     fn identical_boxes_and_empty_input_work() {
-        let empty = median(&[], MAX_LEAF);
-        empty.for_each_candidate(&Aabb::cube(Vec3::ZERO, 1.0), |_| {
-            panic!("empty tree reported an item")
-        });
-        let boxes = vec![Aabb::cube(Vec3::ONE, 0.1); 100];
-        let bvh = median(&boxes, MAX_LEAF);
-        let mut count = 0;
-        bvh.for_each_candidate(&Aabb::cube(Vec3::ONE, 0.01), |_| count += 1);
-        assert_eq!(count, 100);
+        for (kind, build) in [
+            ("median", median as fn(&[Aabb], usize) -> BoundsBvh),
+            ("sah", BoundsBvh::build_sah),
+        ] {
+            let empty = build(&[], MAX_LEAF);
+            empty.for_each_candidate(&Aabb::cube(Vec3::ZERO, 1.0), |_| {
+                panic!("{kind}: empty tree reported an item")
+            });
+            // Coincident boxes no split separates: each is reported once.
+            let boxes = vec![Aabb::cube(Vec3::ONE, 0.1); 5000];
+            let bvh = build(&boxes, MAX_LEAF);
+            let mut seen = vec![0u32; boxes.len()];
+            bvh.for_each_candidate(&Aabb::cube(Vec3::ONE, 0.01), |i| seen[i as usize] += 1);
+            assert!(seen.iter().all(|&n| n == 1), "{kind}: {seen:?}");
+        }
     }
 
     /// The node table is sized exactly: as many nodes as the build makes, for leaf sizes and
