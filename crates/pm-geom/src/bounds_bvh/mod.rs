@@ -182,6 +182,23 @@ mod tests {
         BoundsBvh::build_by(boxes.len(), |i| boxes[i as usize], leaf)
     }
 
+    /// Asserts that the boxes `bvh`'s candidates for `q` overlap are those a scan of all
+    /// `boxes` finds, and returns how many there are.
+    fn overlaps_as_brute_force_finds(bvh: &BoundsBvh, boxes: &[Aabb], q: &Aabb, case: &str) -> usize {
+        let mut got = Vec::new();
+        bvh.for_each_candidate(q, |i| {
+            if boxes[i as usize].overlaps(q) {
+                got.push(i)
+            }
+        });
+        got.sort_unstable();
+        let want: Vec<u32> = (0..boxes.len() as u32)
+            .filter(|&i| boxes[i as usize].overlaps(q))
+            .collect();
+        assert_eq!(got, want, "{case}");
+        got.len()
+    }
+
     #[test]
     fn candidates_match_brute_force_overlaps() {
         let boxes = mixed_boxes(2000);
@@ -197,17 +214,7 @@ mod tests {
             for (kind, bvh) in trees {
                 for _ in 0..200 {
                     let q = Aabb::cube(Vec3::new(r(), r(), r()) * 10.0, r() * 2.0);
-                    let mut got = Vec::new();
-                    bvh.for_each_candidate(&q, |i| {
-                        if boxes[i as usize].overlaps(&q) {
-                            got.push(i)
-                        }
-                    });
-                    got.sort_unstable();
-                    let want: Vec<u32> = (0..boxes.len() as u32)
-                        .filter(|&i| boxes[i as usize].overlaps(&q))
-                        .collect();
-                    assert_eq!(got, want, "{kind}, leaves of {leaf}");
+                    overlaps_as_brute_force_finds(&bvh, &boxes, &q, &format!("{kind}, leaves of {leaf}"));
                 }
             }
         }
@@ -284,18 +291,8 @@ mod tests {
                 let mut found = 0;
                 for _ in 0..200 {
                     let q = Aabb::cube(origin + Vec3::new(r(), r(), r()) * 10.0 * scale, r() * scale);
-                    let mut got = Vec::new();
-                    bvh.for_each_candidate(&q, |i| {
-                        if boxes[i as usize].overlaps(&q) {
-                            got.push(i)
-                        }
-                    });
-                    got.sort_unstable();
-                    let want: Vec<u32> = (0..boxes.len() as u32)
-                        .filter(|&i| boxes[i as usize].overlaps(&q))
-                        .collect();
-                    assert_eq!(got, want, "{kind}, scale {scale}, origin {origin}");
-                    found += got.len();
+                    let case = format!("{kind}, scale {scale}, origin {origin}");
+                    found += overlaps_as_brute_force_finds(&bvh, &boxes, &q, &case);
                 }
                 assert!(
                     found > 1000,
