@@ -73,7 +73,19 @@ METHODS = {
     "progressive-gap1e-4-photons35k-k50": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
          "--photons", "35000", "--k", "50"], "timed"),
+    # Fewer still a pass (session 19): more passes in 2 s, with k scaled so that the gather
+    # volume holds about as many photons of a pass as k = 50 did with 25,000.
+    "progressive-gap1e-4-photons15k-k30": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "15000", "--k", "30"], "timed"),
+    "progressive-gap1e-4-photons15k-k50": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "15000", "--k", "50"], "timed"),
+    "progressive-gap1e-4-photons10k-k20": (
+        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
+         "--photons", "10000", "--k", "20"], "timed"),
     "sppm-photons50k": (["--mode", "sppm", "--photons", "50000"], "timed"),
+    "sppm-photons12k": (["--mode", "sppm", "--photons", "12500"], "timed"),
     "sppm-photons25k": (["--mode", "sppm", "--photons", "25000"], "timed"),
     "progressive-crease": (
         ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
