@@ -47,56 +47,44 @@ import time
 
 import numpy as np
 
+# The progressive renderer with shadow rays, and with the contact gap the studies use.
+PROGRESSIVE = ["--mode", "progressive", "--direct", "shadow-rays"]
+GAP_1E4 = PROGRESSIVE + ["--contact-gap", "0.0001"]
+
+
+def per_pass(photons, k=None):
+    """Arguments for `photons` traced a pass and, when given, the pilot's k."""
+    return ["--photons", str(photons)] + ([] if k is None else ["--k", str(k)])
+
+
 # name -> (arguments, kind). "timed" runs take --time; "ladder" runs take each rung's args.
 METHODS = {
     "sppm": (["--mode", "sppm"], "timed"),
-    "progressive": (["--mode", "progressive", "--direct", "shadow-rays"], "timed"),
-    "progressive-gap1e-4": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001"], "timed"),
-    # Two camera samples per pixel on each pass's photons, or half the photons per pass: more
-    # camera samples per second, where per-pixel error is mostly pixel sampling noise.
-    "progressive-gap1e-4-spp2": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--spp", "2"], "timed"),
-    "progressive-gap1e-4-photons50k": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "50000"], "timed"),
-    "progressive-gap1e-4-photons25k": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "25000"], "timed"),
-    "progressive-gap1e-4-photons25k-k50": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "25000", "--k", "50"], "timed"),
-    "progressive-gap1e-4-photons25k-k35": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "25000", "--k", "35"], "timed"),
-    "progressive-gap1e-4-photons35k-k50": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "35000", "--k", "50"], "timed"),
-    # Fewer still a pass (session 19): more passes in 2 s, with k scaled so that the gather
-    # volume holds about as many photons of a pass as k = 50 did with 25,000.
-    "progressive-gap1e-4-photons15k-k30": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "15000", "--k", "30"], "timed"),
-    "progressive-gap1e-4-photons15k-k50": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "15000", "--k", "50"], "timed"),
-    "progressive-gap1e-4-photons10k-k20": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--photons", "10000", "--k", "20"], "timed"),
-    "sppm-photons50k": (["--mode", "sppm", "--photons", "50000"], "timed"),
-    "sppm-photons12k": (["--mode", "sppm", "--photons", "12500"], "timed"),
-    "sppm-photons25k": (["--mode", "sppm", "--photons", "25000"], "timed"),
-    "progressive-crease": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--maps", "crease"], "timed"),
+    "progressive": (PROGRESSIVE, "timed"),
+    "progressive-gap1e-4": (GAP_1E4, "timed"),
+    # Two camera samples per pixel on each pass's photons, or fewer photons per pass: more
+    # camera samples per second, where per-pixel error is mostly pixel sampling noise. With
+    # fewer photons, a smaller k keeps the gather volume from widening (session 18); below
+    # 25,000 (session 19) k is scaled so that the volume holds about as many photons of a
+    # pass as k = 50 did with 25,000.
+    "progressive-gap1e-4-spp2": (GAP_1E4 + ["--spp", "2"], "timed"),
+    "progressive-gap1e-4-photons50k": (GAP_1E4 + per_pass(50000), "timed"),
+    "progressive-gap1e-4-photons25k": (GAP_1E4 + per_pass(25000), "timed"),
+    "progressive-gap1e-4-photons25k-k50": (GAP_1E4 + per_pass(25000, 50), "timed"),
+    "progressive-gap1e-4-photons25k-k35": (GAP_1E4 + per_pass(25000, 35), "timed"),
+    "progressive-gap1e-4-photons35k-k50": (GAP_1E4 + per_pass(35000, 50), "timed"),
+    "progressive-gap1e-4-photons15k-k30": (GAP_1E4 + per_pass(15000, 30), "timed"),
+    "progressive-gap1e-4-photons15k-k50": (GAP_1E4 + per_pass(15000, 50), "timed"),
+    "progressive-gap1e-4-photons10k-k20": (GAP_1E4 + per_pass(10000, 20), "timed"),
+    "sppm-photons50k": (["--mode", "sppm"] + per_pass(50000), "timed"),
+    "sppm-photons25k": (["--mode", "sppm"] + per_pass(25000), "timed"),
+    "sppm-photons12k": (["--mode", "sppm"] + per_pass(12500), "timed"),
+    "progressive-crease": (PROGRESSIVE + ["--maps", "crease"], "timed"),
     "progressive-photons": (["--mode", "progressive", "--direct", "photons"], "timed"),
     # Camera-driven emission (issue 36): the same runs with --emission camera.
     "sppm-camera": (["--mode", "sppm", "--emission", "camera"], "timed"),
-    "progressive-camera": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--emission", "camera"], "timed"),
-    "progressive-gap1e-4-camera": (
-        ["--mode", "progressive", "--direct", "shadow-rays", "--contact-gap", "0.0001",
-         "--emission", "camera"], "timed"),
+    "progressive-camera": (PROGRESSIVE + ["--emission", "camera"], "timed"),
+    "progressive-gap1e-4-camera": (GAP_1E4 + ["--emission", "camera"], "timed"),
     "progressive-gather": (
         ["--mode", "progressive", "--gather-rays", "4", "--spp", "4"], "timed"),
     "final-gather": (["--mode", "final-gather"], "ladder"),
