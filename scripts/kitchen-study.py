@@ -9,8 +9,15 @@ Each method runs as the `render` example would for a user, once per time budget:
   `budget - set-up`);
 - the one-pass modes (final gather, shadow rays, path tracer) are run on a ladder of sample
   and photon counts, and each budget takes the rung whose time is nearest.
-Every run's process wall time is measured, and the tables say which time each error comes
-with, so nothing is matched by hand.
+Every run's process wall and CPU time are measured, and the tables say which time each error
+comes with, so nothing is matched by hand.
+
+What a budget matches (`--match`): the process's wall time (the default), or its CPU time,
+`budget × threads` CPU-seconds. A renderer whose set-up keeps fewer cores busy (the contact
+split runs at about 1.65× on two threads, the passes at 1.9×) uses less CPU in the same wall
+time. With `--match cpu` each timed method runs a second time, its `--time` set from a fit of
+CPU time = set-up + rate × pass time to its one-pass run and its first run at the wall
+budget; that second run is kept. A ladder's rung is then the one nearest in CPU time.
 
 Error: relative RMSE over the image against the reference (channel mean), with the
 reference's own variance removed, sqrt(max(mean((o - r)^2) - mean(se_r^2), 0)) / mean(r);
@@ -32,7 +39,7 @@ Writes a Markdown table and a JSON of every run to --out-dir (default
 target/kitchen/study); never into tracked files. Needs numpy and mitsuba (to read EXRs).
 
 Usage: scripts/kitchen-study.py --reference target/kitchen/out/mitsuba.npy
-       [--scene target/kitchen/kitchen.gltf] [--budgets 2,6,30] [--seeds 1]
+       [--scene target/kitchen/kitchen.gltf] [--budgets 2,6,30] [--seeds 1] [--match wall|cpu]
        [--methods sppm,progressive,...] [--render target/release/examples/render]
        [--out-dir DIR] [--rescore]
 """
@@ -147,6 +154,24 @@ def run(args, name, extra, seed, tag):
     return out, wall, cpu, figures
 
 
+def spent(args, rec):
+    """What a run spent, in budget seconds: its wall time, or its CPU time over the threads."""
+    return rec["wall"] if args.match == "wall" else rec["cpu"] / args.threads
+
+
+def cpu_matched_time(args, budget, one_pass, timed):
+    """The `--time` (seconds of passes) at which a timed run's process CPU time comes to
+    `budget × threads`, from two runs of it: one pass (`one_pass`) and a first try at the wall
+    budget (`timed`), each (CPU seconds, stats). The process's CPU time is taken as a set-up
+    part plus a rate per second of passes, the two fitted to those runs."""
+    (cpu1, fig1), (cpu2, fig2) = one_pass, timed
+    p1, p2 = fig1["seconds"]["total"], fig2["seconds"]["total"]
+    rate = (cpu2 - cpu1) / (p2 - p1) if p2 - p1 > 0.05 else 0.95 * args.threads
+    rate = min(max(rate, 0.25), float(args.threads))
+    setup_cpu = cpu1 - rate * p1
+    return max((budget * args.threads - setup_cpu) / rate, 0.01)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--reference", required=True)
@@ -157,6 +182,9 @@ def main():
     p.add_argument("--methods", default=",".join(METHODS))
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out-dir", default="target/kitchen/study")
+    p.add_argument("--match", choices=("wall", "cpu"), default="wall",
+                   help="what a budget of B seconds matches: the process's wall time (wall), "
+                        "or its CPU time, B × threads CPU-seconds (cpu)")
     p.add_argument("--rescore", action="store_true",
                    help="score the EXRs of the run kept in --out-dir against --reference")
     args = p.parse_args()
@@ -179,13 +207,19 @@ def main():
         for name in args.methods.split(","):
             base, kind = METHODS[name]
             if kind == "timed":
-                _, wall1, _, fig = run(args, name, base + ["--passes", "1"], seed, "setup")
-                setup = max(wall1 - fig["seconds"]["total"], 0.0)
+                _, wall1, cpu1, fig1 = run(args, name, base + ["--passes", "1"], seed, "setup")
+                setup = max(wall1 - fig1["seconds"]["total"], 0.0)
                 for b in budgets:
                     t = max(b - setup, 0.01)
-                    out, wall, cpu, fig = run(args, name, base + ["--time", f"{t:.3f}"], seed, f"t{b:g}")
+                    timed = base + ["--time", f"{t:.3f}"]
+                    out, wall, cpu, fig = run(args, name, timed, seed, f"t{b:g}")
+                    if args.match == "cpu":
+                        t = cpu_matched_time(args, b, (cpu1, fig1), (cpu, fig))
+                        timed = base + ["--time", f"{t:.3f}"]
+                        out, wall, cpu, fig = run(args, name, timed, seed, f"t{b:g}")
                     e = errors(read_exr(out), ref, ref_var)
-                    rec = dict(method=name, seed=seed, budget=b, wall=wall, cpu=cpu, setup=setup,
+                    rec = dict(method=name, seed=seed, budget=b, match=args.match, wall=wall,
+                               cpu=cpu, setup=setup,
                                passes=fig.get("passes"), maps=fig.get("map_count"),
                                exr=os.path.basename(out), **e)
                     records.append(rec)
@@ -194,11 +228,12 @@ def main():
                 for i, rung in enumerate(LADDERS[name]):
                     out, wall, cpu, fig = run(args, name, base + rung, seed, f"r{i}")
                     e = errors(read_exr(out), ref, ref_var)
-                    rec = dict(method=name, seed=seed, rung=" ".join(rung), wall=wall, cpu=cpu,
+                    rec = dict(method=name, seed=seed, rung=" ".join(rung), match=args.match,
+                               wall=wall, cpu=cpu,
                                maps=fig.get("map_count"), exr=os.path.basename(out), **e)
                     records.append(rec)
                     print(json.dumps(rec), flush=True)
-                    if wall > 1.5 * max(budgets):
+                    if spent(args, rec) > 1.5 * max(budgets):
                         break
     with open(os.path.join(args.out_dir, "study.json"), "w") as f:
         json.dump(records, f, indent=1)
@@ -213,6 +248,11 @@ def rescore(args, ref, ref_var):
         raise SystemExit(f"error: --rescore: no {path} (run the study into --out-dir first)")
     with open(path) as f:
         records = json.load(f)
+    # Runs kept before --match existed matched wall time.
+    matched = {r.get("match", "wall") for r in records}
+    if len(matched) != 1:
+        raise SystemExit(f"error: --rescore: {path} mixes budgets matched by {sorted(matched)}")
+    args.match = matched.pop()
     for suffix in ("json", "md"):
         first = os.path.join(args.out_dir, f"study-first.{suffix}")
         current = os.path.join(args.out_dir, f"study.{suffix}")
@@ -275,7 +315,9 @@ def paired_lines(records, budgets):
 
 
 def write_table(args, records, budgets):
-    lines = [f"Reference noise (relative RMS): {records[0]['noise1']:.4f} per pixel, "
+    unit = "s" if args.match == "wall" else f"CPU-s / {args.threads}"
+    lines = [f"Budgets match each run's {'wall' if args.match == 'wall' else 'CPU'} time.",
+             f"Reference noise (relative RMS): {records[0]['noise1']:.4f} per pixel, "
              f"{records[0]['noise4']:.4f} on 4×4 means.", "",
              "| method | " + " | ".join(f"~{b:g} s" for b in budgets) + " |",
              "|---|" + "---|" * len(budgets)]
@@ -284,15 +326,15 @@ def write_table(args, records, budgets):
         cells = []
         for b in budgets:
             near = [r for r in mine if r.get("budget") == b] or \
-                [min(mine, key=lambda r: abs(math.log(r["wall"] / b)))]
-            w = np.mean([r["wall"] for r in near])
+                [min(mine, key=lambda r: abs(math.log(spent(args, r) / b)))]
+            w = np.mean([spent(args, r) for r in near])
             (e1, s1), (e4, s4) = (mean_and_error([r[k] for r in near]) for k in ("rmse1", "rmse4"))
             m = np.mean([r["mean"] for r in near])
             if len(near) > 1:
                 cells.append(f"{e1:.4f} ± {s1:.4f} / {e4:.4f} ± {s4:.4f} "
-                             f"({w:.1f} s, {100 * m:+.1f} %, {len(near)} seeds)")
+                             f"({w:.2f} {unit}, {100 * m:+.1f} %, {len(near)} seeds)")
             else:
-                cells.append(f"{e1:.4f} / {e4:.4f} ({w:.1f} s, {100 * m:+.1f} %)")
+                cells.append(f"{e1:.4f} / {e4:.4f} ({w:.2f} {unit}, {100 * m:+.1f} %)")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
     paired = paired_lines(records, budgets)
     if paired:
