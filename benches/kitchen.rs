@@ -1,9 +1,11 @@
 //! The obvhs kitchen, a real modelled interior (56,939 triangles exported from Blender, every
 //! vertex repeated per face, objects resting on counters): what the contact split costs
 //! beside the crease partition, and photon paths per second with each partition's maps on 1
-//! and 2 threads. These are the numbers issue 34 set targets for (a split within 3× the
-//! crease partition's time, 2 M paths/s on 2 threads); the render example's `--stats-json`
-//! gives the same phases for one run, this gives them with criterion's statistics.
+//! and 2 threads; and a whole final-gather render with the contact maps, whose gather rays it
+//! counts. These are the numbers issue 34 set targets for (a split within 3× the crease
+//! partition's time, 2 M paths/s on 2 threads, gather rays to match); the render example's
+//! `--stats-json` gives the same phases for one run, this gives them with criterion's
+//! statistics.
 //!
 //! Needs the kitchen converted to glTF: `python3 scripts/kitchen-gltf.py` writes
 //! `target/kitchen/kitchen.gltf` from the obvhs crate in the cargo registry (or set
@@ -12,6 +14,7 @@
 //! `cargo bench --bench kitchen -- --warm-up-time 1 --measurement-time 5`
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use photon_maps::render::{EstimatorKind, FinalGatherOptions, Mode, RenderSettings, Renderer};
 use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, TraceOptions, trace_photons};
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -116,6 +119,42 @@ fn bench_kitchen(c: &mut Criterion) {
             });
         }
     }
+    g.finish();
+
+    // A final-gather render as `render --mode final-gather --size 160x90 --spp 4 --photons
+    // 100000 --contact-gap 0.0001` makes it: tracing, maps, the cache and the image. Its
+    // throughput counts the render phase's gather rays, though the time is the whole render's.
+    let settings = RenderSettings {
+        width: 160,
+        height: 90,
+        samples_per_pixel: 4,
+        photons: 100_000,
+        mode: Mode::FinalGather,
+        seed: 1,
+        threads: 2,
+        // The render example's default (the library's is 64).
+        final_gather: FinalGatherOptions {
+            gather_rays: 4,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let renderer = Renderer::new(EstimatorKind::GeometryCube, settings);
+    let contact = &partitioned[1].1;
+    let first = renderer.render(contact, &()).expect("the kitchen renders");
+    eprintln!(
+        "kitchen, final gather: {} gather rays, {:.2} M/s in the render phase ({:.3} s of {:.3} s)",
+        first.stats.gather_rays,
+        first.stats.gather_rays_per_second() / 1e6,
+        first.stats.render.as_secs_f64(),
+        first.stats.total().as_secs_f64(),
+    );
+    let mut g = c.benchmark_group("kitchen_final_gather");
+    g.sample_size(10).measurement_time(Duration::from_secs(5));
+    g.throughput(Throughput::Elements(first.stats.gather_rays));
+    g.bench_function("160x90, 4 spp, 100k photons, contact gap 1e-4", |b| {
+        b.iter(|| black_box(renderer.render(contact, &()).expect("render")))
+    });
     g.finish();
 }
 
