@@ -58,7 +58,7 @@ use pm_geom::{
 /// **Cost.** The split's work grows with the pairs of faces whose bounds touch, not with the
 /// meetings it finds. On an exported interior (the obvhs crate's kitchen: 56,939 triangles,
 /// every vertex repeated per face) it takes 0.47–0.52 s on two threads with `relative_gap:
-/// 1e-4` (28,086 meetings among 1.2 million candidate pairs) and 1.1–1.2 s with the default
+/// 1e-4` (28,086 meetings among 1.2 million candidate pairs) and 1.1–1.4 s with the default
 /// (76,822 among 7.4 million). [`crate::CreaseAngle`] takes 7–9 ms there, and loading the
 /// scene 64–70 ms (the repository's `benches/kitchen.rs`). The split uses about 1.65 of two
 /// cores, where photon tracing uses 1.9, so it weighs more in wall time than in CPU time.
