@@ -75,8 +75,8 @@ struct Args {
     mode: ModeChoice,
     /// Photon paths emitted from the lights; in progressive and sppm, per pass (each pass
     /// also takes one camera sample per pixel). A short --time budget gains from fewer: on a
-    /// modelled kitchen at 2 s, 25000 with --k 50 cut the progressive mode's per-pixel error
-    /// by a fifth (docs/kitchen.md).
+    /// modelled kitchen at 2 s, 25000 to 35000 with --k 50 cut the progressive mode's
+    /// per-pixel error by a fifth (docs/kitchen.md).
     #[arg(long, default_value_t = 100_000)]
     photons: u32,
     /// Photons gathered per estimate; in progressive, the k of the pilot's nearest-photon
