@@ -13,11 +13,13 @@
 //!
 //! `cargo bench --bench kitchen -- --warm-up-time 1 --measurement-time 5`
 
+#[path = "../tests/support/kitchen.rs"]
+mod kitchen;
+
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use photon_maps::render::{EstimatorKind, FinalGatherOptions, Mode, RenderSettings, Renderer};
-use photon_maps::trace::{Contact, CreaseAngle, Partitioner, Scene, TraceOptions, trace_photons};
+use photon_maps::trace::{Contact, CreaseAngle, Partitioner, TraceOptions, trace_photons};
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 
 /// Photon paths per traced batch: about 0.1 s on 2 threads.
@@ -27,26 +29,6 @@ const PATHS: u32 = 100_000;
 /// diagonal), beside the default.
 const FINE_GAP: f32 = 1e-4;
 
-/// Where the converted kitchen is: `PM_KITCHEN_GLTF`, or the conversion script's default.
-fn kitchen_path() -> PathBuf {
-    std::env::var_os("PM_KITCHEN_GLTF").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/kitchen/kitchen.gltf"),
-        PathBuf::from,
-    )
-}
-
-/// The kitchen, or `None` (with a message) when it has not been converted.
-fn kitchen(path: &std::path::Path) -> Option<Scene> {
-    if !path.is_file() {
-        eprintln!(
-            "skipped: {} not found (run scripts/kitchen-gltf.py, which needs the obvhs crate's kitchen in the cargo registry)",
-            path.display()
-        );
-        return None;
-    }
-    Some(photon_maps::trace::gltf::load_scene(path).expect("the kitchen loads"))
-}
-
 fn pool(threads: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -55,8 +37,10 @@ fn pool(threads: usize) -> rayon::ThreadPool {
 }
 
 fn bench_kitchen(c: &mut Criterion) {
-    let path = kitchen_path();
-    let Some(scene) = kitchen(&path) else { return };
+    let path = kitchen::kitchen_path();
+    let Some(scene) = kitchen::load_kitchen(&path) else {
+        return;
+    };
     let fine = Contact {
         relative_gap: FINE_GAP,
         ..Contact::default()

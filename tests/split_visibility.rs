@@ -12,6 +12,9 @@
 //! model), either may be seen; the check then asks that the split's face also contains the
 //! original hit point.
 
+#[path = "support/kitchen.rs"]
+mod kitchen;
+
 use photon_maps::trace::glam::Vec3;
 use photon_maps::trace::scenes::box_mesh::{Facing, box_mesh};
 use photon_maps::trace::{
@@ -346,22 +349,6 @@ proptest! {
     }
 }
 
-/// The kitchen as converted by `scripts/kitchen-gltf.py`, or `None` (with a message).
-fn kitchen() -> Option<Scene> {
-    let path = std::env::var_os("PM_KITCHEN_GLTF").map_or_else(
-        || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/kitchen/kitchen.gltf"),
-        std::path::PathBuf::from,
-    );
-    if !path.is_file() {
-        eprintln!(
-            "skipped: {} not found (run scripts/kitchen-gltf.py, which needs the obvhs crate's kitchen in the cargo registry)",
-            path.display()
-        );
-        return None;
-    }
-    Some(photon_maps::trace::gltf::load_scene(&path).expect("the kitchen loads"))
-}
-
 /// The kitchen of the obvhs crate, converted by `scripts/kitchen-gltf.py` (to
 /// `target/kitchen/kitchen.gltf`, or where `PM_KITCHEN_GLTF` says): 200,000 rays, none of
 /// which may see a different surface or distance after the split, nor a shadow ray from its
@@ -370,7 +357,9 @@ fn kitchen() -> Option<Scene> {
 /// one more; 1,000 cases of every case above pass now.)
 #[test]
 fn kitchen_split_keeps_visibility() {
-    let Some(scene) = kitchen() else { return };
+    let Some(scene) = kitchen::load_kitchen(&kitchen::kitchen_path()) else {
+        return;
+    };
     let split = Contact::default()
         .partition(scene.clone())
         .expect("the split succeeds");

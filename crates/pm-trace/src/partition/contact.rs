@@ -60,7 +60,7 @@ use pm_geom::{
 /// every vertex repeated per face) it takes 0.47–0.52 s on two threads with `relative_gap:
 /// 1e-4` (28,086 meetings among 1.2 million candidate pairs) and 1.1–1.4 s with the default
 /// (76,822 among 7.4 million). [`crate::CreaseAngle`] takes 7–9 ms there, and loading the
-/// scene 64–70 ms (the repository's `benches/kitchen.rs`). The split uses about 1.65 of two
+/// scene 59–70 ms (the repository's `benches/kitchen.rs`). The split uses about 1.65 of two
 /// cores, where photon tracing uses 1.9, so it weighs more in wall time than in CPU time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
