@@ -198,8 +198,17 @@ def main():
     args.height, args.width = ref.shape
     if args.rescore:
         return rescore(args, ref, ref_var)
-    budgets = [float(b) for b in args.budgets.split(",")]
-    seeds = [int(s) for s in args.seeds.split(",")]
+    unknown = [m for m in args.methods.split(",") if m not in METHODS]
+    if unknown:
+        raise SystemExit(f"error: --methods: unknown {', '.join(unknown)}; "
+                         f"the methods are {', '.join(METHODS)}")
+    try:
+        budgets = [float(b) for b in args.budgets.split(",")]
+        seeds = [int(s) for s in args.seeds.split(",")]
+    except ValueError as e:
+        raise SystemExit(f"error: --budgets takes seconds and --seeds integers, comma-separated ({e})")
+    if not all(b > 0 and math.isfinite(b) for b in budgets):
+        raise SystemExit(f"error: --budgets must be positive seconds, not {args.budgets}")
     records = []
     # Seed by seed, every method in turn: a stretch of the day when the machine runs slower
     # (other tenants of the host) then slows every method alike rather than one method's runs.
