@@ -323,6 +323,15 @@ def paired_lines(records, budgets):
     return lines
 
 
+def nearest_rungs(args, ladder, budget):
+    """Seed by seed, the rung of a ladder's runs nearest `budget` (by ratio)."""
+    by_seed = {}
+    for r in ladder:
+        by_seed.setdefault(r["seed"], []).append(r)
+    return [min(runs, key=lambda r: abs(math.log(spent(args, r) / budget)))
+            for _, runs in sorted(by_seed.items())]
+
+
 def write_table(args, records, budgets):
     unit = "s" if args.match == "wall" else f"CPU-s / {args.threads}"
     lines = [f"Budgets match each run's {'wall' if args.match == 'wall' else 'CPU'} time.",
@@ -334,8 +343,7 @@ def write_table(args, records, budgets):
         mine = [r for r in records if r["method"] == name]
         cells = []
         for b in budgets:
-            near = [r for r in mine if r.get("budget") == b] or \
-                [min(mine, key=lambda r: abs(math.log(spent(args, r) / b)))]
+            near = [r for r in mine if r.get("budget") == b] or nearest_rungs(args, mine, b)
             w = np.mean([spent(args, r) for r in near])
             (e1, s1), (e4, s4) = (mean_and_error([r[k] for r in near]) for k in ("rmse1", "rmse4"))
             m = np.mean([r["mean"] for r in near])
