@@ -86,6 +86,7 @@ METHODS = {
     "progressive-gap1e-4-k50": (GAP_1E4 + ["--k", "50"], "timed"),
     "progressive-gap1e-4-k25": (GAP_1E4 + ["--k", "25"], "timed"),
     "progressive-gap1e-4-k12": (GAP_1E4 + ["--k", "12"], "timed"),
+    "progressive-gap1e-4-photons35k-k25": (GAP_1E4 + per_pass(35000, 25), "timed"),
     "sppm-photons50k": (["--mode", "sppm"] + per_pass(50000), "timed"),
     "sppm-photons25k": (["--mode", "sppm"] + per_pass(25000), "timed"),
     "sppm-photons12k": (["--mode", "sppm"] + per_pass(12500), "timed"),
