@@ -297,16 +297,75 @@ def mean_and_error(values):
     return m, float(np.std(values, ddof=1) / math.sqrt(len(values)))
 
 
+def timed_by_method(records, budget):
+    """The timed runs at `budget`, by method and then by seed."""
+    by = {}
+    for r in records:
+        if r.get("budget") == budget:
+            by.setdefault(r["method"], {})[r["seed"]] = r
+    return by
+
+
+def best_leak_free(by):
+    """Of the timed methods in `by`, the leak-free one (not SPPM, not crease maps, which leak
+    light around the objects resting on surfaces) with the lowest mean per-pixel error."""
+    names = [m for m in by if not m.startswith("sppm") and "crease" not in m]
+    return min(names, key=lambda m: np.mean([r["rmse1"] for r in by[m].values()]), default=None)
+
+
+def interpolated(args, runs, at):
+    """A ladder's errors at `at` budget seconds, interpolated (log error against log time)
+    between the two of `runs` (one seed's rungs) around it; None outside the ladder."""
+    runs = sorted(runs, key=lambda r: spent(args, r))
+    below = [r for r in runs if spent(args, r) <= at]
+    above = [r for r in runs if spent(args, r) > at]
+    if not below or not above:
+        return None
+    lo, hi = below[-1], above[0]
+    f = math.log(at / spent(args, lo)) / math.log(spent(args, hi) / spent(args, lo))
+    return {k: math.exp(math.log(lo[k]) + f * (math.log(hi[k]) - math.log(lo[k])))
+            for k in ("rmse1", "rmse4")}
+
+
+def ladder_lines(args, records, budgets):
+    """Per budget and ladder: the ladder interpolated, seed by seed, to the CPU or wall time
+    of the best leak-free timed method's own run, and that method against it, paired."""
+    lines = []
+    ladders = list(dict.fromkeys(r["method"] for r in records if "rung" in r))
+    for b in budgets:
+        by = timed_by_method(records, b)
+        ours = best_leak_free(by)
+        if ours is None:
+            continue
+        for name in ladders:
+            at = {}
+            for seed, rec in by[ours].items():
+                e = interpolated(args, [r for r in records if r["method"] == name
+                                        and r.get("seed") == seed and "rung" in r],
+                                 spent(args, rec))
+                if e is not None:
+                    at[seed] = (rec, e)
+            if len(at) < 2:
+                continue
+            parts = []
+            for key, label in (("rmse1", "per pixel"), ("rmse4", "4×4 means")):
+                diff = [rec[key] - e[key] for rec, e in at.values()]
+                m, se = mean_and_error(diff)
+                t = m / se if se > 0 else float("inf")
+                mean_e = np.mean([e[key] for _, e in at.values()])
+                parts.append(f"{label} {mean_e:.4f}, {ours} − it = {m:+.4f} ± {se:.4f} "
+                             f"(t = {t:+.1f}; lower on {sum(d < 0 for d in diff)} of {len(diff)})")
+            lines.append(f"- ~{b:g} s, {name} interpolated to {ours}'s time: " + "; ".join(parts))
+    return lines
+
+
 def paired_lines(records, budgets):
     """Per budget: the leak-free method with the lowest mean per-pixel error against the SPPM
     setting with the lowest mean error on each measure, seed by seed (one leak-free setting
     held against SPPM at its best for that measure)."""
     lines = []
     for b in budgets:
-        by = {}
-        for r in records:
-            if r.get("budget") == b:
-                by.setdefault(r["method"], {})[r["seed"]] = r
+        by = timed_by_method(records, b)
         # Crease maps leak light around the objects resting on surfaces: not leak-free.
         ours_names = [m for m in by if not m.startswith("sppm") and "crease" not in m]
         sppm_names = [m for m in by if m.startswith("sppm")]
@@ -362,6 +421,10 @@ def write_table(args, records, budgets):
     if paired:
         lines += ["", "Best leak-free method against best SPPM setting, paired by seed "
                   "(mean difference ± its standard error):"] + paired
+    ladders = ladder_lines(args, records, budgets)
+    if ladders:
+        lines += ["", "The one-pass modes interpolated between the rungs around the best "
+                  "leak-free method's own run, paired by seed:"] + ladders
     text = "\n".join(lines) + "\n"
     with open(os.path.join(args.out_dir, "study.md"), "w") as f:
         f.write(text)
