@@ -323,8 +323,15 @@ def interpolated(args, runs, at):
         return None
     lo, hi = below[-1], above[0]
     f = math.log(at / spent(args, lo)) / math.log(spent(args, hi) / spent(args, lo))
-    return {k: math.exp(math.log(lo[k]) + f * (math.log(hi[k]) - math.log(lo[k])))
-            for k in ("rmse1", "rmse4")}
+
+    def between(a, b):
+        # An error at or below the reference's noise scores 0, which has no logarithm: linear
+        # in log time then.
+        if a <= 0 or b <= 0:
+            return a + f * (b - a)
+        return math.exp(math.log(a) + f * (math.log(b) - math.log(a)))
+
+    return {k: between(lo[k], hi[k]) for k in ("rmse1", "rmse4")}
 
 
 def ladder_lines(args, records, budgets):
@@ -350,11 +357,8 @@ def ladder_lines(args, records, budgets):
             parts = []
             for key, label in (("rmse1", "per pixel"), ("rmse4", "4×4 means")):
                 diff = [rec[key] - e[key] for rec, e in at.values()]
-                m, se = mean_and_error(diff)
-                t = m / se if se > 0 else float("inf")
                 mean_e = np.mean([e[key] for _, e in at.values()])
-                parts.append(f"{label} {mean_e:.4f}, {ours} − it = {m:+.4f} ± {se:.4f} "
-                             f"(t = {t:+.1f}; lower on {sum(d < 0 for d in diff)} of {len(diff)})")
+                parts.append(f"{label} {mean_e:.4f}, {ours} − it = {paired(diff)})")
             lines.append(f"- ~{b:g} s, {name} interpolated to {ours}'s time: " + "; ".join(parts))
     return lines
 
@@ -366,25 +370,26 @@ def paired_lines(records, budgets):
     lines = []
     for b in budgets:
         by = timed_by_method(records, b)
-        # Crease maps leak light around the objects resting on surfaces: not leak-free.
-        ours_names = [m for m in by if not m.startswith("sppm") and "crease" not in m]
+        ours = best_leak_free(by)
         sppm_names = [m for m in by if m.startswith("sppm")]
-        if not ours_names or not sppm_names:
+        if ours is None or not sppm_names:
             continue
-        mean_of = lambda m, key: np.mean([r[key] for r in by[m].values()])
-        ours = min(ours_names, key=lambda m: mean_of(m, "rmse1"))
         for key, label in (("rmse1", "per pixel"), ("rmse4", "4×4 means")):
-            theirs = min(sppm_names, key=lambda m: mean_of(m, key))
+            theirs = min(sppm_names, key=lambda m: np.mean([r[key] for r in by[m].values()]))
             seeds = sorted(set(by[ours]) & set(by[theirs]))
             if len(seeds) < 2:
                 continue
             diff = [by[ours][s][key] - by[theirs][s][key] for s in seeds]
-            m, se = mean_and_error(diff)
-            t = m / se if se > 0 else float("inf")
-            lower = sum(d < 0 for d in diff)
-            lines.append(f"- ~{b:g} s, {label}: {ours} − {theirs} = {m:+.4f} ± {se:.4f} "
-                         f"(t = {t:+.1f}; lower on {lower} of {len(seeds)} seeds)")
+            lines.append(f"- ~{b:g} s, {label}: {ours} − {theirs} = {paired(diff)} seeds)")
     return lines
+
+
+def paired(diff):
+    """Paired differences as `mean ± standard error (t = …; lower on n of N`, for the caller
+    to close."""
+    m, se = mean_and_error(diff)
+    t = m / se if se > 0 else float("inf")
+    return f"{m:+.4f} ± {se:.4f} (t = {t:+.1f}; lower on {sum(d < 0 for d in diff)} of {len(diff)}"
 
 
 def nearest_rungs(args, ladder, budget):
