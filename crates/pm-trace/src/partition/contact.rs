@@ -62,6 +62,8 @@ use pm_geom::{
 /// (76,822 among 7.4 million). [`crate::CreaseAngle`] takes 7–9 ms there, and loading the
 /// scene 59–70 ms (the repository's `benches/kitchen.rs`). The split uses about 1.65 of two
 /// cores, where photon tracing uses 1.9, so it weighs more in wall time than in CPU time.
+/// These times come from a shared two-core machine whose speed changed by up to 2× from day
+/// to day; compare builds only when they are measured alternately in one run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
     /// Largest crease angle (between face normals, 0 = flat) that still joins, radians.
