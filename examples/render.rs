@@ -81,11 +81,10 @@ struct Args {
     photons: u32,
     /// Photons gathered per estimate; in progressive, the k of the pilot's nearest-photon
     /// extents that fix each point's gather volume, and in sppm, of each pixel's first radius.
-    /// Which k is best in progressive mode depends on the scene: on the Cornell box and the
-    /// lit/unlit and coloured rooms 100 had the lowest error at 2, 8 and 30 s (12 was 1.7–3.1×
-    /// higher), on the accordion 25 or 12 at each of them (0.4–0.6 of 100's error), and on
-    /// a modelled kitchen 50 at 2 s (with --photons 35000), 25 at 6 s and 12 at 30 s
-    /// (docs/results.md, docs/kitchen.md).
+    /// Which k is best in progressive mode depends on the scene, not the budget: of 12 to 400,
+    /// the lowest error at 2, 8 and 30 s came with 100 on the Cornell box, 400 on the lit/unlit
+    /// and coloured rooms, 25 or 12 on the accordion, and on a modelled kitchen (12 to 100
+    /// tried) 50 at 2 s (with --photons 35000), 25 at 6 s and 12 at 30 s (docs/results.md).
     #[arg(long, default_value_t = 100)]
     k: usize,
     /// Image size, WIDTHxHEIGHT.
