@@ -358,7 +358,7 @@ def ladder_lines(args, records, budgets):
             for key, label in (("rmse1", "per pixel"), ("rmse4", "4×4 means")):
                 diff = [rec[key] - e[key] for rec, e in at.values()]
                 mean_e = np.mean([e[key] for _, e in at.values()])
-                parts.append(f"{label} {mean_e:.4f}, {ours} − it = {paired(diff)})")
+                parts.append(f"{label} {mean_e:.4f}, {ours} − it = {paired(diff)}")
             lines.append(f"- ~{b:g} s, {name} interpolated to {ours}'s time: " + "; ".join(parts))
     return lines
 
@@ -380,16 +380,16 @@ def paired_lines(records, budgets):
             if len(seeds) < 2:
                 continue
             diff = [by[ours][s][key] - by[theirs][s][key] for s in seeds]
-            lines.append(f"- ~{b:g} s, {label}: {ours} − {theirs} = {paired(diff)} seeds)")
+            lines.append(f"- ~{b:g} s, {label}: {ours} − {theirs} = {paired(diff, ' seeds')}")
     return lines
 
 
-def paired(diff):
-    """Paired differences as `mean ± standard error (t = …; lower on n of N`, for the caller
-    to close."""
+def paired(diff, unit=""):
+    """Paired differences as `mean ± standard error (t = …; lower on n of N<unit>)`."""
     m, se = mean_and_error(diff)
     t = m / se if se > 0 else float("inf")
-    return f"{m:+.4f} ± {se:.4f} (t = {t:+.1f}; lower on {sum(d < 0 for d in diff)} of {len(diff)}"
+    lower = sum(d < 0 for d in diff)
+    return f"{m:+.4f} ± {se:.4f} (t = {t:+.1f}; lower on {lower} of {len(diff)}{unit})"
 
 
 def nearest_rungs(args, ladder, budget):
@@ -422,10 +422,10 @@ def write_table(args, records, budgets):
             else:
                 cells.append(f"{e1:.4f} / {e4:.4f} ({w:.2f} {unit}, {100 * m:+.1f} %)")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
-    paired = paired_lines(records, budgets)
-    if paired:
+    pairs = paired_lines(records, budgets)
+    if pairs:
         lines += ["", "Best leak-free method against best SPPM setting, paired by seed "
-                  "(mean difference ± its standard error):"] + paired
+                  "(mean difference ± its standard error):"] + pairs
     ladders = ladder_lines(args, records, budgets)
     if ladders:
         lines += ["", "The one-pass modes interpolated between the rungs around the best "
